@@ -1,0 +1,234 @@
+#include "derive.hpp"
+
+#include <sstream>
+#include <stdexcept>
+
+#include "phi.hpp"
+
+using namespace GiNaC;
+
+namespace erkn::gen {
+namespace {
+
+std::string str(const ex& e) {
+  std::ostringstream os;
+  os << e;
+  return os.str();
+}
+
+std::string idx(int i) { return std::to_string(i + 1); }
+
+Rational constant(const Qs& q) { return {TrigPoly(q)}; }
+
+Rational power(Rational r, int n) {
+  if (n < 0) r = r.inverse(), n = -n;
+  Rational out = constant(Qs(1));
+  for (int k = 0; k < n; ++k) out = out * r;
+  return out;
+}
+
+Rational convert(const ex& e, const TrigEnv& env, const symbol& v) {
+  if (is_a<numeric>(e)) return constant(Qs(ex_to<numeric>(e)));
+  if (e == v) return {TrigPoly::v()};
+  if (auto it = env.find(e); it != env.end()) return it->second;
+  if (is_a<add>(e)) {
+    Rational r = constant(Qs(0));
+    for (size_t i = 0; i < e.nops(); ++i) r = r + convert(e.op(i), env, v);
+    return r;
+  }
+  if (is_a<mul>(e)) {
+    Rational r = constant(Qs(1));
+    for (size_t i = 0; i < e.nops(); ++i) r = r * convert(e.op(i), env, v);
+    return r;
+  }
+  if (is_a<GiNaC::power>(e)) {
+    if (is_a<numeric>(e.op(0)) && (e.op(1) == ex(1) / 2 || e.op(1) == ex(-1) / 2))
+      return constant(Qs::from_ex(e));
+    if (!is_a<numeric>(e.op(1)) || !ex_to<numeric>(e.op(1)).is_integer())
+      throw std::runtime_error("not a rational function: " + str(e));
+    return power(convert(e.op(0), env, v), ex_to<numeric>(e.op(1)).to_int());
+  }
+  if (is_ex_the_function(e, phi)) {
+    // phi(j, w v) with w = omega^2 >= 0 in the field of the method.
+    TrigPoly arg = convert(e.op(1), env, v).as_poly();
+    Qs w = arg.is_zero() ? Qs(0) : arg.terms().begin()->second;
+    if (!arg.is_zero() && !(arg.terms().size() == 1 && arg.terms().begin()->first.xpow == 2 &&
+                            arg.terms().begin()->first.omega.is_zero()))
+      throw std::runtime_error("phi argument is not a multiple of v: " + str(e));
+    return phi_trig(ex_to<numeric>(e.op(0)).to_int(), w.sqrt());
+  }
+  throw std::runtime_error("cannot bring to trigonometric normal form: " + str(e));
+}
+
+/// Exact value of a constant expression in Q(sqrt(s)) (numbers, sqrt(n), + * / and powers).
+Qs value(const ex& e) {
+  Rational r = convert(e, {}, symbol("unused"));
+  TrigPoly p = r.as_poly();
+  if (!p.is_constant()) throw std::runtime_error("not a constant: " + str(e));
+  return p.is_zero() ? Qs(0) : p.terms().begin()->second;
+}
+
+bool identically_zero(const Rational& r) { return r.num.is_zero(); }
+
+}  // namespace
+
+Rational to_rational(const ex& e, const TrigEnv& env, const symbol& v) {
+  ex n = normal(e);
+  Rational num = convert(numer(n), env, v), den = convert(denom(n), env, v);
+  return {num.num * den.den, num.den * den.num};
+}
+
+Derived derive(const MethodSpec& spec) {
+  const int s = spec.stages;
+  Derived out;
+  out.spec = spec;
+  auto fail = [&](const std::string& why) { throw std::runtime_error(spec.name + ": " + why); };
+
+  // --- Nodes and weights: quadrature conditions at V = 0, over symbolic c_i. ---------------
+  std::vector<symbol> c, d;
+  for (int i = 0; i < s; ++i) c.emplace_back("c" + idx(i)), d.emplace_back("d" + idx(i));
+  std::vector<ex> quad;  // sum_i d_i c_i^k - 1/(k+1), k = 0 .. order-1
+  for (int k = 0; k < spec.order; ++k) {
+    ex sum = 0;
+    for (int i = 0; i < s; ++i) sum += d[i] * pow(c[i], k);
+    quad.push_back(sum - numeric(1, k + 1));
+  }
+  if (int(quad.size()) < s) fail("order < stages leaves d underdetermined");
+  lst deqs, dsyms;
+  for (int i = 0; i < s; ++i) deqs.append(quad[i] == 0), dsyms.append(d[i]);
+  ex dsol = lsolve(deqs, dsyms);
+  exmap nodes;  // c_i -> value (free ones from the spec, solved ones below)
+  std::vector<int> unknown;
+  for (int i = 0; i < s; ++i) {
+    if (spec.c[i] == "?") {
+      unknown.push_back(i);
+      continue;
+    }
+    symbol dummy("v");
+    nodes[c[i]] = make_parser(dummy)(spec.c[i]);
+  }
+  if (unknown.size() > 1) fail("at most one node may be left to the generator");
+  std::vector<ex> rest;
+  for (int k = s; k < spec.order; ++k) rest.push_back(normal(quad[k].subs(dsol)));
+  if (!unknown.empty()) {
+    if (rest.empty()) fail("no condition left to fix c" + idx(unknown[0]));
+    const symbol& cu = c[unknown[0]];
+    ex p = expand(numer(normal(rest[0])));
+    if (p.degree(cu) != 1) fail("the node condition is not linear in c" + idx(unknown[0]));
+    ex sol = normal(-p.coeff(cu, 0) / p.coeff(cu, 1));
+    out.node_derivation.push_back(str(cu) + " = " + str(sol));
+    nodes[cu] = sol.subs(nodes);
+  }
+  for (size_t i = 0; i < dsol.nops(); ++i)
+    out.node_derivation.push_back(str(dsol.op(i).op(0)) + " = " + str(normal(dsol.op(i).op(1))));
+  for (int i = 0; i < s; ++i) out.c.push_back(value(nodes[c[i]].subs(nodes)));
+  exmap cd;  // c_i, d_i -> exact values as GiNaC numbers
+  for (int i = 0; i < s; ++i) cd[c[i]] = out.c[i].to_ex();
+  for (int i = 0; i < s; ++i) {
+    out.d.push_back(value(ex(d[i]).subs(dsol).subs(cd)));
+    cd[d[i]] = out.d[i].to_ex();
+    if (out.d[i].is_zero()) fail("d" + idx(i) + " = 0: abar_ij = (...)/d_i is undefined");
+  }
+  for (int k = 0; k < spec.order; ++k)
+    if (!value(quad[k].subs(cd)).is_zero())
+      fail("quadrature condition sum d_i c_i^" + std::to_string(k) + " = 1/" +
+           std::to_string(k + 1) + " fails");
+
+  // --- Symbols of the tableau, and the trig environment that gives them meaning. ----------
+  symbol v("v");
+  std::vector<symbol> b, bb;
+  std::vector<std::vector<symbol>> a(s);
+  for (int i = 0; i < s; ++i) {
+    b.emplace_back("b" + idx(i)), bb.emplace_back("bbar" + idx(i));
+    for (int j = 0; j <= i; ++j) a[i].emplace_back("abar" + idx(i) + idx(j));
+  }
+  TrigEnv env;
+  for (int i = 0; i < s; ++i) env[c[i]] = constant(out.c[i]), env[d[i]] = constant(out.d[i]);
+  auto trig = [&](const ex& e) { return to_rational(e, env, v); };
+  out.names.resize(2 * s + s * (s + 1) / 2);
+  out.coef.resize(out.names.size());
+  out.derivation.resize(out.names.size());
+  auto record = [&](int index, const symbol& sym, const ex& solution) {
+    Rational r = trig(solution);
+    out.names[index] = str(sym);
+    out.coef[index] = r.is_poly() ? Rational{r.as_poly()} : r;
+    out.derivation[index] = str(sym) + " = " + str(solution);
+    env[sym] = out.coef[index];
+  };
+
+  // --- b_i, bbar_i: the first two symplectic conditions of (g), a 2x2 linear system. ------
+  symbol p0("phi0V"), p1("phi1V"), q0("phi0c2V"), q1("phi1c2V");
+  for (int i = 0; i < s; ++i) {
+    lst eqs{p0 * b[i] + v * p1 * bb[i] == d[i] * q0, p1 * b[i] - p0 * bb[i] == c[i] * d[i] * q1};
+    ex sol = lsolve(eqs, lst{b[i], bb[i]});
+    exmap phis{{p0, phi(0, v)},
+               {p1, phi(1, v)},
+               {q0, phi(0, pow(c[i], 2) * v)},
+               {q1, phi(1, pow(c[i], 2) * v)}};
+    env[p0] = {TrigPoly::phi0(Qs(1))}, env[p1] = {TrigPoly::phi1(Qs(1))};
+    env[q0] = {TrigPoly::phi0(out.c[i])}, env[q1] = {TrigPoly::phi1(out.c[i])};
+    for (int k = 0; k < 2; ++k) {
+      const symbol& sym = k == 0 ? b[i] : bb[i];
+      ex solution = normal(ex(sym).subs(sol));
+      record(k == 0 ? i : s + i, sym, solution);
+      out.derivation[k == 0 ? i : s + i] = str(sym) + " = " + str(normal(solution.subs(phis)));
+      if (!out.coef[k == 0 ? i : s + i].is_poly())
+        fail("symplectic solution for " + str(sym) + " did not reduce to a trig polynomial");
+    }
+  }
+
+  // --- abar_ij, j < i: third symplectic condition of (g) (j < i; the paper prints j <= i). --
+  for (int i = 0; i < s; ++i)
+    for (int j = 0; j < i; ++j) {
+      ex sol = lsolve(lst{bb[j] * b[i] - bb[i] * b[j] == d[i] * a[i][j]}, lst{a[i][j]});
+      record(abar_index(s, i + 1, j + 1), a[i][j], normal(ex(a[i][j]).subs(sol)));
+    }
+
+  // --- abar_ii: the diagonal equations of the spec, as equalities in V. --------------------
+  symtab table;
+  table["v"] = v;
+  ex bAe = 0, bbarAe = 0, bcAe = 0, bAc = 0;
+  for (int i = 0; i < s; ++i) {
+    ex row = 0, rowc = 0;
+    for (int j = 0; j <= i; ++j) row += a[i][j], rowc += a[i][j] * c[j];
+    bAe += b[i] * row, bbarAe += bb[i] * row, bcAe += b[i] * c[i] * row, bAc += b[i] * rowc;
+    table["b" + idx(i)] = b[i], table["bbar" + idx(i)] = bb[i], table["c" + idx(i)] = c[i];
+    for (int j = 0; j <= i; ++j) table["abar" + idx(i) + idx(j)] = a[i][j];
+  }
+  table["bAe"] = bAe, table["bbarAe"] = bbarAe, table["bcAe"] = bcAe, table["bAc"] = bAc;
+  parser read(table, true);
+  lst diag_eqs, diag_syms;
+  std::vector<ex> diagonal;
+  for (const std::string& text : spec.diagonal) {
+    size_t eqpos = text.find("==");
+    if (eqpos == std::string::npos) fail("diagonal condition is not an equation: " + text);
+    ex lhs = read(text.substr(0, eqpos)), rhs = read(text.substr(eqpos + 2));
+    diag_eqs.append(lhs == rhs);
+    diagonal.push_back(lhs - rhs);
+  }
+  for (int i = 0; i < s; ++i) diag_syms.append(a[i][i]);
+  if (diag_eqs.nops() != size_t(s)) fail("need one diagonal equation per stage");
+  ex dsol2 = lsolve(diag_eqs, diag_syms);
+  if (dsol2.nops() != size_t(s)) fail("diagonal equations do not determine abar_ii");
+  for (int i = 0; i < s; ++i)
+    record(abar_index(s, i + 1, i + 1), a[i][i], normal(ex(a[i][i]).subs(dsol2)));
+
+  // --- Verify, identically in V: everything imposed holds. --------------------------------
+  for (int i = 0; i < s; ++i) {
+    ex g1 = phi(0, v) * b[i] + v * phi(1, v) * bb[i] - d[i] * phi(0, pow(c[i], 2) * v);
+    ex g2 = phi(1, v) * b[i] - phi(0, v) * bb[i] - c[i] * d[i] * phi(1, pow(c[i], 2) * v);
+    if (!identically_zero(trig(g1)) || !identically_zero(trig(g2)))
+      fail("symplectic condition (g) 1-2 fails at stage " + idx(i));
+    for (int j = 0; j < i; ++j)
+      if (!identically_zero(trig(bb[j] * b[i] - bb[i] * b[j] - d[i] * a[i][j])))
+        fail("symplectic condition (g) 3 fails for i=" + idx(i) + ", j=" + idx(j));
+  }
+  for (size_t k = 0; k < diagonal.size(); ++k)
+    if (!identically_zero(trig(diagonal[k])))
+      fail("diagonal condition '" + spec.diagonal[k] + "' fails");
+
+  for (const Rational& r : out.coef) out.series.push_back(taylor(r, kSeriesTerms));
+  return out;
+}
+
+}  // namespace erkn::gen

@@ -1,0 +1,44 @@
+// From a MethodSpec to the method: solves the symplectic, quadrature, coupling and diagonal
+// conditions symbolically (GiNaC lsolve over symbolic c_i, so the general formulas such as
+// c2 = (2 - 3 c1)/(3 - 6 c1) appear on the way), substitutes the nodes, brings every coefficient
+// to trigonometric normal form and verifies every imposed condition identically.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "spec.hpp"
+#include "trig.hpp"
+
+namespace erkn::gen {
+
+struct Derived {
+  MethodSpec spec;
+  std::vector<Qs> c, d;
+  /// Coefficient functions in table order: b_1..b_s, bbar_1..bbar_s, abar_11, abar_21, abar_22, ...
+  std::vector<std::string> names;
+  std::vector<Rational> coef;  ///< closed forms (den = 1 except for the solved diagonal)
+  /// How each coefficient was solved, in the symbols of the paper (GiNaC syntax), e.g.
+  /// "abar11 = (bbar2*phi(3,v)-b2*phi(4,v))/(b1*bbar2-b2*bbar1)".
+  std::vector<std::string> derivation;
+  std::vector<std::string> node_derivation;  ///< c and d as functions of the free nodes
+  std::vector<std::vector<Qs>> series;       ///< exact Taylor coefficients, kSeriesTerms each
+  int stages() const { return spec.stages; }
+};
+
+inline constexpr int kSeriesTerms = 25;
+
+/// Index of abar_ij (1-based i >= j) in Derived::coef.
+inline int abar_index(int s, int i, int j) { return 2 * s + i * (i - 1) / 2 + (j - 1); }
+
+/// Solves and verifies; throws std::runtime_error naming the condition that fails.
+Derived derive(const MethodSpec& spec);
+
+using TrigEnv = std::map<GiNaC::ex, Rational, GiNaC::ex_is_less>;
+
+/// A GiNaC expression in numbers, sqrt(n), v, phi(j, w*v) and the symbols of `env`, in normal
+/// form. Used by derive() and by the symbolic tests on the emitted closed forms.
+Rational to_rational(const GiNaC::ex& e, const TrigEnv& env, const GiNaC::symbol& v);
+
+}  // namespace erkn::gen

@@ -1,0 +1,42 @@
+// erkn-generate: derives every method of generator/methods.spec and writes generated/.
+//   erkn-generate SPEC OUTDIR
+#include <chrono>
+#include <fstream>
+#include <iostream>
+
+#include "derive.hpp"
+#include "emit.hpp"
+#include "numerics.hpp"
+
+int main(int argc, char** argv) {
+  using namespace erkn::gen;
+  if (argc != 3) {
+    std::cerr << "usage: erkn-generate SPEC OUTDIR\n";
+    return 2;
+  }
+  try {
+    auto t0 = std::chrono::steady_clock::now();
+    std::ifstream in(argv[1]);
+    if (!in) throw std::runtime_error(std::string("cannot read ") + argv[1]);
+    std::vector<Emittable> out;
+    for (const MethodSpec& spec : read_specs(in)) {
+      Emittable e{derive(spec), {}, {}};
+      for (size_t k = 0; k < e.method.coef.size(); ++k) {
+        std::vector<double> series;
+        for (const Qs& q : e.method.series[k]) series.push_back(q.to_double());
+        e.poles.push_back(real_poles(e.method.coef[k], kPoleSearchMax));
+        e.series_switch.push_back(series_switch(e.method.coef[k], series));
+      }
+      std::cerr << "derived " << spec.name << "\n";
+      out.push_back(std::move(e));
+    }
+    emit(out, argv[2], "cmake --build <build> --target regenerate");
+    std::chrono::duration<double> dt = std::chrono::steady_clock::now() - t0;
+    std::cerr << "erkn-generate: " << out.size() << " methods (and their RKN limits) in "
+              << dt.count() << " s\n";
+  } catch (const std::exception& e) {
+    std::cerr << "erkn-generate: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

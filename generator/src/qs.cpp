@@ -1,0 +1,138 @@
+#include "qs.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+using GiNaC::ex;
+using GiNaC::numeric;
+
+namespace erkn::gen {
+
+Qs::Qs(numeric a, numeric b, int s) : a_(a), b_(b), s_(s) {
+  if (!a_.is_rational() || !b_.is_rational()) throw std::invalid_argument("Qs: non-rational part");
+  if (b_.is_zero()) s_ = 0;
+  if (s_ == 0) b_ = 0;
+}
+
+int Qs::common_radicand(const Qs& x, const Qs& y) {
+  if (x.s_ && y.s_ && x.s_ != y.s_)
+    throw std::invalid_argument("Qs: mixing sqrt(" + std::to_string(x.s_) + ") and sqrt(" +
+                                std::to_string(y.s_) + ")");
+  return x.s_ ? x.s_ : y.s_;
+}
+
+Qs operator+(const Qs& x, const Qs& y) {
+  return Qs(x.a_ + y.a_, x.b_ + y.b_, Qs::common_radicand(x, y));
+}
+
+Qs operator*(const Qs& x, const Qs& y) {
+  int s = Qs::common_radicand(x, y);
+  return Qs(x.a_ * y.a_ + x.b_ * y.b_ * s, x.a_ * y.b_ + x.b_ * y.a_, s);
+}
+
+Qs Qs::inverse() const {
+  numeric n = a_ * a_ - b_ * b_ * s_;  // (a + b r)(a - b r); nonzero for square-free s
+  if (n.is_zero()) throw std::domain_error("Qs: division by zero");
+  return Qs(a_ / n, -b_ / n, s_);
+}
+
+int Qs::sign() const {
+  int sa = a_.csgn(), sb = b_.csgn();
+  if (sb == 0) return sa;
+  if (sa == 0 || sa == sb) return sb;
+  // a and b*sqrt(s) have opposite signs: compare a^2 with b^2 s.
+  numeric d = a_ * a_ - b_ * b_ * s_;
+  return d.is_zero() ? 0 : (d.is_positive() ? sa : sb);
+}
+
+Qs Qs::sqrt() const {
+  if (sign() < 0) throw std::domain_error("Qs::sqrt of a negative number");
+  if (is_zero()) return Qs();
+  if (s_ == 0) {
+    numeric r = GiNaC::sqrt(a_);
+    if (r.is_rational()) return Qs(r);
+    // sqrt(p/q) = sqrt(p q)/q: write p q = k^2 m with m square-free.
+    numeric pq = a_.numer() * a_.denom();
+    long n = pq.to_long(), k = 1, m = 1;
+    for (long f = 2; f * f <= n; ++f)
+      while (n % (f * f) == 0) n /= f * f, k *= f;
+    m = n;
+    return Qs(0, numeric(k) / a_.denom(), int(m));
+  }
+  // (p + q r)^2 = a + b r  =>  p^2 + s q^2 = a, 2 p q = b; p^2 is a root of t^2 - a t + b^2 s/4.
+  numeric disc = a_ * a_ - b_ * b_ * s_;
+  numeric sd = GiNaC::sqrt(disc);
+  if (!sd.is_rational()) throw std::domain_error("Qs::sqrt: not a square in Q(sqrt(s))");
+  for (numeric p2 : {(a_ + sd) / 2, (a_ - sd) / 2}) {
+    numeric p = GiNaC::sqrt(p2);
+    if (!p.is_rational() || p.is_zero()) continue;
+    Qs r(p, b_ / (2 * p), s_);
+    if (r.sign() < 0) r = -r;
+    if (r * r == *this) return r;
+  }
+  throw std::domain_error("Qs::sqrt: not a square in Q(sqrt(s))");
+}
+
+Qs Qs::from_ex(const ex& e0) {
+  ex e = GiNaC::expand(e0);
+  auto term = [](const ex& t) -> Qs {
+    if (GiNaC::is_a<numeric>(t)) return Qs(GiNaC::ex_to<numeric>(t));
+    auto radical = [](const ex& p) -> Qs {
+      if (GiNaC::is_a<GiNaC::power>(p) && GiNaC::is_a<numeric>(p.op(0)) && p.op(1) == ex(1) / 2)
+        return Qs(0, 1, GiNaC::ex_to<numeric>(p.op(0)).to_int());
+      if (GiNaC::is_a<GiNaC::power>(p) && GiNaC::is_a<numeric>(p.op(0)) && p.op(1) == ex(-1) / 2) {
+        int s = GiNaC::ex_to<numeric>(p.op(0)).to_int();
+        return Qs(0, numeric(1, s), s);
+      }
+      throw std::invalid_argument("not in Q(sqrt(s))");
+    };
+    if (GiNaC::is_a<GiNaC::mul>(t)) {
+      Qs r(1);
+      for (size_t i = 0; i < t.nops(); ++i)
+        r = r *
+            (GiNaC::is_a<numeric>(t.op(i)) ? Qs(GiNaC::ex_to<numeric>(t.op(i))) : radical(t.op(i)));
+      return r;
+    }
+    return radical(t);
+  };
+  try {
+    if (!GiNaC::is_a<GiNaC::add>(e)) return term(e);
+    Qs r;
+    for (size_t i = 0; i < e.nops(); ++i) r = r + term(e.op(i));
+    return r;
+  } catch (const std::invalid_argument&) {
+    std::ostringstream os;
+    os << e0;
+    throw std::invalid_argument("expected a number p + q*sqrt(s) with rational p, q: " + os.str());
+  }
+}
+
+ex Qs::to_ex() const { return a_ + b_ * GiNaC::sqrt(ex(s_)); }
+
+numeric Qs::to_float(int digits) const {
+  long saved = GiNaC::Digits;
+  GiNaC::Digits = digits;
+  numeric r = GiNaC::ex_to<numeric>(GiNaC::evalf(to_ex()));
+  GiNaC::Digits = saved;
+  return r;
+}
+
+double Qs::to_double() const { return to_float(40).to_double(); }
+
+std::string Qs::to_string() const {
+  std::ostringstream os;
+  if (b_.is_zero()) {
+    os << a_;
+    return os.str();
+  }
+  if (!a_.is_zero()) os << a_ << (b_.is_positive() ? "+" : "");
+  if (b_ == -1)
+    os << "-";
+  else if (b_ != 1)
+    os << b_ << "*";
+  os << "sqrt(" << s_ << ")";
+  return os.str();
+}
+
+}  // namespace erkn::gen
