@@ -1,5 +1,6 @@
 #include "derive.hpp"
 
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 
@@ -10,10 +11,42 @@ using namespace GiNaC;
 namespace erkn::gen {
 namespace {
 
+// GiNaC prints sums and products in hash order, which changes from run to run (the hashes
+// are seeded with addresses). Print with operands sorted instead, so output is reproducible.
 std::string str(const ex& e) {
+  auto wrap = [](const ex& x, const std::string& s) {
+    return is_a<add>(x) || (is_a<numeric>(x) && !ex_to<numeric>(x).is_integer()) ||
+                   (is_a<numeric>(x) && ex_to<numeric>(x).is_negative())
+               ? "(" + s + ")"
+               : s;
+  };
+  if (is_a<add>(e) || is_a<mul>(e)) {
+    std::vector<std::string> parts;
+    for (size_t i = 0; i < e.nops(); ++i)
+      parts.push_back(is_a<mul>(e) ? wrap(e.op(i), str(e.op(i))) : str(e.op(i)));
+    std::sort(parts.begin(), parts.end());
+    std::string out;
+    for (const std::string& p : parts)
+      out += out.empty() ? p : (is_a<add>(e) ? (p[0] == '-' ? "" : "+") : "*") + p;
+    return out;
+  }
+  if (is_a<GiNaC::power>(e)) return wrap(e.op(0), str(e.op(0))) + "^" + wrap(e.op(1), str(e.op(1)));
+  if (is_a<function>(e)) {
+    std::string out = ex_to<function>(e).get_name() + "(";
+    for (size_t i = 0; i < e.nops(); ++i) out += (i ? "," : "") + str(e.op(i));
+    return out + ")";
+  }
   std::ostringstream os;
   os << e;
   return os.str();
+}
+
+// A solved quotient as "(num)/(den)", both expanded, with the sign that prints den smaller.
+std::string quotient(const ex& e) {
+  ex q = normal(e), n = expand(numer(q)), d = expand(denom(q));
+  if (d == 1) return str(n);
+  if (str(expand(-d)) < str(d)) n = expand(-n), d = expand(-d);
+  return "(" + str(n) + ")/(" + str(d) + ")";
 }
 
 std::string idx(int i) { return std::to_string(i + 1); }
@@ -116,11 +149,11 @@ Derived derive(const MethodSpec& spec) {
     ex p = expand(numer(normal(rest[0])));
     if (p.degree(cu) != 1) fail("the node condition is not linear in c" + idx(unknown[0]));
     ex sol = normal(-p.coeff(cu, 0) / p.coeff(cu, 1));
-    out.node_derivation.push_back(str(cu) + " = " + str(sol));
+    out.node_derivation.push_back(str(cu) + " = " + quotient(sol));
     nodes[cu] = sol.subs(nodes);
   }
   for (size_t i = 0; i < dsol.nops(); ++i)
-    out.node_derivation.push_back(str(dsol.op(i).op(0)) + " = " + str(normal(dsol.op(i).op(1))));
+    out.node_derivation.push_back(str(dsol.op(i).op(0)) + " = " + quotient(dsol.op(i).op(1)));
   for (int i = 0; i < s; ++i) out.c.push_back(value(nodes[c[i]].subs(nodes)));
   exmap cd;  // c_i, d_i -> exact values as GiNaC numbers
   for (int i = 0; i < s; ++i) cd[c[i]] = out.c[i].to_ex();
@@ -151,8 +184,8 @@ Derived derive(const MethodSpec& spec) {
   auto record = [&](int index, const symbol& sym, const ex& solution) {
     Rational r = trig(solution);
     out.names[index] = str(sym);
-    out.coef[index] = r.is_poly() ? Rational{r.as_poly()} : r;
-    out.derivation[index] = str(sym) + " = " + str(solution);
+    out.coef[index] = r.is_poly() ? Rational{r.as_poly()} : r.monic();
+    out.derivation[index] = str(sym) + " = " + quotient(solution);
     env[sym] = out.coef[index];
   };
 
@@ -171,7 +204,7 @@ Derived derive(const MethodSpec& spec) {
       const symbol& sym = k == 0 ? b[i] : bb[i];
       ex solution = normal(ex(sym).subs(sol));
       record(k == 0 ? i : s + i, sym, solution);
-      out.derivation[k == 0 ? i : s + i] = str(sym) + " = " + str(normal(solution.subs(phis)));
+      out.derivation[k == 0 ? i : s + i] = str(sym) + " = " + quotient(solution.subs(phis));
       if (!out.coef[k == 0 ? i : s + i].is_poly())
         fail("symplectic solution for " + str(sym) + " did not reduce to a trig polynomial");
     }

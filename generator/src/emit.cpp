@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -16,6 +17,15 @@ std::string num(double x) {
   std::string s = buf;
   if (s.find_first_of(".en") == std::string::npos) s += ".0";
   return s;
+}
+
+// A long double literal (21 significant digits) of an exact constant.
+std::string num_long(const Qs& q) {
+  std::ostringstream os;
+  os << q.to_float(30);
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.21Lg", std::strtold(os.str().c_str(), nullptr));
+  return std::string(buf) + "L";
 }
 
 std::string banner(const std::string& command, const std::string& comment = "//") {
@@ -39,17 +49,20 @@ std::vector<double> all_poles(const Emittable& e) {
   return out;
 }
 
-// C++ for a trig polynomial, with cos/sinc of omega_k * x precomputed as C[k], S[k].
-std::string cpp_sum(const TrigPoly& p, const std::map<Qs, int>& omega_index) {
+// C++ for a trig polynomial, with cos/sinc of omega_k * x precomputed as C[k], S[k] (double)
+// or CL[k], SL[k] (long double, for quotients that cancel near their poles).
+std::string cpp_sum(const TrigPoly& p, const std::map<Qs, int>& omega_index, bool wide = false) {
   if (p.is_zero()) return "0.0";
   std::string out;
   for (const PhiTerm& t : p.phi_terms()) {
     double k = t.K.to_double();
-    std::string term = num(std::abs(k));
-    for (int i = 0; i < t.m; ++i) term += " * v";
+    std::string term = wide ? num_long(t.K.sign() < 0 ? -t.K : t.K) : num(std::abs(k));
+    for (int i = 0; i < t.m; ++i) term += wide ? " * V" : " * v";
     if (!t.w.is_zero()) {
       int idx = omega_index.at(t.w.sqrt());
-      term += (t.e == 0 ? " * C[" : " * S[") + std::to_string(idx) + "]";
+      term +=
+          std::string(wide ? (t.e == 0 ? " * CL[" : " * SL[") : (t.e == 0 ? " * C[" : " * S[")) +
+          std::to_string(idx) + "]";
     }
     out += out.empty() ? (k < 0 ? "-" + term : term) : (k < 0 ? " - " : " + ") + term;
   }
@@ -127,6 +140,8 @@ std::string method_cpp(const Emittable& e, bool rkn) {
     }
     int next = 0;
     for (auto& [w, i] : omega_index) i = next++;
+    bool any_quotient = false;
+    for (const Rational& r0 : m.coef) any_quotient |= !r0.cleared().den.is_constant();
     os << "  const double x = std::sqrt(v);\n";
     if (next > 0) {
       os << "  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)\n";
@@ -135,6 +150,15 @@ std::string method_cpp(const Emittable& e, bool rkn) {
       os << "};\n  double C[" << next << "], S[" << next << "];\n";
       os << "  for (int k = 0; k < " << next
          << "; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);\n";
+      if (any_quotient) {
+        os << "  // The quotients cancel near their poles: evaluated in long double.\n";
+        os << "  constexpr long double wl[] = {";
+        for (const auto& [wq, i] : omega_index) os << (i ? ", " : "") << num_long(wq);
+        os << "};\n  const long double V = v, X = std::sqrt(V);\n";
+        os << "  long double CL[" << next << "], SL[" << next << "];\n";
+        os << "  for (int k = 0; k < " << next
+           << "; ++k) CL[k] = std::cos(wl[k] * X), SL[k] = sincl(wl[k] * X);\n";
+      }
     } else {
       os << "  static_cast<void>(x);\n";
     }
@@ -148,8 +172,8 @@ std::string method_cpp(const Emittable& e, bool rkn) {
       os << "  if (v < " << num(vs) << ") {  // " << m.names[k] << ": 0/0-prone, Taylor series\n";
       os << "    " << target(k) << " = horner(series + " << k * kSeriesTerms << ", v);\n";
       os << "  } else {\n";
-      os << "    " << target(k) << " = (" << cpp_sum(r.num, omega_index) << ") /\n";
-      os << "        (" << cpp_sum(r.den, omega_index) << ");\n  }\n";
+      os << "    " << target(k) << " = double((" << cpp_sum(r.num, omega_index, true) << ") /\n";
+      os << "        (" << cpp_sum(r.den, omega_index, true) << "));\n  }\n";
     }
   }
   os << "}\n\n}  // namespace " << id << "\n\n";
@@ -259,6 +283,7 @@ namespace erkn::generated {
 namespace {
 
 [[maybe_unused]] double sinc(double t) { return t == 0.0 ? 1.0 : std::sin(t) / t; }
+[[maybe_unused]] long double sincl(long double t) { return t == 0.0L ? 1.0L : std::sin(t) / t; }
 
 [[maybe_unused]] double horner(const double* a, double v) {
   double sum = 0.0;

@@ -191,6 +191,12 @@ TrigPoly Rational::as_poly() const {
   return c.inverse() * num.shifted(-k.xpow);
 }
 
+Rational Rational::monic() const {
+  if (den.is_zero()) throw std::domain_error("Rational with zero denominator");
+  Qs lead = den.terms().begin()->second.inverse();
+  return {lead * num, lead * den};
+}
+
 Rational Rational::cleared() const {
   // Lowest power of v in the phi form (x^(2m) cos = v^m phi0, x^(2m-1) sin = w v^m phi1).
   auto min_m = [](const TrigPoly& p) {

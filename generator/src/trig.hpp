@@ -99,6 +99,9 @@ struct Rational {
   /// A TrigPoly if den is a constant times a power of x, else throws.
   bool is_poly() const;
   TrigPoly as_poly() const;
+  /// num/den with a monic den (first term in TrigPoly order has coefficient 1): GiNaC's normal()
+  /// fixes sign and scale by hash order, which varies from run to run.
+  Rational monic() const;
   /// num and den multiplied by the power of v that makes the lowest power of v in either v^0.
   Rational cleared() const;
   friend Rational operator+(const Rational& p, const Rational& q);

@@ -1,0 +1,28 @@
+// Minimal JSON writing for the CLI: numbers with 17 significant digits, lists, strings.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace erkn::cli {
+
+inline std::string json_number(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+inline std::string json_list(const std::vector<double>& xs) {
+  std::string out = "[";
+  for (size_t i = 0; i < xs.size(); ++i) out += (i ? ", " : "") + json_number(xs[i]);
+  return out + "]";
+}
+
+inline std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (char ch : s) out += (ch == '"' || ch == '\\') ? std::string("\\") + ch : std::string(1, ch);
+  return out + "\"";
+}
+
+}  // namespace erkn::cli

@@ -1,0 +1,22 @@
+// erkn: the command-line face of the library.
+//   erkn list                      every method: kind, stages, order, where the paper derives it
+//   erkn tableau NAME ...          coefficients at a v, Taylor series, or poles (JSON)
+#include <iostream>
+#include <string>
+
+#include "erkn/error.hpp"
+#include "tableau_command.hpp"
+
+int main(int argc, char** argv) {
+  const std::string command = argc > 1 ? argv[1] : "";
+  try {
+    if (command == "list") return erkn::cli::list_command(argc - 1, argv + 1);
+    if (command == "tableau") return erkn::cli::tableau_command(argc - 1, argv + 1);
+  } catch (const std::exception& e) {
+    std::cerr << e.what() << "\n";
+    return 1;
+  }
+  std::cerr << "usage: erkn list\n"
+               "       erkn tableau NAME (--v X | --series K | --poles VMAX)\n";
+  return 2;
+}

@@ -1,0 +1,99 @@
+#include "tableau_command.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "erkn/error.hpp"
+#include "erkn/method.hpp"
+#include "json.hpp"
+
+namespace erkn::cli {
+namespace {
+
+// {"method", "stages", "order", "c", "d", "b", "bbar", "abar"} with each coefficient rendered
+// by `value(index)` (index in table order b_1..b_s, bbar_1..bbar_s, abar_11, abar_21, ...).
+void print_tableau(const Method& m, const std::function<std::string(int)>& value) {
+  const int s = m.stages();
+  std::vector<double> c(m.table().c, m.table().c + s), d(m.table().d, m.table().d + s);
+  std::cout << "{\"method\": " << json_string(std::string(m.name())) << ", \"stages\": " << s
+            << ", \"order\": " << m.order() << ",\n \"c\": " << json_list(c)
+            << ",\n \"d\": " << json_list(d) << ",\n \"b\": [";
+  for (int i = 0; i < s; ++i) std::cout << (i ? ", " : "") << value(i);
+  std::cout << "],\n \"bbar\": [";
+  for (int i = 0; i < s; ++i) std::cout << (i ? ", " : "") << value(s + i);
+  std::cout << "],\n \"abar\": [";
+  for (int i = 0; i < s; ++i) {
+    std::cout << (i ? ", " : "") << "[";
+    for (int j = 0; j <= i; ++j) std::cout << (j ? ", " : "") << value(2 * s + i * (i + 1) / 2 + j);
+    std::cout << "]";
+  }
+  std::cout << "]}\n";
+}
+
+int usage() {
+  std::cerr << "usage: erkn tableau NAME --v X        coefficients at v = h^2*lambda = X >= 0\n"
+               "       erkn tableau NAME --series K   Taylor coefficients of v^0..v^K\n"
+               "       erkn tableau NAME --poles VMAX real poles in (0, VMAX]\n";
+  return 2;
+}
+
+}  // namespace
+
+double parse_number(const char* option, const char* text) {
+  char* end = nullptr;
+  double x = std::strtod(text, &end);
+  if (end == text || *end != '\0' || !std::isfinite(x))
+    throw Error(std::string(option) + " expects a finite number, got '" + text + "'");
+  return x;
+}
+
+int list_command(int, char**) {
+  std::cout << "name          kind  stages  order  reference\n";
+  for (const Method& m : Method::all()) {
+    std::string name(m.name());
+    name.resize(std::max<size_t>(name.size(), 13), ' ');
+    std::cout << name << " " << (m.kind() == Kind::erkn ? "ERKN" : "RKN ") << "  " << m.stages()
+              << "       " << m.order() << "      " << m.reference() << "\n";
+  }
+  return 0;
+}
+
+int tableau_command(int argc, char** argv) {
+  if (argc != 4) return usage();
+  const Method& m = Method::by_name(argv[1]);
+  const std::string option = argv[2];
+  const double x = parse_number(argv[2], argv[3]);
+  if (option == "--v") {
+    Coefficients k = m.at(x);  // refuses negative v and v near a pole, naming it
+    std::vector<double> all(k.b.begin(), k.b.begin() + k.s);
+    all.insert(all.end(), k.bbar.begin(), k.bbar.begin() + k.s);
+    all.insert(all.end(), k.abar_packed.begin(), k.abar_packed.begin() + k.s * (k.s + 1) / 2);
+    print_tableau(m, [&](int i) { return json_number(all[i]); });
+  } else if (option == "--series") {
+    if (x < 0 || x != std::floor(x) || x >= generated::kSeriesTerms)
+      throw Error("--series expects an integer K in [0, " +
+                  std::to_string(generated::kSeriesTerms - 1) + "], got '" + argv[3] + "'");
+    print_tableau(m, [&](int i) {
+      std::vector<double> coef;
+      for (int k = 0; k <= int(x); ++k) coef.push_back(m.series(i, k));
+      return json_list(coef);
+    });
+  } else if (option == "--poles") {
+    if (x <= 0 || x > generated::kPoleSearchMax)
+      throw Error("--poles expects VMAX in (0, " + json_number(generated::kPoleSearchMax) +
+                  "] (poles are tabulated up to there), got '" + argv[3] + "'");
+    std::vector<double> poles;
+    for (double p : m.poles())
+      if (p <= x) poles.push_back(p);
+    std::cout << json_list(poles) << "\n";
+  } else {
+    return usage();
+  }
+  return 0;
+}
+
+}  // namespace erkn::cli
