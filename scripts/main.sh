@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# The main job of the README: installs dependencies, regenerates the tableaux, builds, runs
+# the experiments and the stability analysis, and writes the charts and tables under docs/.
+# Extra arguments go to the experiments (e.g. --full for the long sweep).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+build=${ERKN_BUILD_DIR:-build}
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release > /dev/null
+cmake --build "$build" --target regenerate
+cmake --build "$build" -j 2
+"$build"/runtime/cli/erkn list
+"$build"/runtime/cli/erkn run --out docs "$@"
+"$build"/runtime/cli/erkn stability --all --out docs
