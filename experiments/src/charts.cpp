@@ -1,0 +1,165 @@
+#include "charts.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "summary.hpp"
+
+namespace ex {
+namespace fs = std::filesystem;
+
+std::string slug(const std::string& name) {
+  std::string s;
+  for (unsigned char ch : name) {
+    if (std::isalnum(ch))
+      s += char(std::tolower(ch));
+    else if (!s.empty() && s.back() != '_')
+      s += '_';
+  }
+  while (!s.empty() && s.back() == '_') s.pop_back();
+  return s;
+}
+
+namespace {
+
+const char* const kColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
+                               "#8c564b", "#e377c2", "#17becf", "#7f7f7f", "#bcbd22"};
+
+// An ERKN method and its RKN limit share a colour; the family sets dash type and point shape.
+class Styles {
+ public:
+  std::string operator()(const std::string& name, Family family) {
+    const std::string base = name.rfind("SE", 0) == 0 ? name.substr(2) : name;
+    auto [it, added] = colors_.try_emplace(base, int(colors_.size()));
+    const char* color = kColors[it->second % std::size(kColors)];
+    std::ostringstream s;
+    s << "lc rgb '" << color << "' ";
+    switch (family) {
+      case Family::erkn:
+        s << "dt 1 lw 2.2 pt 7 ps 0.9";
+        break;
+      case Family::rkn:
+        s << "dt (8,5) lw 1.6 pt 6 ps 0.9";
+        break;
+      case Family::peer:
+        s << "dt (2,4) lw 2.2 pt " << 4 + 2 * peers_++ << " ps 1.0";
+        break;
+    }
+    return s.str();
+  }
+
+ private:
+  std::map<std::string, int> colors_;
+  int peers_ = 0;
+};
+
+std::string quoted(const std::string& s) {
+  std::string out = "'";
+  for (char ch : s) out += ch == '\'' ? std::string("''") : std::string(1, ch);
+  return out + "'";
+}
+
+void write_header(std::ostream& gp, const std::string& title, const std::string& xlabel,
+                  const std::string& ylabel) {
+  gp << "set title " << quoted(title) << " noenhanced\n"
+     << "set xlabel " << quoted(xlabel) << "\nset ylabel " << quoted(ylabel) << "\n"
+     << "set logscale xy\nset format y '10^{%L}'\nset grid lc rgb '#dddddd'\n"
+     << "set key outside right top noenhanced spacing 1.15\n";
+}
+
+// Emits the plot for both terminals.
+void write_outputs(std::ostream& gp, const std::string& stem, const std::string& plot) {
+  gp << "set terminal pngcairo size 1000,620 enhanced font 'DejaVu Sans,11'\n"
+     << "set output " << quoted(stem + ".png") << "\n"
+     << plot << "\n"
+     << "set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'\n"
+     << "set output " << quoted(stem + ".svg") << "\n"
+     << plot << "\nunset output\n";
+}
+
+void run_gnuplot(const fs::path& charts_dir, const std::string& script) {
+  const std::string cmd = "cd '" + charts_dir.string() + "' && gnuplot " + script;
+  if (std::system(cmd.c_str()) != 0) throw std::runtime_error("gnuplot failed: " + cmd);
+}
+
+std::ofstream open(const fs::path& p) {
+  std::ofstream f(p);
+  if (!f) throw std::runtime_error("cannot write " + p.string());
+  f.precision(10);
+  return f;
+}
+
+}  // namespace
+
+void chart_problem(const ProblemResult& r, const fs::path& charts_dir) {
+  fs::create_directories(charts_dir / "data");
+  const std::string key = slug(r.key);
+  Styles style;
+  std::string cost_plot = "plot ", cpu_plot = "plot ", energy_plot = "plot ";
+  for (const MethodResult& m : r.methods) {
+    const std::string stem = "data/" + key + "_" + slug(m.name);
+    std::ofstream sweep = open(charts_dir / (stem + ".dat"));
+    sweep << "# steps h error grad_evals cpu_seconds\n";
+    for (const Measurement& x : m.sweep)
+      if (x.ok() && x.error > 0)
+        sweep << x.steps << ' ' << x.h << ' ' << x.error << ' ' << x.stats.grad_evals << ' '
+              << x.cpu << '\n';
+    std::ofstream energy = open(charts_dir / (stem + "_energy.dat"));
+    energy << "# t_end max|H_n-H_0| (h = " << m.energy.h << ")\n";
+    for (size_t i = 0; i < m.energy.max_error.size() && m.energy.failure.empty(); ++i)
+      energy << m.energy.t_end[i] << ' ' << m.energy.max_error[i] << '\n';
+    const std::string s = style(m.name, m.family);
+    const std::string sep = &m == &r.methods.front() ? "" : ", \\\n  ";
+    cost_plot += sep + quoted(stem + ".dat") + " u 4:3 w lp " + s + " t " + quoted(m.name);
+    cpu_plot += sep + quoted(stem + ".dat") + " u 5:3 w lp " + s + " t " + quoted(m.name);
+    energy_plot += sep + quoted(stem + "_energy.dat") + " u 1:2 w lp " + s + " t " + quoted(m.name);
+  }
+  std::ofstream gp = open(charts_dir / "data" / (key + ".gp"));
+  std::ostringstream t;
+  t << r.key << ": " << r.title;
+  std::ostringstream err;
+  err << "max-norm error of q at t = " << r.t_error;
+  write_header(gp, t.str() + " — error vs cost", "∇U evaluations (count)", err.str());
+  write_outputs(gp, key + "_evals", cost_plot);
+  write_header(gp, t.str() + " — error vs CPU time", "CPU time (s)", err.str());
+  write_outputs(gp, key + "_cpu", cpu_plot);
+  std::ostringstream h;
+  h << t.str() << " — energy error, h = 1/" << std::lround(1 / r.methods.front().energy.h);
+  write_header(gp, h.str(), "t_{end} (time units)", "max_n |H_n − H_0|");
+  gp << "set format x '10^{%L}'\n";
+  write_outputs(gp, key + "_energy", energy_plot);
+  gp.close();
+  run_gnuplot(charts_dir, "data/" + key + ".gp");
+}
+
+void chart_scaling(const ScalingResult& r, const fs::path& charts_dir) {
+  fs::create_directories(charts_dir / "data");
+  Styles style;
+  std::string plot = "plot ";
+  const auto best = best_erkn_line(r);
+  for (size_t l = 0; l < r.lines.size(); ++l) {
+    if (r.lines[l].family == Family::erkn && l != best) continue;
+    const std::string stem = "data/scaling_" + slug(r.lines[l].name);
+    std::ofstream dat = open(charts_dir / (stem + ".dat"));
+    dat << "# N cpu_seconds_to_" << r.tolerance << "\n";
+    for (size_t i = 0; i < r.sizes.size(); ++i)
+      if (const auto c = scaling_cpu(r, l, i)) dat << r.sizes[i] << ' ' << *c << '\n';
+    plot += (plot == "plot " ? "" : ", \\\n  ") + quoted(stem + ".dat") + " u 1:2 w lp " +
+            style(r.lines[l].name, r.lines[l].family) + " t " + quoted(r.lines[l].name);
+  }
+  std::ofstream gp = open(charts_dir / "data" / "scaling.gp");
+  std::ostringstream title;
+  title << "P1 sine-Gordon on [0, " << r.t_end << "]: CPU time to reach error " << r.tolerance;
+  write_header(gp, title.str(), "N (grid points)", "CPU time (s)");
+  gp << "set logscale x 2\nset format x '%g'\n";
+  write_outputs(gp, "scaling", plot);
+  gp.close();
+  run_gnuplot(charts_dir, "data/scaling.gp");
+}
+
+}  // namespace ex

@@ -1,0 +1,63 @@
+// The adapter to the ERKN runtime: every method of erkn::Method::all() as an ex::Solver.
+#include <erkn/integrator.hpp>
+#include <erkn/method.hpp>
+
+#include "solver.hpp"
+
+namespace ex {
+namespace {
+
+erkn::Stiffness stiffness(const LinearPart& m) {
+  switch (m.kind) {
+    case LinearPart::Kind::scalar:
+      return erkn::Stiffness::scalar(m.omega2);
+    case LinearPart::Kind::diagonal:
+      return erkn::Stiffness::diagonal(m.diag);
+    case LinearPart::Kind::circulant:
+      return erkn::Stiffness::circulant(m.column);
+  }
+  throw std::logic_error("unknown LinearPart kind");
+}
+
+class ErknSolver : public Solver {
+ public:
+  explicit ErknSolver(const erkn::Method& method) : method_(method) {}
+  std::string name() const override { return std::string(method_.name()); }
+  Family family() const override {
+    return method_.kind() == erkn::Kind::erkn ? Family::erkn : Family::rkn;
+  }
+  int order() const override { return method_.order(); }
+
+  RunResult run(const Problem& pr, double h, long steps, const Observer* obs) const override {
+    erkn::System system;
+    system.M = stiffness(pr.M);
+    system.gradient = pr.grad_u;
+    system.potential = pr.potential;
+    system.hessian = [&pr](const Vec& q, Eigen::MatrixXd& hess) { hess = pr.hessian_u(q); };
+    erkn::Integrator integrator(method_, std::move(system), h, pr.q0, pr.p0);
+    for (long n = 0; n < steps; ++n) {
+      integrator.step();
+      if (obs) (*obs)(integrator.t(), integrator.q(), integrator.p());
+    }
+    const erkn::Statistics& s = integrator.statistics();
+    RunResult r{integrator.q(), integrator.p(), {}};
+    r.stats.grad_evals = s.gradient_evaluations;
+    r.stats.stage_iterations = s.stage_iterations;
+    r.stats.stage_solves = s.steps * method_.stages();
+    r.stats.steps = s.steps;
+    return r;
+  }
+
+ private:
+  const erkn::Method& method_;
+};
+
+}  // namespace
+
+SolverList make_erkn_solvers() {
+  SolverList list;
+  for (const erkn::Method& m : erkn::Method::all()) list.push_back(std::make_unique<ErknSolver>(m));
+  return list;
+}
+
+}  // namespace ex

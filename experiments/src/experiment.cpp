@@ -1,0 +1,46 @@
+#include "experiment.hpp"
+
+#include <cmath>
+
+namespace ex {
+
+ProblemResult run_problem(const Problem& problem, const SolverList& solvers,
+                          const RunConfig& config, Progress& progress) {
+  ProblemResult out{problem.key, problem.title, problem.t_error, {}, {}};
+  progress.label(problem.key + " reference");
+  out.reference = reference_solution(problem, problem.t_error, config.reference_tolerance);
+  for (const auto& solver : solvers) {
+    progress.label(problem.key + " " + solver->name() + " sweep");
+    MethodResult m{solver->name(), solver->family(), solver->order(), {}, {}};
+    m.sweep = sweep(*solver, problem, problem.t_error, out.reference.q, config.sweep, config.steps);
+    progress.label(problem.key + " " + solver->name() + " energy");
+    m.energy = energy_errors(*solver, problem, problem.h_energy, config.energy_t_ends);
+    out.methods.push_back(std::move(m));
+    progress.advance(problem.key + " " + solver->name());
+  }
+  return out;
+}
+
+ScalingResult run_scaling(const SolverList& solvers, const RunConfig& config, Progress& progress) {
+  ScalingResult out{config.scaling_tolerance, config.scaling_t_end, config.scaling_sizes, {}, {}};
+  for (const auto& solver : solvers) out.lines.push_back({solver->name(), solver->family(), {}});
+  for (int n : config.scaling_sizes) {
+    Problem problem = sine_gordon(n);
+    problem.t_error = config.scaling_t_end;
+    progress.label("scaling N=" + std::to_string(n) + " reference");
+    out.references.push_back(reference_solution(
+        problem, config.scaling_t_end, config.scaling_reference_tolerance, Precision::double_));
+    for (size_t i = 0; i < solvers.size(); ++i) {
+      progress.label("scaling N=" + std::to_string(n) + " " + solvers[i]->name());
+      // Explicit peers start at their stability limit h = 2/omega_max ~ 2/N; others at h = 1/8.
+      const long start = solvers[i]->family() == Family::peer ? std::max(8L, long(n)) : 8L;
+      out.lines[i].brackets.push_back(bracket(*solvers[i], problem, config.scaling_t_end,
+                                              out.references.back().q, config.scaling_tolerance,
+                                              start, config.sweep));
+      progress.advance("scaling N=" + std::to_string(n));
+    }
+  }
+  return out;
+}
+
+}  // namespace ex

@@ -1,0 +1,58 @@
+// The runs behind the charts and the summary: per problem, a sweep and an energy run per method;
+// and the scaling scene (P1 for growing N, CPU time to reach 1e-6).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "energy.hpp"
+#include "progress.hpp"
+#include "reference.hpp"
+#include "sweep.hpp"
+
+namespace ex {
+
+struct MethodResult {
+  std::string name;
+  Family family;
+  int order;
+  std::vector<Measurement> sweep;
+  EnergyCurve energy;
+};
+
+struct ProblemResult {
+  std::string key, title;
+  double t_error;
+  Reference reference;
+  std::vector<MethodResult> methods;
+};
+
+struct ScalingResult {
+  double tolerance, t_end;
+  std::vector<int> sizes;
+  std::vector<Reference> references;  ///< per size
+  struct Line {
+    std::string name;
+    Family family;
+    std::vector<std::vector<Measurement>> brackets;  ///< per size
+  };
+  std::vector<Line> lines;
+};
+
+struct RunConfig {
+  SweepPolicy sweep;
+  std::vector<long> steps;  ///< fixed step counts on [0, t_error]; empty: the paper's, extended
+  std::vector<double> energy_t_ends{1, 10, 100, 1000};
+  double reference_tolerance = 1e-14;
+  std::vector<int> scaling_sizes{32, 128, 512, 2048};
+  double scaling_tolerance = 1e-6, scaling_t_end = 1, scaling_reference_tolerance = 1e-10;
+};
+
+ProblemResult run_problem(const Problem& problem, const SolverList& solvers,
+                          const RunConfig& config, Progress& progress);
+
+/// `solvers`: the ERKN methods and peers to compare (the RKN limits are left out by the caller).
+ScalingResult run_scaling(const SolverList& solvers, const RunConfig& config, Progress& progress);
+
+}  // namespace ex

@@ -1,0 +1,97 @@
+// erkn-experiments: the paper's three problems and the scaling scene, swept, charted, summarised.
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <set>
+
+#include "charts.hpp"
+#include "options.hpp"
+#include "report.hpp"
+
+namespace {
+
+using namespace ex;
+
+bool matches(const std::string& wanted, const std::string& name) {
+  const std::string w = slug(wanted), n = slug(name);
+  return n == w || n.rfind(w + "_", 0) == 0 ||
+         (n.size() > w.size() && n.compare(n.size() - w.size() - 1, w.size() + 1, "_" + w) == 0);
+}
+
+SolverList select(const std::vector<std::string>& wanted) {
+  SolverList all = all_solvers(), chosen;
+  std::set<std::string> used;
+  for (auto& s : all) {
+    bool take = wanted.empty();
+    for (const std::string& w : wanted)
+      if (matches(w, s->name())) take = true, used.insert(w);
+    if (take) chosen.push_back(std::move(s));
+  }
+  for (const std::string& w : wanted)
+    if (!used.count(w)) throw std::invalid_argument("unknown method " + w + " (see --list)");
+  return chosen;
+}
+
+void list() {
+  std::printf("problems: P1 (sine-Gordon, N = 32), P2 (Duffing), P3 (stellar orbits), scaling\n");
+  std::printf("methods:\n");
+  for (const auto& s : all_solvers())
+    std::printf("  %s  (order %d)\n", s->name().c_str(), s->order());
+}
+
+std::string command_line(int argc, char** argv) {
+  std::string s = "erkn-experiments";
+  for (int i = 1; i < argc; ++i) s += std::string(" ") + argv[i];
+  return s;
+}
+
+int run(const Options& o, const std::string& command) {
+  const auto start = std::chrono::steady_clock::now();
+  const SolverList solvers = select(o.methods);
+  SolverList scaling_solvers;  // the RKN limits must resolve the fastest mode: left out there
+  for (auto& s : select(o.methods))
+    if (s->family() != Family::rkn) scaling_solvers.push_back(std::move(s));
+  std::vector<std::string> keys;
+  bool scaling = false;
+  for (const std::string& p : o.problems)
+    (p == "scaling" ? scaling = true : (keys.push_back(p), true));
+
+  Progress progress(long(keys.size() * solvers.size() +
+                         (scaling ? o.config.scaling_sizes.size() * scaling_solvers.size() : 0)));
+  const std::filesystem::path charts = o.out / "charts";
+  std::vector<ProblemResult> results;
+  for (const std::string& key : keys) {
+    results.push_back(run_problem(problem_by_key(key), solvers, o.config, progress));
+    chart_problem(results.back(), charts);
+  }
+  std::optional<ScalingResult> scaled;
+  if (scaling) {
+    scaled = run_scaling(scaling_solvers, o.config, progress);
+    chart_scaling(*scaled, charts);
+  }
+  progress.finish();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_report(o.out / "results.md", {command, o.mode, wall, o.config.sweep.timing.repeats},
+               results, scaled);
+  std::printf("%s\nwrote %s and %s/ in %.0f s\n", targets_markdown(results, scaled).c_str(),
+              (o.out / "results.md").c_str(), charts.c_str(), wall);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Options o = parse_options(argc, argv);
+    if (o.list) return list(), 0;
+    return run(o, command_line(argc, argv));
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "erkn-experiments: " << e.what() << "\n" << usage();
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "\nerkn-experiments: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,56 @@
+#include "measure.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <exception>
+#include <limits>
+#include <string>
+
+namespace ex {
+namespace {
+
+constexpr int kMaxShortRepeats = 1000;
+// An error this many times the solution's size means the run blew up.
+constexpr double kUnstable = 100;
+
+}  // namespace
+
+double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+Measurement measure(const Solver& solver, const Problem& problem, double t_end, long steps,
+                    const Vec& q_ref, const TimingPolicy& timing) {
+  Measurement m;
+  m.steps = steps;
+  m.h = t_end / double(steps);
+  m.cpu = std::numeric_limits<double>::infinity();
+  double spent = 0;
+  try {
+    // Up to `repeats` runs within the budget; very short runs repeat until min_total is spent.
+    for (int k = 0; k == 0 || (k < timing.repeats && spent < timing.budget) ||
+                    (spent < timing.min_total && k < kMaxShortRepeats);
+         ++k) {
+      const double start = cpu_seconds();
+      RunResult r = solver.run(problem, m.h, steps, nullptr);
+      const double cpu = cpu_seconds() - start;
+      spent += cpu;
+      m.cpu = std::min(m.cpu, cpu);
+      m.stats = r.stats;
+      m.error = (r.q - q_ref).lpNorm<Eigen::Infinity>();
+      if (!(m.error <= kUnstable * (1 + q_ref.lpNorm<Eigen::Infinity>()))) {
+        m.failure = "unstable (error " + std::to_string(m.error) + ")";
+        break;
+      }
+    }
+  } catch (const std::exception& e) {
+    m.failure = e.what();
+  }
+  if (!m.ok()) m.error = std::numeric_limits<double>::infinity();
+  return m;
+}
+
+}  // namespace ex

@@ -1,0 +1,33 @@
+// One measured run: error at t_end against a reference, counts, CPU time (best of repeats).
+#pragma once
+
+#include <string>
+
+#include "solver.hpp"
+
+namespace ex {
+
+struct Measurement {
+  long steps = 0;
+  double h = 0;
+  double error = 0;  ///< max-norm of q(t_end) - reference; +inf when the run failed or blew up
+  double cpu = 0;    ///< seconds, best of the repeats, coefficient setup included
+  RunStats stats;
+  std::string failure;  ///< empty when the run succeeded
+  bool ok() const { return failure.empty(); }
+};
+
+struct TimingPolicy {
+  int repeats = 3;          ///< at most this many runs...
+  double budget = 0.5;      ///< ...and no repeat once the runs so far took this many seconds,
+  double min_total = 0.02;  ///< except that runs shorter than this in total repeat anyway
+};
+
+/// Integrates `problem` to t_end with `steps` steps and measures it against q_ref.
+Measurement measure(const Solver& solver, const Problem& problem, double t_end, long steps,
+                    const Vec& q_ref, const TimingPolicy& timing);
+
+/// CPU time of this process in seconds.
+double cpu_seconds();
+
+}  // namespace ex

@@ -1,0 +1,88 @@
+#include "options.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace ex {
+namespace {
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+// "1/40" or "0.025" -> step count on [0, 10].
+long steps_of(const std::string& h_text) {
+  const auto slash = h_text.find('/');
+  const double h = slash == std::string::npos
+                       ? std::stod(h_text)
+                       : std::stod(h_text.substr(0, slash)) / std::stod(h_text.substr(slash + 1));
+  if (!(h > 0)) throw std::invalid_argument("step size must be positive: " + h_text);
+  return std::max(1L, std::lround(10 / h));
+}
+
+void set_quick(RunConfig& c) {
+  c.sweep.factor = 2;
+  c.sweep.max_steps = 100000;
+  c.sweep.timing = {3, 0.3, 0.01};
+}
+
+void set_full(RunConfig& c) {
+  c.sweep.factor = std::sqrt(2.0);
+  c.sweep.max_steps = 2000000;
+  c.sweep.timing = {7, 1.0, 0.05};
+}
+
+}  // namespace
+
+std::string usage() {
+  return "usage: erkn-experiments [--quick | --full] [--problems P1,P2,P3,scaling]\n"
+         "                        [--methods NAME,...] [--steps H,...] [--out DIR] [--list]\n"
+         "  --quick      small sweep (default): step factor 2, best of 3 timings\n"
+         "  --full       fine sweep: step factor sqrt 2, up to 2e6 steps, best of 7 timings\n"
+         "  --problems   which scenes to run (default: all four)\n"
+         "  --methods    the paper's names, e.g. SERKN3s4(1),RKN3s4(1),Gauss2 (default: all)\n"
+         "  --steps      fixed step sizes on [0, 10], e.g. 1/40,1/80 (no extension)\n"
+         "  --out DIR    writes DIR/results.md and DIR/charts/ (default: docs)\n"
+         "  --list       lists the problems and methods and exits\n";
+}
+
+Options parse_options(int argc, char** argv) {
+  Options o;
+  set_quick(o.config);
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value");
+      return argv[++i];
+    };
+    if (arg == "--quick")
+      o.mode = "quick", set_quick(o.config);
+    else if (arg == "--full")
+      o.mode = "full", set_full(o.config);
+    else if (arg == "--problems")
+      o.problems = split(value());
+    else if (arg == "--methods")
+      o.methods = split(value());
+    else if (arg == "--steps") {
+      o.config.steps.clear();
+      for (const std::string& h : split(value())) o.config.steps.push_back(steps_of(h));
+    } else if (arg == "--out")
+      o.out = value();
+    else if (arg == "--list")
+      o.list = true;
+    else
+      throw std::invalid_argument("unknown option " + arg);
+  }
+  if (!o.config.steps.empty()) o.mode = "custom";
+  for (const std::string& p : o.problems)
+    if (p != "P1" && p != "P2" && p != "P3" && p != "scaling")
+      throw std::invalid_argument("unknown problem " + p + " (known: P1, P2, P3, scaling)");
+  return o;
+}
+
+}  // namespace ex

@@ -1,0 +1,25 @@
+// Command line of erkn-experiments.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "experiment.hpp"
+
+namespace ex {
+
+struct Options {
+  std::vector<std::string> problems{"P1", "P2", "P3", "scaling"};
+  std::vector<std::string> methods;  ///< empty: all
+  std::string mode = "quick";        ///< "quick", "full" or "custom" (with --steps)
+  std::filesystem::path out = "docs";
+  bool list = false;
+  RunConfig config;
+};
+
+/// Parses argv; throws std::invalid_argument with a message naming the bad option.
+Options parse_options(int argc, char** argv);
+std::string usage();
+
+}  // namespace ex

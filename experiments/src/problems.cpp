@@ -1,0 +1,113 @@
+#include <boost/math/special_functions/jacobi_elliptic.hpp>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "problem.hpp"
+
+namespace ex {
+
+double Problem::energy(const Vec& q, const Vec& p) const {
+  Vec mq;
+  M.apply(q, mq);
+  return 0.5 * p.squaredNorm() + 0.5 * q.dot(mq) + potential(q);
+}
+
+void Problem::force(const Vec& q, Vec& f) const {
+  Vec g(q.size());
+  grad_u(q, g);
+  M.apply(q, f);
+  f = -f - g;
+}
+
+Problem sine_gordon(int n) {
+  const double dx = 2.0 / n;
+  Problem p;
+  p.key = "P1";
+  p.title = "sine-Gordon, N = " + std::to_string(n);
+  Vec col = Vec::Zero(n);
+  col[0] = 2 / (dx * dx);
+  col[1] = col[n - 1] = -1 / (dx * dx);
+  p.M = LinearPart::circulant(col);
+  p.q0 = Vec::Constant(n, std::numbers::pi);
+  p.p0.resize(n);
+  for (int i = 1; i <= n; ++i)
+    p.p0[i - 1] = std::sqrt(double(n)) * (0.01 + std::sin(2 * std::numbers::pi * i / n));
+  p.h_energy = 1.0 / 40;
+  p.paper_steps = {400, 800, 1600, 3200, 2000, 4000, 8000, 16000};
+  p.grad_u = [](const Vec& q, Vec& g) { g = q.array().sin(); };
+  p.potential = [](const Vec& q) { return -q.array().cos().sum(); };
+  p.hessian_u = [](const Vec& q) { return Eigen::MatrixXd(q.array().cos().matrix().asDiagonal()); };
+  p.force_ld = [n, dx](const VecLD& q, VecLD& f) {
+    const long double s = 1.0L / ((long double)dx * dx);
+    for (int i = 0; i < n; ++i) {
+      const long double lap = q[(i + n - 1) % n] - 2 * q[i] + q[(i + 1) % n];
+      f[i] = s * lap - std::sin(q[i]);
+    }
+  };
+  return p;
+}
+
+Problem duffing() {
+  constexpr double k = 0.03, k2 = k * k;
+  Problem p;
+  p.key = "P2";
+  p.title = "Duffing, k = 0.03";
+  p.M = LinearPart::scalar(100);
+  p.q0 = Vec::Zero(1);
+  p.p0 = Vec::Constant(1, 10);
+  p.h_energy = 1.0 / 50;
+  p.paper_steps = {2000, 4000, 6000, 8000, 400, 800, 1200, 1600};
+  // q'' + 100q = k^2 (2q^3 - q)  <=>  U(q) = -k^2 (q^4 - q^2) / 2.
+  p.grad_u = [](const Vec& q, Vec& g) { g = -k2 * (2 * q.array().cube() - q.array()); };
+  p.potential = [](const Vec& q) {
+    return -0.5 * k2 * (q.array().pow(4) - q.array().square()).sum();
+  };
+  p.hessian_u = [](const Vec& q) {
+    return Eigen::MatrixXd::Constant(1, 1, -k2 * (6 * q[0] * q[0] - 1));
+  };
+  p.force_ld = [](const VecLD& q, VecLD& f) {
+    f[0] = -100 * q[0] + (long double)k2 * (2 * q[0] * q[0] * q[0] - q[0]);
+  };
+  p.exact = [](double t) { return Vec::Constant(1, boost::math::jacobi_sn(k / 10, 10 * t)); };
+  return p;
+}
+
+Problem stellar_orbits() {
+  constexpr double eps = 1e-3;
+  Problem p;
+  p.key = "P3";
+  p.title = "stellar orbits, epsilon = 1e-3";
+  p.M = LinearPart::diagonal(Eigen::Vector2d(4, 1));
+  p.q0 = Eigen::Vector2d(1, 1);
+  p.p0 = Eigen::Vector2d(0, 0);
+  p.h_energy = 1.0 / 10;
+  p.paper_steps = {80, 160, 240, 320, 400, 800, 1200, 1600};
+  // U(q) = -eps q1 q2^2.
+  p.grad_u = [](const Vec& q, Vec& g) {
+    g.resize(2);
+    g[0] = -eps * q[1] * q[1];
+    g[1] = -2 * eps * q[0] * q[1];
+  };
+  p.potential = [](const Vec& q) { return -eps * q[0] * q[1] * q[1]; };
+  p.hessian_u = [](const Vec& q) {
+    Eigen::MatrixXd h(2, 2);
+    h << 0, -2 * eps * q[1], -2 * eps * q[1], -2 * eps * q[0];
+    return h;
+  };
+  p.force_ld = [](const VecLD& q, VecLD& f) {
+    const long double e = eps;
+    f[0] = -4 * q[0] + e * q[1] * q[1];
+    f[1] = -q[1] + 2 * e * q[0] * q[1];
+  };
+  return p;
+}
+
+Problem problem_by_key(const std::string& key) {
+  if (key == "P1") return sine_gordon(32);
+  if (key == "P2") return duffing();
+  if (key == "P3") return stellar_orbits();
+  throw std::invalid_argument("unknown problem '" + key + "' (known: P1, P2, P3)");
+}
+
+}  // namespace ex

@@ -1,0 +1,28 @@
+// docs/results.md: the summary table of every run, written by the run.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "experiment.hpp"
+
+namespace ex {
+
+struct RunInfo {
+  std::string command;  ///< the command line that produced the run
+  std::string mode;     ///< "quick", "full", or "custom"
+  double wall_seconds = 0;
+  int repeats = 0;
+};
+
+/// The target ratios as a markdown table (also printed at the end of a run).
+std::string targets_markdown(const std::vector<ProblemResult>& problems,
+                             const std::optional<ScalingResult>& scaling);
+
+void write_report(const std::filesystem::path& file, const RunInfo& info,
+                  const std::vector<ProblemResult>& problems,
+                  const std::optional<ScalingResult>& scaling);
+
+}  // namespace ex

@@ -1,0 +1,54 @@
+// The narrow interface every integrator of the experiments is driven through: integrate a problem
+// with a fixed step and report q, p and honest counts. Timing is done by the caller, around run().
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "problem.hpp"
+
+namespace ex {
+
+enum class Family { erkn, rkn, peer };
+
+struct RunStats {
+  long grad_evals = 0;        ///< evaluations of grad U (for peers: of the full force -Mq - grad U)
+  long stage_iterations = 0;  ///< fixed-point / Newton iterations over all stage solves
+  long stage_solves = 0;      ///< implicit stage systems solved (0 for explicit methods)
+  long steps = 0;
+};
+
+struct RunResult {
+  Vec q, p;
+  RunStats stats;
+};
+
+/// Called after every step with t_{n+1}, q_{n+1}, p_{n+1}.
+using Observer = std::function<void(double t, const Vec& q, const Vec& p)>;
+
+class Solver {
+ public:
+  virtual ~Solver() = default;
+  virtual std::string name() const = 0;  ///< the paper's name, or the peer's
+  virtual Family family() const = 0;
+  virtual int order() const = 0;
+  /// Integrates from t = 0 with `steps` steps of size h (coefficient setup included); throws on
+  /// failure (a pole of the method, a stage solver that does not converge).
+  virtual RunResult run(const Problem& problem, double h, long steps,
+                        const Observer* observer) const = 0;
+};
+
+using SolverList = std::vector<std::unique_ptr<Solver>>;
+
+std::unique_ptr<Solver> make_stormer_verlet();
+std::unique_ptr<Solver> make_mclachlan_sb3a();     ///< Boost.Odeint symplectic_rkn_sb3a_mclachlan
+std::unique_ptr<Solver> make_mclachlan_sb3a_m4();  ///< Boost.Odeint ..._sb3a_m4_mclachlan
+std::unique_ptr<Solver> make_gauss2();             ///< 2-stage Gauss-Legendre, Nystrom form
+/// Every ERKN method and RKN limit of the runtime's registry, in its order.
+SolverList make_erkn_solvers();
+/// The ERKN/RKN methods followed by the peers.
+SolverList all_solvers();
+
+}  // namespace ex

@@ -1,0 +1,14 @@
+#include "solver.hpp"
+
+namespace ex {
+
+SolverList all_solvers() {
+  SolverList list = make_erkn_solvers();
+  list.push_back(make_stormer_verlet());
+  list.push_back(make_mclachlan_sb3a());
+  list.push_back(make_mclachlan_sb3a_m4());
+  list.push_back(make_gauss2());
+  return list;
+}
+
+}  // namespace ex

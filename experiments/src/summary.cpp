@@ -1,0 +1,66 @@
+#include "summary.hpp"
+
+#include "interpolate.hpp"
+
+namespace ex {
+namespace {
+
+std::optional<double> min_opt(const std::optional<double>& a, const std::optional<double>& b) {
+  if (!a) return b;
+  if (!b) return a;
+  return std::min(*a, *b);
+}
+
+std::vector<CurvePoint> curve(const std::vector<Measurement>& ms, bool cpu) {
+  std::vector<CurvePoint> pts;
+  for (const Measurement& m : ms)
+    pts.push_back({cpu ? m.cpu : double(m.stats.grad_evals), m.error});
+  return pts;
+}
+
+}  // namespace
+
+Cost cost_to_tolerance(const std::vector<Measurement>& sweep, double tolerance) {
+  return {ex::cost_to_tolerance(curve(sweep, false), tolerance),
+          ex::cost_to_tolerance(curve(sweep, true), tolerance)};
+}
+
+Cost best_peer(const ProblemResult& result, double tolerance) {
+  Cost best;
+  for (const MethodResult& m : result.methods) {
+    if (m.family != Family::peer) continue;
+    const Cost c = cost_to_tolerance(m.sweep, tolerance);
+    best.evals = min_opt(best.evals, c.evals);
+    best.cpu = min_opt(best.cpu, c.cpu);
+  }
+  return best;
+}
+
+std::optional<double> mean_stage_iterations(const RunStats& stats) {
+  if (stats.stage_solves == 0) return std::nullopt;
+  return double(stats.stage_iterations) / double(stats.stage_solves);
+}
+
+std::optional<double> scaling_cpu(const ScalingResult& result, size_t line, size_t i) {
+  const auto& ms = result.lines[line].brackets[i];
+  return ex::cost_to_tolerance(curve(ms, true), result.tolerance);
+}
+
+std::optional<size_t> best_erkn_line(const ScalingResult& result) {
+  std::optional<size_t> best;
+  std::optional<double> best_cpu;
+  const size_t last = result.sizes.size() - 1;
+  for (size_t l = 0; l < result.lines.size(); ++l) {
+    if (result.lines[l].family != Family::erkn) continue;
+    const auto c = scaling_cpu(result, l, last);
+    if (!best || (c && (!best_cpu || *c < *best_cpu))) best = l, best_cpu = c;
+  }
+  return best;
+}
+
+std::optional<double> ratio(const std::optional<double>& a, const std::optional<double>& b) {
+  if (!a || !b || *b <= 0) return std::nullopt;
+  return *a / *b;
+}
+
+}  // namespace ex
