@@ -1,0 +1,136 @@
+#include "erkn/stability.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "erkn/error.hpp"
+#include "phi.hpp"
+
+namespace erkn {
+
+double StabilityMatrix::spectral_radius() const {
+  const double tr = trace(), dt = det(), disc = tr * tr - 4 * dt;
+  if (disc < 0) return std::sqrt(dt);  // complex pair: |lambda|^2 = det
+  const double r = std::sqrt(disc);
+  // The larger root without cancellation; the smaller one is det / larger.
+  const double big = 0.5 * (std::abs(tr) + r);
+  return big == 0 ? 0.0 : std::max(big, std::abs(dt / big));
+}
+
+bool StabilityMatrix::finite() const {
+  return std::isfinite(s11) && std::isfinite(s12) && std::isfinite(s21) && std::isfinite(s22);
+}
+
+double StabilityMatrix::det_relative_deviation() const {
+  const double scale = std::abs(s11 * s22) + std::abs(s12 * s21);
+  return std::abs(det() - 1) / std::max(scale, 1e-300);
+}
+
+StabilityMatrix stability_matrix(const Method& method, const Coefficients& k, double V, double z) {
+  // RKN: the V = 0 formula with the whole force (V + z) as the "nonlinearity".
+  const bool rkn = method.kind() == Kind::rkn;
+  const double v = rkn ? 0.0 : V, w = rkn ? V + z : z;
+  const int s = k.s;
+  // x = N^-1 phi0(c^2 v), y = N^-1 (c phi1(c^2 v)), N = I + w Abar lower triangular.
+  std::array<double, kMaxStages> x{}, y{};
+  for (int i = 0; i < s; ++i) {
+    const double c = k.c[i];
+    double xi = detail::phi0(c * c * v), yi = c * detail::phi1(c * c * v);
+    for (int j = 0; j < i; ++j) xi -= w * k.abar(i, j) * x[j], yi -= w * k.abar(i, j) * y[j];
+    const double nii = 1 + w * k.abar(i, i);
+    x[i] = xi / nii;
+    y[i] = yi / nii;
+  }
+  double bbx = 0, bby = 0, bx = 0, by = 0;
+  for (int i = 0; i < s; ++i) {
+    bbx += k.bbar[i] * x[i], bby += k.bbar[i] * y[i];
+    bx += k.b[i] * x[i], by += k.b[i] * y[i];
+  }
+  const double p0 = detail::phi0(v), p1 = detail::phi1(v);
+  return {p0 - w * bbx, p1 - w * bby, -v * p1 - w * bx, p0 - w * by};
+}
+
+StabilityMatrix stability_matrix(const Method& method, double V, double z) {
+  if (!std::isfinite(V) || V < 0) throw Error("stability_matrix: V = h^2 omega^2 must be >= 0");
+  return stability_matrix(method, method.at(method.kind() == Kind::rkn ? 0.0 : V), V, z);
+}
+
+StabilityClass classify(const StabilityMatrix& S, double tau) {
+  if (!S.finite()) return StabilityClass::singular;
+  const double tr = std::abs(S.trace());
+  if (S.det_relative_deviation() > kDetTolerance) {
+    const double rho = S.spectral_radius();
+    if (!std::isfinite(rho)) return StabilityClass::singular;
+    if (rho > 1 + tau) return StabilityClass::unstable;
+    if (rho < 1 - tau) return StabilityClass::contractive;
+    return StabilityClass::marginal;
+  }
+  if (tr < 2 - tau) return StabilityClass::periodic;
+  if (tr <= 2 + tau) return StabilityClass::marginal;
+  return StabilityClass::unstable;
+}
+
+std::string_view to_string(StabilityClass c) {
+  switch (c) {
+    case StabilityClass::periodic:
+      return "periodic";
+    case StabilityClass::marginal:
+      return "marginal";
+    case StabilityClass::unstable:
+      return "unstable";
+    case StabilityClass::contractive:
+      return "contractive";
+    case StabilityClass::singular:
+      return "singular";
+    case StabilityClass::pole:
+      return "pole";
+  }
+  return "?";
+}
+
+StabilityGrid stability_grid(const Method& method, double vmax, double zmin, double zmax, int nv,
+                             int nz) {
+  if (!(vmax > 0) || !std::isfinite(vmax) || !(zmax > zmin) || !std::isfinite(zmin) ||
+      !std::isfinite(zmax) || nv < 2 || nz < 2)
+    throw Error("stability_grid: need vmax > 0, zmax > zmin (finite) and at least 2x2 points");
+  StabilityGrid g;
+  g.vmax = vmax, g.zmin = zmin, g.zmax = zmax, g.nv = nv, g.nz = nz;
+  g.points.resize(size_t(nv) * nz);
+  const bool rkn = method.kind() == Kind::rkn;
+  const Coefficients k0 = method.at(0.0);
+  for (int i = 0; i < nv; ++i) {
+    const double V = vmax * i / (nv - 1);
+    Coefficients k = k0;
+    bool at_pole = false;
+    if (!rkn) {
+      try {
+        k = method.at(V);
+      } catch (const Error&) {
+        at_pole = true;
+      }
+    }
+    for (int j = 0; j < nz; ++j) {
+      StabilityPoint& p = g.points[size_t(i) * nz + j];
+      p.V = V;
+      p.z = zmin + (zmax - zmin) * j / (nz - 1);
+      if (at_pole) {
+        p.trace = p.det = p.rho = std::nan("");
+        p.cls = StabilityClass::pole;
+        continue;
+      }
+      const StabilityMatrix S = stability_matrix(method, k, V, p.z);
+      p.trace = S.trace(), p.det = S.det(), p.rho = S.spectral_radius();
+      p.cls = classify(S);
+      if (!S.finite()) continue;
+      const double dev = std::abs(p.det - 1);
+      g.max_det_deviation = std::max(g.max_det_deviation, dev);
+      g.max_det_relative_deviation =
+          std::max(g.max_det_relative_deviation, S.det_relative_deviation());
+      if (bounded_region(p.cls))
+        g.max_det_deviation_bounded = std::max(g.max_det_deviation_bounded, dev);
+    }
+  }
+  return g;
+}
+
+}  // namespace erkn
