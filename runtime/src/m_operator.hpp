@@ -1,0 +1,27 @@
+// y = M x for every Stiffness form, without allocating: scalar and diagonal elementwise, dense
+// one matrix-vector product, circulant a direct stencil when the first column has few nonzeros
+// (nnz <= 2 log2 N) and otherwise an FFT product with the closed-form eigenvalues.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+
+#include "erkn/stiffness.hpp"
+#include "transforms.hpp"
+
+namespace erkn::detail {
+
+class MOperator {
+ public:
+  MOperator(const Stiffness& M, Eigen::Index d);
+  void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y);
+  /// True when a circulant M is applied through the stencil, not the FFT.
+  bool uses_stencil() const { return !fft_; }
+
+ private:
+  Stiffness M_;
+  std::optional<RealFftTransform> fft_;
+  Eigen::ArrayXcd spectrum_;
+};
+
+}  // namespace erkn::detail

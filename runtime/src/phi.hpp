@@ -1,0 +1,21 @@
+// The phi-functions of the paper, eq. (e), at a scalar v = x^2 >= 0:
+//   phi0(v) = cos x,  phi1(v) = sin x / x,  and phi0(v) - 1 = -2 sin^2(x/2) without cancellation.
+#pragma once
+
+#include <cmath>
+
+namespace erkn::detail {
+
+inline double phi0(double v) { return std::cos(std::sqrt(v)); }
+
+inline double phi1(double v) {
+  const double x = std::sqrt(v);
+  return x == 0 ? 1.0 : std::sin(x) / x;
+}
+
+inline double phi0_minus_1(double v) {
+  const double s = std::sin(0.5 * std::sqrt(v));
+  return -2 * s * s;
+}
+
+}  // namespace erkn::detail

@@ -1,0 +1,65 @@
+#include "step_size_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "erkn/error.hpp"
+#include "format.hpp"
+
+namespace erkn::detail {
+
+double nearest_safe_step(const Method& method, double h, const Eigen::VectorXd& eigenvalues,
+                         double pole_tolerance) {
+  // Unsafe h form intervals [sqrt(P(1-tol)/lambda), sqrt(P(1+tol)/lambda)]; merge them (gaps
+  // below a relative margin count as overlap) and step just outside the one holding h.
+  std::vector<std::pair<double, double>> bad;
+  for (double lambda : eigenvalues)
+    if (lambda > 0)
+      for (double P : method.poles())
+        bad.emplace_back(std::sqrt(P * (1 - pole_tolerance) / lambda),
+                         std::sqrt(P * (1 + pole_tolerance) / lambda));
+  std::sort(bad.begin(), bad.end());
+  const double margin = 1e-9;
+  std::vector<std::pair<double, double>> merged;
+  for (const auto& [a, b] : bad) {
+    if (!merged.empty() && a <= merged.back().second * (1 + 2 * margin))
+      merged.back().second = std::max(merged.back().second, b);
+    else
+      merged.emplace_back(a, b);
+  }
+  double lo = h, hi = h;
+  for (const auto& [a, b] : merged)
+    if (a <= h && h <= b) lo = a, hi = b;
+  const double below = lo * (1 - margin), above = hi * (1 + margin);
+  const double vmax = above * above * eigenvalues.maxCoeff();
+  if (vmax > generated::kPoleSearchMax || h - below <= above - h) return below;
+  return above;
+}
+
+void check_step_size(const Method& method, double h, const Eigen::VectorXd& eigenvalues,
+                     double pole_tolerance) {
+  if (method.kind() == Kind::rkn) return;
+  const double lambda_max = eigenvalues.maxCoeff();
+  const double vmax = h * h * lambda_max;
+  if (vmax > generated::kPoleSearchMax)
+    throw Error(std::string(method.name()) + ": h = " + format(h) + " gives h^2*lambda_max = " +
+                format(vmax) + " > " + format(generated::kPoleSearchMax) +
+                ", beyond the range where the method's poles are known; use h <= " +
+                format(std::sqrt(generated::kPoleSearchMax / lambda_max)));
+  for (Eigen::Index k = 0; k < eigenvalues.size(); ++k) {
+    const double v = h * h * eigenvalues[k];
+    const double P = method.nearest_pole(v);
+    if (P > 0 && std::abs(v - P) <= pole_tolerance * P)
+      throw Error(std::string(method.name()) + ": step size h = " + format(h, 17) +
+                  " puts h^2*lambda = " + format(v, 17) + " (lambda = " + format(eigenvalues[k]) +
+                  ", eigenvalue " + std::to_string(k) + " of M) within a relative " +
+                  format(pole_tolerance) + " of the pole v = " + format(P, 17) +
+                  " of the method's coefficients; nearest safe step size h = " +
+                  format(nearest_safe_step(method, h, eigenvalues, pole_tolerance), 17));
+  }
+}
+
+}  // namespace erkn::detail

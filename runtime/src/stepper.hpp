@@ -1,0 +1,292 @@
+// The step of eq. (d), generic over M's eigenbasis (Transform) and the coefficient type (Coef).
+// Stages run in eigen coordinates; gradients are evaluated in physical coordinates.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "erkn/error.hpp"
+#include "erkn/integrator.hpp"
+#include "format.hpp"
+#include "m_operator.hpp"
+#include "step_coefficients.hpp"
+
+namespace erkn::detail {
+
+/// The integrator's state, which a step changes only once it has succeeded.
+struct StepState {
+  Eigen::VectorXd& q;
+  Eigen::VectorXd& p;
+  Eigen::VectorXd& q_error;  ///< compensated-summation error of q
+  Eigen::VectorXd& p_error;
+  long step_number;  ///< of the step being taken (1-based), for messages
+  double t;          ///< at its start, for messages
+};
+
+class StepperBase {
+ public:
+  virtual ~StepperBase() = default;
+  virtual void step(StepState state, Statistics& stats) = 0;
+  /// Drops the previous step's stage gradients (after a change of state or h).
+  virtual void forget_history() = 0;
+  virtual void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) = 0;
+  virtual System& system() = 0;
+};
+
+template <class Transform, class Coef>
+class Stepper final : public StepperBase {
+  using Spectral = typename Transform::Spectral;
+
+ public:
+  /// lambda: M's eigenvalues ({0} for RKN methods, whose force then includes -M q).
+  Stepper(const Method& method, System system, double h, const Options& options,
+          Transform transform, const Eigen::VectorXd& lambda, Eigen::Index d)
+      : method_(method),
+        system_(std::move(system)),
+        options_(options),
+        rkn_(method.kind() == Kind::rkn),
+        d_(d),
+        s_(method.stages()),
+        k_(step_coefficients<Coef>(method, h, lambda, options.pole_tolerance)),
+        transform_(std::move(transform)),
+        M_(system_.M, d) {
+    const Eigen::Index m = transform_.spectral_size(d);
+    for (Spectral* x : {&q_hat_, &p_hat_, &r_hat_, &Q_hat_, &guess_hat_, &dq_hat_, &dp_hat_})
+      x->setZero(m);
+    for (int i = 0; i < s_; ++i) G_[i].setZero(m), G_old_[i].setZero(m);
+    for (Eigen::VectorXd* x : {&Q_, &Q_new_, &g_, &dq_, &dp_, &Mq_}) x->setZero(d);
+    // Lagrange weights extrapolating the previous step's nodes c_j to 1 + c_i.
+    const double* c = method.table().c;
+    for (int i = 0; i < s_; ++i)
+      for (int j = 0; j < s_; ++j) {
+        double w = 1;
+        for (int l = 0; l < s_; ++l)
+          if (l != j) w *= (1 + c[i] - c[l]) / (c[j] - c[l]);
+        extrapolation_[i][j] = w;
+      }
+  }
+
+  void step(StepState state, Statistics& stats) override {
+    state_ = &state;
+    transform_.forward(state.q, q_hat_);
+    transform_.forward(state.p, p_hat_);
+    for (int i = 0; i < s_; ++i) {
+      start_stage(i);
+      if (!fixed_point(i, stats)) newton(i, stats);
+    }
+    dq_hat_ = k_.phi0m1 * q_hat_ + k_.hphi1 * p_hat_;
+    dp_hat_ = k_.mhMphi1 * q_hat_ + k_.phi0m1 * p_hat_;
+    for (int i = 0; i < s_; ++i) {
+      dq_hat_ -= k_.h2bbar[i] * G_[i];
+      dp_hat_ -= k_.hb[i] * G_[i];
+    }
+    transform_.inverse(dq_hat_, dq_);
+    transform_.inverse(dp_hat_, dp_);
+    add(state.q, state.q_error, dq_);
+    add(state.p, state.p_error, dp_);
+    std::swap(G_, G_old_);
+    have_history_ = true;
+    ++stats.steps;
+  }
+
+  void forget_history() override { have_history_ = false; }
+  void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) override { M_.apply(x, y); }
+  System& system() override { return system_; }
+
+ private:
+  // r_i = phi0(c_i^2 V) q + h c_i phi1(c_i^2 V) p - h^2 sum_{j<i} abar_ij g_j, and the starting
+  // guess Q = r_i - h^2 abar_ii g_pred with g_pred extrapolated from the previous step.
+  void start_stage(int i) {
+    r_hat_ = k_.phi0c[i] * q_hat_ + k_.hcphi1c[i] * p_hat_;
+    for (int j = 0; j < i; ++j) r_hat_ -= k_.abar(i, j) * G_[j];
+    if (have_history_) {
+      guess_hat_ = extrapolation_[i][0] * G_old_[0];
+      for (int j = 1; j < s_; ++j) guess_hat_ += extrapolation_[i][j] * G_old_[j];
+    } else if (i > 0) {
+      guess_hat_ = G_[i - 1];
+    } else {
+      guess_hat_.setZero();
+    }
+    Q_hat_ = r_hat_ - k_.abar(i, i) * guess_hat_;
+    transform_.inverse(Q_hat_, Q_);
+  }
+
+  // Fixed point Q <- r_i - h^2 abar_ii(V) g(Q). True when converged, or when the updates stall
+  // below Options::roundoff_level (a tolerance under the round-off noise); G_[i] then holds the
+  // gradient of the last iterate but one (no confirming evaluation).
+  bool fixed_point(int i, Statistics& stats) {
+    double delta = 0, delta_old = 0;
+    for (int it = 1; it <= options_.max_fixed_point_iterations; ++it) {
+      force(Q_, i, stats);
+      transform_.forward(g_, G_[i]);
+      Q_hat_ = r_hat_ - k_.abar(i, i) * G_[i];
+      transform_.inverse(Q_hat_, Q_new_);
+      ++stats.stage_iterations;
+      delta = relative_change(Q_new_, Q_);
+      Q_.swap(Q_new_);
+      if (delta == 0) return true;
+      if (it > 1) {
+        const double theta = delta / delta_old;
+        if (theta < 1 && theta / (1 - theta) * delta <= options_.tolerance) return true;
+        if (theta >= options_.max_theta)
+          return delta <= options_.roundoff_level;  // stagnation at round-off, else diverging
+        // Too slow: theta^n/(1-theta) * delta would need more iterations than are left.
+        const double needed =
+            std::log(options_.tolerance * (1 - theta) / (theta * delta)) / std::log(theta);
+        if (it + needed > options_.max_fixed_point_iterations && delta > options_.roundoff_level)
+          return false;
+      }
+      delta_old = delta;
+    }
+    return delta <= options_.roundoff_level;  // out of iterations: accept only round-off noise
+  }
+
+  // Newton on F(Q) = Q - r_i + h^2 abar_ii(V) g(Q) from the starting guess, Jacobian
+  // I + h^2 abar_ii(V) (Hessian [+ M for RKN]).
+  void newton(int i, Statistics& stats) {
+    ++stats.newton_fallbacks;
+    if (J_.rows() != d_) {
+      J_.resize(d_, d_), H_.resize(d_, d_), r_.resize(d_), F_.resize(d_), gU_.resize(d_);
+      col_.resize(d_), col_hat_.resize(Q_hat_.size()),
+          lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(d_);
+      if (rkn_) M_dense_ = system_.M.to_dense(d_);
+    }
+    transform_.inverse(r_hat_, r_);
+    Q_hat_ = r_hat_ - k_.abar(i, i) * guess_hat_;
+    transform_.inverse(Q_hat_, Q_);
+    double delta_old = 0, residual = 0;
+    for (int it = 1; it <= options_.max_newton_iterations; ++it) {
+      gradient(Q_, gU_, i, stats);
+      g_ = gU_;
+      add_MQ(Q_);
+      transform_.forward(g_, G_[i]);
+      Q_hat_ = k_.abar(i, i) * G_[i];
+      transform_.inverse(Q_hat_, F_);
+      F_ += Q_ - r_;
+      residual = F_.norm() / std::max(Q_.norm(), 1e-300);
+      jacobian(i, stats);
+      lu_.compute(J_);
+      Q_new_ = lu_.solve(F_);
+      Q_ -= Q_new_;
+      ++stats.newton_iterations, ++stats.stage_iterations;
+      const double delta = Q_new_.norm() / std::max(Q_.norm(), 1e-300);
+      if (!std::isfinite(delta)) break;
+      const double theta = it > 1 ? delta / delta_old : 1;
+      if (delta == 0 || (theta < 1 && theta / (1 - theta) * delta <= options_.tolerance) ||
+          (it > 1 && theta >= 1 && delta <= options_.roundoff_level)) {
+        // h^2 abar_ii |Hessian| may be large here, so G_[i] must be the gradient at the final Q.
+        force(Q_, i, stats);
+        transform_.forward(g_, G_[i]);
+        return;
+      }
+      delta_old = delta;
+    }
+    throw Error(
+        "step " + std::to_string(state_->step_number) + " at t = " + format(state_->t) +
+        ": stage " + std::to_string(i + 1) + " of " + std::string(method_.name()) +
+        " did not converge (fixed-point iteration failed; Newton left a relative residual " +
+        format(residual, 3) + " after " + std::to_string(options_.max_newton_iterations) +
+        " iterations); the state is unchanged");
+  }
+
+  // J = I + h^2 abar_ii(V) K with K the Hessian of U (user's or finite differences) [+ M].
+  void jacobian(int i, Statistics& stats) {
+    if (system_.hessian) {
+      system_.hessian(Q_, H_);
+      ++stats.hessian_evaluations;
+      if (H_.rows() != d_ || H_.cols() != d_ || !H_.allFinite())
+        throw Error("the Hessian callback returned a non-finite value or a size other than " +
+                    std::to_string(d_) + "x" + std::to_string(d_) + " at step " +
+                    std::to_string(state_->step_number));
+    } else {
+      for (Eigen::Index j = 0; j < d_; ++j) {
+        const double saved = Q_[j], step = 1e-7 * std::max(1.0, std::abs(saved));
+        Q_[j] = saved + step;
+        gradient(Q_, col_, i, stats);
+        Q_[j] = saved;
+        H_.col(j) = (col_ - gU_) / step;
+      }
+    }
+    if (rkn_) H_ += M_dense_;
+    for (Eigen::Index j = 0; j < d_; ++j) {
+      col_ = H_.col(j);
+      transform_.forward(col_, col_hat_);
+      col_hat_ *= k_.abar(i, i);
+      transform_.inverse(col_hat_, col_);
+      J_.col(j) = col_;
+    }
+    J_.diagonal().array() += 1.0;
+  }
+
+  // g_ = grad U(Q) (+ M Q for RKN methods).
+  void force(const Eigen::VectorXd& Q, int i, Statistics& stats) {
+    gradient(Q, g_, i, stats);
+    add_MQ(Q);
+  }
+
+  void add_MQ(const Eigen::VectorXd& Q) {
+    if (!rkn_) return;
+    M_.apply(Q, Mq_);
+    g_ += Mq_;
+  }
+
+  void gradient(const Eigen::VectorXd& Q, Eigen::VectorXd& g, int i, Statistics& stats) {
+    system_.gradient(Q, g);
+    ++stats.gradient_evaluations;
+    if (g.size() != d_) {
+      const Eigen::Index got = g.size();
+      g.resize(d_);
+      throw Error("the gradient callback returned a vector of size " + std::to_string(got) +
+                  " for q of size " + std::to_string(d_) + " (step " +
+                  std::to_string(state_->step_number) + ", stage " + std::to_string(i + 1) +
+                  "); the state is unchanged");
+    }
+    if (!g.allFinite())
+      throw Error("the gradient callback returned a non-finite value at step " +
+                  std::to_string(state_->step_number) + " (t = " + format(state_->t) + "), stage " +
+                  std::to_string(i + 1) + "; the state is unchanged");
+  }
+
+  static double relative_change(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+    const double diff = (a - b).norm();
+    return diff == 0 ? 0.0 : diff / std::max(a.norm(), 1e-300);
+  }
+
+  // x += dx, Kahan-compensated when enabled (error carries the lost low-order bits).
+  void add(Eigen::VectorXd& x, Eigen::VectorXd& error, Eigen::VectorXd& dx) {
+    if (!options_.compensated_summation) {
+      x += dx;
+      return;
+    }
+    dx += error;
+    Q_new_ = x + dx;
+    error = (x - Q_new_) + dx;
+    x.swap(Q_new_);
+  }
+
+  Method method_;
+  System system_;
+  Options options_;
+  bool rkn_;
+  Eigen::Index d_;
+  int s_;
+  StepCoefficients<Coef> k_;
+  Transform transform_;
+  MOperator M_;
+  StepState* state_ = nullptr;
+  std::array<std::array<double, kMaxStages>, kMaxStages> extrapolation_{};
+  bool have_history_ = false;
+  Spectral q_hat_, p_hat_, r_hat_, Q_hat_, guess_hat_, dq_hat_, dp_hat_;
+  std::array<Spectral, kMaxStages> G_, G_old_;  // stage gradients of this and the last step
+  Eigen::VectorXd Q_, Q_new_, g_, dq_, dp_, Mq_;
+  // Newton workspace, allocated at the first fallback.
+  Eigen::MatrixXd J_, H_, M_dense_;
+  Eigen::VectorXd r_, F_, gU_, col_;
+  Spectral col_hat_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+};
+
+}  // namespace erkn::detail

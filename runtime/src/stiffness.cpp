@@ -1,0 +1,152 @@
+#include "erkn/stiffness.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "erkn/error.hpp"
+#include "format.hpp"
+
+namespace erkn {
+
+struct Stiffness::Data {
+  Structure structure;
+  Eigen::Index dim = 0;
+  Eigen::VectorXd eigenvalues, entries;
+  Eigen::MatrixXd eigenvectors, matrix;
+  Eigen::VectorXi nonzeros;
+};
+
+namespace {
+
+void require_finite(const Eigen::Ref<const Eigen::MatrixXd>& m, const char* what) {
+  for (Eigen::Index j = 0; j < m.cols(); ++j)
+    for (Eigen::Index i = 0; i < m.rows(); ++i)
+      if (!std::isfinite(m(i, j)))
+        throw Error(std::string(what) + " has a non-finite entry " + format(m(i, j)) + " at (" +
+                    std::to_string(i) + ", " + std::to_string(j) + ")");
+}
+
+// Sets eigenvalues in [-tol * max|lambda|, 0) to 0; throws for anything more negative.
+void require_psd(Eigen::VectorXd& lambda, const char* what) {
+  const double scale = lambda.cwiseAbs().maxCoeff();
+  Eigen::Index k;
+  const double low = lambda.minCoeff(&k);
+  if (low < -Stiffness::kTolerance * scale)
+    throw Error(std::string(what) + " is not positive semi-definite: eigenvalue " +
+                std::to_string(k) + " is " + format(low) + " (relative " + format(low / scale) +
+                " of the largest |eigenvalue|; tolerance " + format(Stiffness::kTolerance) + ")");
+  lambda = lambda.cwiseMax(0.0);
+}
+
+}  // namespace
+
+Stiffness Stiffness::scalar(double omega2) {
+  if (!std::isfinite(omega2))
+    throw Error("M = omega2*I: omega2 = " + format(omega2) + " is not finite");
+  if (omega2 < 0)
+    throw Error("M = omega2*I is not positive semi-definite: omega2 = " + format(omega2));
+  auto d = std::make_shared<Data>();
+  d->structure = Structure::scalar;
+  d->eigenvalues = d->entries = Eigen::VectorXd::Constant(1, omega2);
+  return Stiffness(d);
+}
+
+Stiffness Stiffness::diagonal(const Eigen::VectorXd& m) {
+  if (m.size() == 0) throw Error("diagonal M is empty");
+  require_finite(m, "diagonal M");
+  auto d = std::make_shared<Data>();
+  d->structure = Structure::diagonal;
+  d->dim = m.size();
+  d->eigenvalues = d->entries = m;
+  require_psd(d->eigenvalues, "diagonal M");
+  return Stiffness(d);
+}
+
+Stiffness Stiffness::circulant(const Eigen::VectorXd& col) {
+  const Eigen::Index n = col.size();
+  if (n == 0) throw Error("circulant M: the first column is empty");
+  require_finite(col, "circulant M's first column");
+  const double scale = col.cwiseAbs().maxCoeff();
+  for (Eigen::Index j = 1; j < n; ++j)
+    if (std::abs(col[j] - col[n - j]) > kTolerance * scale)
+      throw Error("circulant M is not symmetric: first column entries " + std::to_string(j) +
+                  " and " + std::to_string(n - j) + " differ by " + format(col[j] - col[n - j]) +
+                  " (relative " + format((col[j] - col[n - j]) / scale) + "; tolerance " +
+                  format(kTolerance) + ")");
+  auto d = std::make_shared<Data>();
+  d->structure = Structure::circulant;
+  d->dim = n;
+  d->entries = col;
+  std::vector<int> nz;
+  for (Eigen::Index j = 0; j < n; ++j)
+    if (col[j] != 0) nz.push_back(int(j));
+  d->nonzeros = Eigen::Map<Eigen::VectorXi>(nz.data(), Eigen::Index(nz.size()));
+  // lambda_k = sum_j col[j] cos(2 pi j k / N), with the angle reduced exactly to (j k) mod N.
+  Eigen::VectorXd cosine(n);
+  for (Eigen::Index m = 0; m < n; ++m)
+    cosine[m] = std::cos(2 * std::numbers::pi * double(m) / double(n));
+  d->eigenvalues.resize(n / 2 + 1);
+  for (Eigen::Index k = 0; k <= n / 2; ++k) {
+    double sum = 0;
+    for (int j : nz) sum += col[j] * cosine[(j * k) % n];
+    d->eigenvalues[k] = sum;
+  }
+  require_psd(d->eigenvalues, "circulant M");
+  return Stiffness(d);
+}
+
+Stiffness Stiffness::dense(const Eigen::MatrixXd& m) {
+  if (m.rows() != m.cols())
+    throw Error("dense M must be square; it is " + std::to_string(m.rows()) + "x" +
+                std::to_string(m.cols()));
+  if (m.size() == 0) throw Error("dense M is empty");
+  require_finite(m, "dense M");
+  const double scale = m.cwiseAbs().maxCoeff();
+  Eigen::Index i, j;
+  const double asym = (m - m.transpose()).cwiseAbs().maxCoeff(&i, &j);
+  if (asym > kTolerance * scale)
+    throw Error("dense M is not symmetric: |M(" + std::to_string(i) + "," + std::to_string(j) +
+                ") - M(" + std::to_string(j) + "," + std::to_string(i) + ")| = " + format(asym) +
+                " (relative " + format(asym / scale) + "; tolerance " + format(kTolerance) + ")");
+  auto d = std::make_shared<Data>();
+  d->structure = Structure::dense;
+  d->dim = m.rows();
+  d->matrix = 0.5 * (m + m.transpose());
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(d->matrix);
+  if (eig.info() != Eigen::Success) throw Error("dense M: the eigendecomposition failed");
+  d->eigenvalues = eig.eigenvalues();
+  d->eigenvectors = eig.eigenvectors();
+  require_psd(d->eigenvalues, "dense M");
+  return Stiffness(d);
+}
+
+Stiffness::Structure Stiffness::structure() const { return data_->structure; }
+Eigen::Index Stiffness::dim() const { return data_->dim; }
+const Eigen::VectorXd& Stiffness::eigenvalues() const { return data_->eigenvalues; }
+const Eigen::MatrixXd& Stiffness::eigenvectors() const { return data_->eigenvectors; }
+const Eigen::VectorXd& Stiffness::entries() const { return data_->entries; }
+const Eigen::MatrixXd& Stiffness::matrix() const { return data_->matrix; }
+const Eigen::VectorXi& Stiffness::nonzeros() const { return data_->nonzeros; }
+
+Eigen::MatrixXd Stiffness::to_dense(Eigen::Index d) const {
+  switch (data_->structure) {
+    case Structure::scalar:
+      return data_->entries[0] * Eigen::MatrixXd::Identity(d, d);
+    case Structure::diagonal:
+      return data_->entries.asDiagonal();
+    case Structure::dense:
+      return data_->matrix;
+    case Structure::circulant: {
+      const Eigen::Index n = data_->dim;
+      Eigen::MatrixXd m(n, n);
+      for (Eigen::Index k = 0; k < n; ++k)
+        for (Eigen::Index i = 0; i < n; ++i) m(i, k) = data_->entries[(i - k + n) % n];
+      return m;
+    }
+  }
+  return {};
+}
+
+}  // namespace erkn

@@ -1,0 +1,127 @@
+// The stage solver: few gradient evaluations with the extrapolated start, Newton when fixed
+// point diverges (agreeing with a direct solution of the stage equations), a clear error when
+// nothing converges, and compensated summation that pays off.
+#include <gtest/gtest.h>
+
+#include "problems.hpp"
+
+namespace erkn::test {
+namespace {
+
+TEST(StageSolver, SineGordonNeedsAtMost25GradientEvaluationsPerStage) {
+  const int N = 32;
+  Eigen::VectorXd q0, p0;
+  sine_gordon_initial(N, q0, p0);
+  const Method& m = Method::by_name("SERKN3s4(1)");
+  Integrator run(m, sine_gordon(Stiffness::circulant(sine_gordon_column(N))), 1.0 / 40, q0, p0);
+  run.integrate(10.0);
+  const Statistics& s = run.statistics();
+  EXPECT_EQ(s.newton_fallbacks, 0);
+  EXPECT_LE(double(s.gradient_evaluations) / double(s.steps * m.stages()), 2.5);
+}
+
+// One step of eq. (d) for q'' + w2 q = -k q (scalar), with the stage equations solved in closed
+// form: Q_i = r_i / (1 + h^2 abar_ii k_eff). RKN methods see V = 0 and k_eff = k + w2.
+Eigen::Vector2d direct_step(const Method& m, double w2, double k, double h, double q, double p) {
+  const bool rkn = m.kind() == Kind::rkn;
+  const double v = rkn ? 0 : h * h * w2, ke = rkn ? k + w2 : k;
+  const Coefficients co = m.at(v);
+  auto phi0 = [](double v) { return std::cos(std::sqrt(v)); };
+  auto phi1 = [](double v) { return v == 0 ? 1.0 : std::sin(std::sqrt(v)) / std::sqrt(v); };
+  double g[kMaxStages];
+  for (int i = 0; i < co.s; ++i) {
+    const double c = co.c[i];
+    double r = phi0(c * c * v) * q + h * c * phi1(c * c * v) * p;
+    for (int j = 0; j < i; ++j) r -= h * h * co.abar(i, j) * g[j];
+    g[i] = ke * r / (1 + h * h * co.abar(i, i) * ke);
+  }
+  double qn = phi0(v) * q + h * phi1(v) * p, pn = -(v / h) * phi1(v) * q + phi0(v) * p;
+  for (int i = 0; i < co.s; ++i) qn -= h * h * co.bbar[i] * g[i], pn -= h * co.b[i] * g[i];
+  return {qn, pn};
+}
+
+TEST(StageSolver, StepsAgreeWithADirectSolutionOfTheStageEquationsAndNewtonTakesOverWhenNeeded) {
+  const double w2 = 9, h = 0.1;
+  for (const Method& m : Method::all())
+    for (double k : {0.5, 5000.0})  // h^2 k abar_ii << 1: fixed point; >> 1: it diverges
+      for (bool hessian : {true, false}) {
+        SCOPED_TRACE(std::string(m.name()) + " k = " + std::to_string(k) +
+                     (hessian ? " Hessian" : " FD"));
+        System s;
+        s.M = Stiffness::scalar(w2);
+        s.gradient = [k](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = k * q; };
+        if (hessian)
+          s.hessian = [k](const Eigen::VectorXd&, Eigen::MatrixXd& H) {
+            H = k * Eigen::MatrixXd::Identity(1, 1);
+          };
+        Integrator run(m, s, h, Eigen::VectorXd::Constant(1, 0.8),
+                       Eigen::VectorXd::Constant(1, -0.3));
+        Eigen::Vector2d y(0.8, -0.3);
+        // The stage tolerance 1e-14 bounds h^2 abar dg; p sees h dg, hence 1e-11 here.
+        for (int n = 0; n < 10; ++n) {
+          run.step();
+          y = direct_step(m, w2, k, h, y[0], y[1]);
+          EXPECT_NEAR(run.q()[0], y[0], 1e-11 * (1 + std::abs(y[0])));
+          EXPECT_NEAR(run.p()[0], y[1], 1e-11 * (1 + std::abs(y[1])));
+        }
+        const Statistics& st = run.statistics();
+        if (k > 1000) {
+          EXPECT_GT(st.newton_fallbacks, 0);
+          EXPECT_EQ(st.hessian_evaluations > 0, hessian);
+        } else {
+          EXPECT_EQ(st.newton_fallbacks, 0);
+        }
+      }
+}
+
+TEST(StageSolver, StageWithoutSolutionIsAnErrorNamingStepTimeStageAndResidual) {
+  System s;
+  s.M = Stiffness::scalar(1);
+  // Q = r - h^2 abar (1e5 sign Q) has no solution when |r| < h^2 abar 1e5 (abar_ii >= 0.006).
+  s.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = 1e5 * q.array().sign(); };
+  s.hessian = [](const Eigen::VectorXd&, Eigen::MatrixXd& H) { H.setZero(); };
+  for (const Method& m : Method::all()) {
+    SCOPED_TRACE(std::string(m.name()));
+    Integrator run(m, s, 0.1, Eigen::VectorXd::Constant(1, 0.01), Eigen::VectorXd::Zero(1));
+    try {
+      run.step();
+      ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+      const std::string msg = e.what();
+      for (const char* part :
+           {"step 1 at t = 0", "stage 1", "did not converge", "residual", "unchanged"})
+        EXPECT_NE(msg.find(part), std::string::npos) << msg;
+    }
+    EXPECT_EQ(run.q()[0], 0.01);
+    EXPECT_EQ(run.p()[0], 0.0);
+    EXPECT_EQ(run.t(), 0.0);
+    EXPECT_EQ(run.statistics().newton_fallbacks, 1);
+  }
+}
+
+TEST(StageSolver, CompensatedSummationRemovesTheRoundOffOfManySmallIncrements) {
+  // Free motion q = q0 + t p0 (M = 0, U = 0): each increment h p0 is far below q's last digit.
+  System s;
+  s.M = Stiffness::scalar(0);
+  s.gradient = [](const Eigen::VectorXd&, Eigen::VectorXd& g) { g.setZero(); };
+  const long n = 200000;
+  const double h = 1e-3, q0 = 1, p0 = 0.1234567;
+  const long double exact = (long double)q0 + (long double)n * h * p0;
+  for (const Method& m : Method::all()) {
+    SCOPED_TRACE(std::string(m.name()));
+    double err[2];
+    for (bool compensated : {false, true}) {
+      Options o;
+      o.compensated_summation = compensated;
+      Integrator run(m, s, h, Eigen::VectorXd::Constant(1, q0), Eigen::VectorXd::Constant(1, p0),
+                     o);
+      for (long k = 0; k < n; ++k) run.step();
+      err[compensated] = double(std::abs(run.q()[0] - exact));
+    }
+    EXPECT_LT(err[1], 0.01 * err[0]) << "plain " << err[0] << ", compensated " << err[1];
+    EXPECT_LT(err[1], 1e-15);
+  }
+}
+
+}  // namespace
+}  // namespace erkn::test
