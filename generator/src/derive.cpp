@@ -106,8 +106,10 @@ bool identically_zero(const Rational& r) { return r.num.is_zero(); }
 }  // namespace
 
 Rational to_rational(const ex& e, const TrigEnv& env, const symbol& v) {
-  ex n = normal(e);
-  Rational num = convert(numer(n), env, v), den = convert(denom(n), env, v);
+  // One numer_denom(): numer() and denom() would each normalise anew and may scale the two
+  // parts by constants of opposite sign.
+  ex nd = normal(e).numer_denom();
+  Rational num = convert(nd.op(0), env, v), den = convert(nd.op(1), env, v);
   return {num.num * den.den, num.den * den.num};
 }
 

@@ -214,66 +214,54 @@ void emit(const std::vector<Emittable>& methods, const std::string& outdir,
   write(outdir + "/include/erkn/generated/methods.def", def.str());
 
   std::ostringstream hpp;
+  // clang-format off
   hpp << banner(command) << R"CPP(#pragma once
 
-                                  namespace erkn::generated {
+namespace erkn::generated {
 
-                                  /// Largest stage count of any method.
-                                  inline constexpr int kMaxStages =)CPP"
-      << max_stages << R"CPP(;
-                             /// Stored Taylor coefficients per coefficient function: v^0 ..
-                             /// v^(kSeriesTerms-1).
-                             inline constexpr int kSeriesTerms =)CPP"
-      << kSeriesTerms << R"CPP(;
-                               /// Poles are listed for v = h^2 lambda in (0, kPoleSearchMax].
-                               inline constexpr double kPoleSearchMax =)CPP"
-      << num(kPoleSearchMax) << R"CPP(;
+/// Largest stage count of any method.
+inline constexpr int kMaxStages = )CPP" << max_stages << R"CPP(;
+/// Stored Taylor coefficients per coefficient function: v^0 .. v^(kSeriesTerms-1).
+inline constexpr int kSeriesTerms = )CPP" << kSeriesTerms << R"CPP(;
+/// Poles are listed for v = h^2 lambda in (0, kPoleSearchMax].
+inline constexpr double kPoleSearchMax = )CPP" << num(kPoleSearchMax) << R"CPP(;
 
-                                      /// One method of the paper (or its V -> 0 limit). Coefficient
-                                      /// functions are listed in the order b_1..b_s,
-                                      /// bbar_1..bbar_s, abar_11, abar_21, abar_22, abar_31, ...
-                                      /// (lower triangle, row-major).
-                                      struct Table {
-                                        const char* name;  ///< the paper's name, e.g. "SERKN3s4(1)"
-                                        const char* id;    ///< C identifier, e.g. "SERKN3s4_1"
-                                        int stages;        ///< s
-                                        int order;         ///< classical order
-                                        bool rkn;  ///< true: V -> 0 limit (constant coefficients,
-                                                   ///< force -Mq - grad U)
-                                        const char* reference;  ///< where the paper derives it
-                                        const double* c;        ///< nodes c_1..c_s
-                                        const double* d;        ///< symplectic weights d_1..d_s of
-                                                                ///< Theorem 2, eq. (g)
-                                        const char* const* c_exact;  ///< c_i in GiNaC syntax
-                                        const char* const* d_exact;  ///< d_i in GiNaC syntax
-                                        /// Evaluates b[s], bbar[s], abar[s(s+1)/2] at v = h^2
-                                        /// lambda >= 0 (v away from a pole).
-                                        void (*coefficients)(double v, double* b, double* bbar, double* abar);
-                                        const double* series;  ///< [ncoef][kSeriesTerms] Taylor
-                                                               ///< coefficients in v
-                                        const char* const* closed_forms;  ///< [ncoef] closed forms,
-                                                                          ///< GiNaC syntax in v and
-                                                                          ///< phi(j,w*v)
-                                        const double* poles;              ///< real poles in (0,
-                                                              ///< kPoleSearchMax], ascending
-                                        int npoles;
-                                      };
+/// One method of the paper (or its V -> 0 limit). Coefficient functions are listed in the order
+/// b_1..b_s, bbar_1..bbar_s, abar_11, abar_21, abar_22, abar_31, ... (lower triangle, row-major).
+struct Table {
+  const char* name;       ///< the paper's name, e.g. "SERKN3s4(1)"
+  const char* id;         ///< C identifier, e.g. "SERKN3s4_1"
+  int stages;             ///< s
+  int order;              ///< classical order
+  bool rkn;               ///< true: V -> 0 limit (constant coefficients, force -Mq - grad U)
+  const char* reference;  ///< where the paper derives it
+  const double* c;        ///< nodes c_1..c_s
+  const double* d;        ///< symplectic weights d_1..d_s of Theorem 2, eq. (g)
+  const char* const* c_exact;  ///< c_i in GiNaC syntax
+  const char* const* d_exact;  ///< d_i in GiNaC syntax
+  /// Evaluates b[s], bbar[s], abar[s(s+1)/2] at v = h^2 lambda >= 0 (v away from a pole).
+  void (*coefficients)(double v, double* b, double* bbar, double* abar);
+  const double* series;              ///< [ncoef][kSeriesTerms] Taylor coefficients in v
+  const char* const* closed_forms;   ///< [ncoef] closed forms, GiNaC syntax in v and phi(j,w*v)
+  const double* poles;               ///< real poles in (0, kPoleSearchMax], ascending
+  int npoles;
+};
 
-                                      /// All methods, in the order of methods.def.
-                                      extern const Table kTables[];
-                                      extern const int kNumTables;
+/// All methods, in the order of methods.def.
+extern const Table kTables[];
+extern const int kNumTables;
 
-                                      }  // namespace erkn::generated
-  )CPP";
+}  // namespace erkn::generated
+)CPP";
+  // clang-format on
   write(outdir + "/include/erkn/generated/tables.hpp", hpp.str());
 
   std::ostringstream cpp;
-  cpp << banner(command) << R"CPP(// Closed forms are phi-functions of scalar multiples of v:
-                                  // phi0(w^2 v) = cos(w x),
-                                  // phi1(w^2 v) = sin(w x)/(w x), x = sqrt(v). A coefficient whose
-                                  // closed form is 0/0 at v = 0 switches to its Taylor series below
-                                  // a threshold chosen by the generator (see numerics.hpp).
-                                  // clang-format off
+  // clang-format off
+  cpp << banner(command) << R"CPP(// Closed forms are phi-functions of scalar multiples of v: phi0(w^2 v) = cos(w x),
+// phi1(w^2 v) = sin(w x)/(w x), x = sqrt(v). A coefficient whose closed form is 0/0 at v = 0
+// switches to its Taylor series below a threshold chosen by the generator (numerics.hpp).
+// clang-format off
 #include "erkn/generated/tables.hpp"
 
 #include <cmath>
@@ -292,6 +280,7 @@ namespace {
 }
 
 )CPP";
+  // clang-format on
   for (bool rkn : {false, true})
     for (const Emittable& e : methods) cpp << method_cpp(e, rkn);
   cpp << "}  // namespace\n\nconst Table kTables[] = {\n";

@@ -1,10 +1,12 @@
 // erkn: the command-line face of the library.
 //   erkn list                      every method: kind, stages, order, where the paper derives it
 //   erkn tableau NAME ...          coefficients at a v, Taylor series, or poles (JSON)
+//   erkn stability NAME|all ...    stability regions of S(V, z) (CSV and charts)
 #include <iostream>
 #include <string>
 
 #include "erkn/error.hpp"
+#include "stability_command.hpp"
 #include "tableau_command.hpp"
 
 int main(int argc, char** argv) {
@@ -12,11 +14,13 @@ int main(int argc, char** argv) {
   try {
     if (command == "list") return erkn::cli::list_command(argc - 1, argv + 1);
     if (command == "tableau") return erkn::cli::tableau_command(argc - 1, argv + 1);
+    if (command == "stability") return erkn::cli::stability_command(argc - 1, argv + 1);
   } catch (const std::exception& e) {
     std::cerr << e.what() << "\n";
     return 1;
   }
   std::cerr << "usage: erkn list\n"
-               "       erkn tableau NAME (--v X | --series K | --poles VMAX)\n";
+               "       erkn tableau NAME (--v X | --series K | --poles VMAX)\n"
+               "       erkn stability NAME|all [--vmax V --zmin Z --zmax Z --grid N --out DIR]\n";
   return 2;
 }
