@@ -68,7 +68,7 @@ void write_header(std::ostream& gp, const std::string& title, const std::string&
                   const std::string& ylabel) {
   gp << "set title " << quoted(title) << " noenhanced\n"
      << "set xlabel " << quoted(xlabel) << "\nset ylabel " << quoted(ylabel) << "\n"
-     << "set logscale xy\nset format y '10^{%L}'\nset grid lc rgb '#dddddd'\n"
+     << "set logscale xy\nset format xy '10^{%L}'\nset grid lc rgb '#dddddd'\n"
      << "set key outside right top noenhanced spacing 1.15\n";
 }
 
@@ -131,7 +131,6 @@ void chart_problem(const ProblemResult& r, const fs::path& charts_dir) {
   std::ostringstream h;
   h << t.str() << " — energy error, h = 1/" << std::lround(1 / r.methods.front().energy.h);
   write_header(gp, h.str(), "t_{end} (time units)", "max_n |H_n − H_0|");
-  gp << "set format x '10^{%L}'\n";
   write_outputs(gp, key + "_energy", energy_plot);
   gp.close();
   run_gnuplot(charts_dir, "data/" + key + ".gp");
@@ -146,7 +145,11 @@ void chart_scaling(const ScalingResult& r, const fs::path& charts_dir) {
     if (r.lines[l].family == Family::erkn && l != best) continue;
     const std::string stem = "data/scaling_" + slug(r.lines[l].name);
     std::ofstream dat = open(charts_dir / (stem + ".dat"));
-    dat << "# N cpu_seconds_to_" << r.tolerance << "\n";
+    dat << "# N cpu_seconds_to_" << r.tolerance << "\n# runs: N steps error grad_evals cpu\n";
+    for (size_t i = 0; i < r.sizes.size(); ++i)
+      for (const Measurement& m : r.lines[l].brackets[i])
+        dat << "# " << r.sizes[i] << ' ' << m.steps << ' ' << m.error << ' ' << m.stats.grad_evals
+            << ' ' << m.cpu << '\n';
     for (size_t i = 0; i < r.sizes.size(); ++i)
       if (const auto c = scaling_cpu(r, l, i)) dat << r.sizes[i] << ' ' << *c << '\n';
     plot += (plot == "plot " ? "" : ", \\\n  ") + quoted(stem + ".dat") + " u 1:2 w lp " +

@@ -1,21 +1,28 @@
 #include "interpolate.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace ex {
 
 std::optional<double> cost_to_tolerance(const std::vector<CurvePoint>& points, double tolerance) {
-  for (size_t i = 0; i + 1 < points.size(); ++i) {
+  std::optional<double> cost;
+  for (size_t i = 0; i + 1 < points.size() && !cost; ++i) {
     const CurvePoint& a = points[i];
     const CurvePoint& b = points[i + 1];
     if (!(a.error >= tolerance && b.error <= tolerance && b.error > 0)) continue;
-    if (!std::isfinite(a.error)) return b.cost;  // no log-log line from a failed run
-    if (a.error == b.error) return b.cost;
-    const double s =
-        (std::log(tolerance) - std::log(a.error)) / (std::log(b.error) - std::log(a.error));
-    return std::exp(std::log(a.cost) + s * (std::log(b.cost) - std::log(a.cost)));
+    if (!std::isfinite(a.error) || a.error == b.error) {
+      cost = b.cost;  // no log-log line from a failed run
+    } else {
+      const double s =
+          (std::log(tolerance) - std::log(a.error)) / (std::log(b.error) - std::log(a.error));
+      cost = std::exp(std::log(a.cost) + s * (std::log(b.cost) - std::log(a.cost)));
+    }
   }
-  return std::nullopt;
+  if (cost)
+    for (const CurvePoint& p : points)
+      if (p.error <= tolerance) cost = std::min(*cost, p.cost);
+  return cost;
 }
 
 }  // namespace ex

@@ -15,8 +15,10 @@ struct CurvePoint {
 
 /// Points in order of increasing work (step count). Uses the first pair (a, b), a before b, with
 /// error(a) >= tolerance >= error(b); if the cheapest point already meets the tolerance there is
-/// no bracket and the result is empty. If run a failed (error +inf: unstable or refused), the
-/// answer is b's own cost: the cheapest measured run that meets the tolerance.
+/// no bracket and the result is empty. If run a failed (error +inf: unstable or refused), that
+/// pair gives b's own cost. A measured run within tolerance that costs less than the result (cost
+/// need not grow with the step count, e.g. when a stage solver falls back to Newton at large
+/// steps) replaces it.
 std::optional<double> cost_to_tolerance(const std::vector<CurvePoint>& points, double tolerance);
 
 }  // namespace ex

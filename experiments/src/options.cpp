@@ -28,7 +28,7 @@ long steps_of(const std::string& h_text) {
 void set_quick(RunConfig& c) {
   c.sweep.factor = 2;
   c.sweep.max_steps = 100000;
-  c.sweep.timing = {3, 0.3, 0.01};
+  c.sweep.timing = {5, 0.3, 0.02};
 }
 
 void set_full(RunConfig& c) {
@@ -42,7 +42,7 @@ void set_full(RunConfig& c) {
 std::string usage() {
   return "usage: erkn-experiments [--quick | --full] [--problems P1,P2,P3,scaling]\n"
          "                        [--methods NAME,...] [--steps H,...] [--out DIR] [--list]\n"
-         "  --quick      small sweep (default): step factor 2, best of 3 timings\n"
+         "  --quick      small sweep (default): step factor 2, best of up to 5 timings\n"
          "  --full       fine sweep: step factor sqrt 2, up to 2e6 steps, best of 7 timings\n"
          "  --problems   which scenes to run (default: all four)\n"
          "  --methods    the paper's names, e.g. SERKN3s4(1),RKN3s4(1),Gauss2 (default: all)\n"

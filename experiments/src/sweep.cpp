@@ -59,6 +59,9 @@ std::vector<Measurement> bracket(const Solver& solver, const Problem& problem, d
   } else {
     while (ms.back().error > tolerance && ms.back().steps * 2 <= policy.max_steps)
       ms.push_back(run(ms.back().steps * 2));
+    // One more: a finer step can cost less (a stage solver that needed Newton at the coarser).
+    if (ms.back().error <= tolerance && ms.back().steps * 2 <= policy.max_steps)
+      ms.push_back(run(ms.back().steps * 2));
   }
   // A failed (unstable) run next to one within tolerance: bisect the step count down to a 5% gap,
   // so that the cheapest run within tolerance sits at the stability limit.

@@ -22,7 +22,8 @@ std::vector<Measurement> sweep(const Solver& solver, const Problem& problem, dou
                                const std::vector<long>& steps);
 
 /// Step counts bracketing `tolerance`: from `start`, doubling or halving until the error crosses
-/// it (or max_steps / one step is reached). Sorted by step count.
+/// it (or max_steps / one step is reached), one doubling beyond when doubling, and bisection
+/// between an unstable run and one within tolerance. Sorted by step count.
 std::vector<Measurement> bracket(const Solver& solver, const Problem& problem, double t_end,
                                  const Vec& q_ref, double tolerance, long start,
                                  const SweepPolicy& policy);

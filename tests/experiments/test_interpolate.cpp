@@ -39,5 +39,11 @@ TEST(CostToTolerance, AfterAFailedRunTakesTheCheapestRunWithinTolerance) {
   EXPECT_EQ(*cost_to_tolerance({{1, inf}, {2, 1e-9}, {4, 1e-10}}, 1e-6), 2.0);
 }
 
+TEST(CostToTolerance, ACheaperRunWithinToleranceWins) {
+  // Cost falls at the finer step (e.g. no Newton fallback there): the measured run is cheaper.
+  const std::vector<CurvePoint> pts = {{50, 1e-5}, {40, 1e-7}, {8, 1e-8}};
+  EXPECT_EQ(*cost_to_tolerance(pts, 1e-6), 8.0);
+}
+
 }  // namespace
 }  // namespace ex

@@ -1,0 +1,132 @@
+set title 'P2: Duffing, k = 0.03 — error vs cost' noenhanced
+set xlabel '∇U evaluations (count)'
+set ylabel 'max-norm error of q at t = 10'
+set logscale xy
+set format xy '10^{%L}'
+set grid lc rgb '#dddddd'
+set key outside right top noenhanced spacing 1.15
+set terminal pngcairo size 1000,620 enhanced font 'DejaVu Sans,11'
+set output 'p2_evals.png'
+plot 'data/p2_serkn1s2_1.dat' u 4:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(1)', \
+  'data/p2_serkn1s2_2.dat' u 4:3 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(2)', \
+  'data/p2_serkn2s3.dat' u 4:3 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3', \
+  'data/p2_serkn2s4.dat' u 4:3 w lp lc rgb '#9467bd' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4', \
+  'data/p2_serkn3s4_1.dat' u 4:3 w lp lc rgb '#ff7f0e' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(1)', \
+  'data/p2_serkn3s4_2.dat' u 4:3 w lp lc rgb '#8c564b' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(2)', \
+  'data/p2_rkn1s2_1.dat' u 4:3 w lp lc rgb '#1f77b4' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(1)', \
+  'data/p2_rkn1s2_2.dat' u 4:3 w lp lc rgb '#d62728' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(2)', \
+  'data/p2_rkn2s3.dat' u 4:3 w lp lc rgb '#2ca02c' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s3', \
+  'data/p2_rkn2s4.dat' u 4:3 w lp lc rgb '#9467bd' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s4', \
+  'data/p2_rkn3s4_1.dat' u 4:3 w lp lc rgb '#ff7f0e' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(1)', \
+  'data/p2_rkn3s4_2.dat' u 4:3 w lp lc rgb '#8c564b' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(2)', \
+  'data/p2_st_rmer_verlet.dat' u 4:3 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
+  'data/p2_odeint_sb3a_mclachlan.dat' u 4:3 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
+  'data/p2_odeint_sb3a_m4_mclachlan.dat' u 4:3 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
+  'data/p2_gauss2_order_4.dat' u 4:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)'
+set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
+set output 'p2_evals.svg'
+plot 'data/p2_serkn1s2_1.dat' u 4:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(1)', \
+  'data/p2_serkn1s2_2.dat' u 4:3 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(2)', \
+  'data/p2_serkn2s3.dat' u 4:3 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3', \
+  'data/p2_serkn2s4.dat' u 4:3 w lp lc rgb '#9467bd' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4', \
+  'data/p2_serkn3s4_1.dat' u 4:3 w lp lc rgb '#ff7f0e' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(1)', \
+  'data/p2_serkn3s4_2.dat' u 4:3 w lp lc rgb '#8c564b' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(2)', \
+  'data/p2_rkn1s2_1.dat' u 4:3 w lp lc rgb '#1f77b4' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(1)', \
+  'data/p2_rkn1s2_2.dat' u 4:3 w lp lc rgb '#d62728' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(2)', \
+  'data/p2_rkn2s3.dat' u 4:3 w lp lc rgb '#2ca02c' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s3', \
+  'data/p2_rkn2s4.dat' u 4:3 w lp lc rgb '#9467bd' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s4', \
+  'data/p2_rkn3s4_1.dat' u 4:3 w lp lc rgb '#ff7f0e' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(1)', \
+  'data/p2_rkn3s4_2.dat' u 4:3 w lp lc rgb '#8c564b' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(2)', \
+  'data/p2_st_rmer_verlet.dat' u 4:3 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
+  'data/p2_odeint_sb3a_mclachlan.dat' u 4:3 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
+  'data/p2_odeint_sb3a_m4_mclachlan.dat' u 4:3 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
+  'data/p2_gauss2_order_4.dat' u 4:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)'
+unset output
+set title 'P2: Duffing, k = 0.03 — error vs CPU time' noenhanced
+set xlabel 'CPU time (s)'
+set ylabel 'max-norm error of q at t = 10'
+set logscale xy
+set format xy '10^{%L}'
+set grid lc rgb '#dddddd'
+set key outside right top noenhanced spacing 1.15
+set terminal pngcairo size 1000,620 enhanced font 'DejaVu Sans,11'
+set output 'p2_cpu.png'
+plot 'data/p2_serkn1s2_1.dat' u 5:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(1)', \
+  'data/p2_serkn1s2_2.dat' u 5:3 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(2)', \
+  'data/p2_serkn2s3.dat' u 5:3 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3', \
+  'data/p2_serkn2s4.dat' u 5:3 w lp lc rgb '#9467bd' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4', \
+  'data/p2_serkn3s4_1.dat' u 5:3 w lp lc rgb '#ff7f0e' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(1)', \
+  'data/p2_serkn3s4_2.dat' u 5:3 w lp lc rgb '#8c564b' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(2)', \
+  'data/p2_rkn1s2_1.dat' u 5:3 w lp lc rgb '#1f77b4' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(1)', \
+  'data/p2_rkn1s2_2.dat' u 5:3 w lp lc rgb '#d62728' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(2)', \
+  'data/p2_rkn2s3.dat' u 5:3 w lp lc rgb '#2ca02c' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s3', \
+  'data/p2_rkn2s4.dat' u 5:3 w lp lc rgb '#9467bd' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s4', \
+  'data/p2_rkn3s4_1.dat' u 5:3 w lp lc rgb '#ff7f0e' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(1)', \
+  'data/p2_rkn3s4_2.dat' u 5:3 w lp lc rgb '#8c564b' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(2)', \
+  'data/p2_st_rmer_verlet.dat' u 5:3 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
+  'data/p2_odeint_sb3a_mclachlan.dat' u 5:3 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
+  'data/p2_odeint_sb3a_m4_mclachlan.dat' u 5:3 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
+  'data/p2_gauss2_order_4.dat' u 5:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)'
+set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
+set output 'p2_cpu.svg'
+plot 'data/p2_serkn1s2_1.dat' u 5:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(1)', \
+  'data/p2_serkn1s2_2.dat' u 5:3 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(2)', \
+  'data/p2_serkn2s3.dat' u 5:3 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3', \
+  'data/p2_serkn2s4.dat' u 5:3 w lp lc rgb '#9467bd' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4', \
+  'data/p2_serkn3s4_1.dat' u 5:3 w lp lc rgb '#ff7f0e' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(1)', \
+  'data/p2_serkn3s4_2.dat' u 5:3 w lp lc rgb '#8c564b' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(2)', \
+  'data/p2_rkn1s2_1.dat' u 5:3 w lp lc rgb '#1f77b4' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(1)', \
+  'data/p2_rkn1s2_2.dat' u 5:3 w lp lc rgb '#d62728' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(2)', \
+  'data/p2_rkn2s3.dat' u 5:3 w lp lc rgb '#2ca02c' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s3', \
+  'data/p2_rkn2s4.dat' u 5:3 w lp lc rgb '#9467bd' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s4', \
+  'data/p2_rkn3s4_1.dat' u 5:3 w lp lc rgb '#ff7f0e' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(1)', \
+  'data/p2_rkn3s4_2.dat' u 5:3 w lp lc rgb '#8c564b' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(2)', \
+  'data/p2_st_rmer_verlet.dat' u 5:3 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
+  'data/p2_odeint_sb3a_mclachlan.dat' u 5:3 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
+  'data/p2_odeint_sb3a_m4_mclachlan.dat' u 5:3 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
+  'data/p2_gauss2_order_4.dat' u 5:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)'
+unset output
+set title 'P2: Duffing, k = 0.03 — energy error, h = 1/50' noenhanced
+set xlabel 't_{end} (time units)'
+set ylabel 'max_n |H_n − H_0|'
+set logscale xy
+set format xy '10^{%L}'
+set grid lc rgb '#dddddd'
+set key outside right top noenhanced spacing 1.15
+set terminal pngcairo size 1000,620 enhanced font 'DejaVu Sans,11'
+set output 'p2_energy.png'
+plot 'data/p2_serkn1s2_1_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(1)', \
+  'data/p2_serkn1s2_2_energy.dat' u 1:2 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(2)', \
+  'data/p2_serkn2s3_energy.dat' u 1:2 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3', \
+  'data/p2_serkn2s4_energy.dat' u 1:2 w lp lc rgb '#9467bd' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4', \
+  'data/p2_serkn3s4_1_energy.dat' u 1:2 w lp lc rgb '#ff7f0e' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(1)', \
+  'data/p2_serkn3s4_2_energy.dat' u 1:2 w lp lc rgb '#8c564b' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(2)', \
+  'data/p2_rkn1s2_1_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(1)', \
+  'data/p2_rkn1s2_2_energy.dat' u 1:2 w lp lc rgb '#d62728' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(2)', \
+  'data/p2_rkn2s3_energy.dat' u 1:2 w lp lc rgb '#2ca02c' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s3', \
+  'data/p2_rkn2s4_energy.dat' u 1:2 w lp lc rgb '#9467bd' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s4', \
+  'data/p2_rkn3s4_1_energy.dat' u 1:2 w lp lc rgb '#ff7f0e' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(1)', \
+  'data/p2_rkn3s4_2_energy.dat' u 1:2 w lp lc rgb '#8c564b' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(2)', \
+  'data/p2_st_rmer_verlet_energy.dat' u 1:2 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
+  'data/p2_odeint_sb3a_mclachlan_energy.dat' u 1:2 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
+  'data/p2_odeint_sb3a_m4_mclachlan_energy.dat' u 1:2 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
+  'data/p2_gauss2_order_4_energy.dat' u 1:2 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)'
+set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
+set output 'p2_energy.svg'
+plot 'data/p2_serkn1s2_1_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(1)', \
+  'data/p2_serkn1s2_2_energy.dat' u 1:2 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(2)', \
+  'data/p2_serkn2s3_energy.dat' u 1:2 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3', \
+  'data/p2_serkn2s4_energy.dat' u 1:2 w lp lc rgb '#9467bd' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4', \
+  'data/p2_serkn3s4_1_energy.dat' u 1:2 w lp lc rgb '#ff7f0e' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(1)', \
+  'data/p2_serkn3s4_2_energy.dat' u 1:2 w lp lc rgb '#8c564b' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(2)', \
+  'data/p2_rkn1s2_1_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(1)', \
+  'data/p2_rkn1s2_2_energy.dat' u 1:2 w lp lc rgb '#d62728' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(2)', \
+  'data/p2_rkn2s3_energy.dat' u 1:2 w lp lc rgb '#2ca02c' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s3', \
+  'data/p2_rkn2s4_energy.dat' u 1:2 w lp lc rgb '#9467bd' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s4', \
+  'data/p2_rkn3s4_1_energy.dat' u 1:2 w lp lc rgb '#ff7f0e' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(1)', \
+  'data/p2_rkn3s4_2_energy.dat' u 1:2 w lp lc rgb '#8c564b' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(2)', \
+  'data/p2_st_rmer_verlet_energy.dat' u 1:2 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
+  'data/p2_odeint_sb3a_mclachlan_energy.dat' u 1:2 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
+  'data/p2_odeint_sb3a_m4_mclachlan_energy.dat' u 1:2 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
+  'data/p2_gauss2_order_4_energy.dat' u 1:2 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)'
+unset output

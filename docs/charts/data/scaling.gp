@@ -1,0 +1,24 @@
+set title 'P1 sine-Gordon on [0, 1]: CPU time to reach error 1e-06' noenhanced
+set xlabel 'N (grid points)'
+set ylabel 'CPU time (s)'
+set logscale xy
+set format xy '10^{%L}'
+set grid lc rgb '#dddddd'
+set key outside right top noenhanced spacing 1.15
+set logscale x 2
+set format x '%g'
+set terminal pngcairo size 1000,620 enhanced font 'DejaVu Sans,11'
+set output 'scaling.png'
+plot 'data/scaling_serkn2s4.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4', \
+  'data/scaling_st_rmer_verlet.dat' u 1:2 w lp lc rgb '#d62728' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
+  'data/scaling_odeint_sb3a_mclachlan.dat' u 1:2 w lp lc rgb '#2ca02c' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
+  'data/scaling_odeint_sb3a_m4_mclachlan.dat' u 1:2 w lp lc rgb '#9467bd' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
+  'data/scaling_gauss2_order_4.dat' u 1:2 w lp lc rgb '#ff7f0e' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)'
+set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
+set output 'scaling.svg'
+plot 'data/scaling_serkn2s4.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4', \
+  'data/scaling_st_rmer_verlet.dat' u 1:2 w lp lc rgb '#d62728' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
+  'data/scaling_odeint_sb3a_mclachlan.dat' u 1:2 w lp lc rgb '#2ca02c' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
+  'data/scaling_odeint_sb3a_m4_mclachlan.dat' u 1:2 w lp lc rgb '#9467bd' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
+  'data/scaling_gauss2_order_4.dat' u 1:2 w lp lc rgb '#ff7f0e' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)'
+unset output
