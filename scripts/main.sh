@@ -11,4 +11,5 @@ cmake --build "$build" --target regenerate
 cmake --build "$build" -j 2
 "$build"/runtime/cli/erkn list
 "$build"/runtime/cli/erkn run --out docs "$@"
-"$build"/runtime/cli/erkn stability --all --out docs
+"$build"/runtime/cli/erkn stability all --out docs/charts
+"$build"/tests/stability/erkn_stability_hmax docs/stability.md

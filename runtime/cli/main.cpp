@@ -1,11 +1,13 @@
 // erkn: the command-line face of the library.
 //   erkn list                      every method: kind, stages, order, where the paper derives it
 //   erkn tableau NAME ...          coefficients at a v, Taylor series, or poles (JSON)
+//   erkn run ...                   the paper's problems against peers: charts, docs/results.md
 //   erkn stability NAME|all ...    stability regions of S(V, z) (CSV and charts)
 #include <iostream>
 #include <string>
 
 #include "erkn/error.hpp"
+#include "run_command.hpp"
 #include "stability_command.hpp"
 #include "tableau_command.hpp"
 
@@ -14,6 +16,7 @@ int main(int argc, char** argv) {
   try {
     if (command == "list") return erkn::cli::list_command(argc - 1, argv + 1);
     if (command == "tableau") return erkn::cli::tableau_command(argc - 1, argv + 1);
+    if (command == "run") return erkn::cli::run_command(argc - 1, argv + 1);
     if (command == "stability") return erkn::cli::stability_command(argc - 1, argv + 1);
   } catch (const std::exception& e) {
     std::cerr << e.what() << "\n";
@@ -21,6 +24,7 @@ int main(int argc, char** argv) {
   }
   std::cerr << "usage: erkn list\n"
                "       erkn tableau NAME (--v X | --series K | --poles VMAX)\n"
+               "       erkn run [--quick | --full] [experiment options; erkn run --help]\n"
                "       erkn stability NAME|all [--vmax V --zmin Z --zmax Z --grid N --out DIR]\n";
   return 2;
 }
