@@ -15,12 +15,10 @@ class MOperator {
  public:
   MOperator(const Stiffness& M, Eigen::Index d);
   void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y);
-  /// True when a circulant M is applied through the stencil, not the FFT.
-  bool uses_stencil() const { return !fft_; }
 
  private:
   Stiffness M_;
-  std::optional<RealFftTransform> fft_;
+  std::optional<RealFftTransform> fft_;  // set for a circulant M applied through the FFT
   Eigen::ArrayXcd spectrum_;
 };
 

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/LU>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -54,7 +55,8 @@ class Stepper final : public StepperBase {
         transform_(std::move(transform)),
         M_(system_.M, d) {
     const Eigen::Index m = transform_.spectral_size(d);
-    for (Spectral* x : {&q_hat_, &p_hat_, &r_hat_, &Q_hat_, &guess_hat_, &dq_hat_, &dp_hat_})
+    for (Spectral* x : {&q_hat_, &p_hat_, &r_hat_, &Q_hat_, &Q_hat_new_, &dQ_hat_, &guess_hat_,
+                        &dq_hat_, &dp_hat_})
       x->setZero(m);
     for (int i = 0; i < s_; ++i) G_[i].setZero(m), G_old_[i].setZero(m);
     for (Eigen::VectorXd* x : {&Q_, &Q_new_, &g_, &dq_, &dp_, &Mq_}) x->setZero(d);
@@ -120,13 +122,16 @@ class Stepper final : public StepperBase {
   bool fixed_point(int i, Statistics& stats) {
     double delta = 0, delta_old = 0;
     for (int it = 1; it <= options_.max_fixed_point_iterations; ++it) {
+      if (it > 1) transform_.inverse(Q_hat_, Q_);  // (start_stage did it for the guess)
       force(Q_, i, stats);
       transform_.forward(g_, G_[i]);
-      Q_hat_ = r_hat_ - k_.abar(i, i) * G_[i];
-      transform_.inverse(Q_hat_, Q_new_);
+      Q_hat_new_ = r_hat_ - k_.abar(i, i) * G_[i];
       ++stats.stage_iterations;
-      delta = relative_change(Q_new_, Q_);
-      Q_.swap(Q_new_);
+      // |dQ| / |Q| measured in eigen coordinates, so a converged stage needs no inverse transform.
+      dQ_hat_ = Q_hat_new_ - Q_hat_;
+      const double change = transform_.norm(dQ_hat_);
+      delta = change == 0 ? 0.0 : change / std::max(transform_.norm(Q_hat_new_), 1e-300);
+      Q_hat_.swap(Q_hat_new_);
       if (delta == 0) return true;
       if (it > 1) {
         const double theta = delta / delta_old;
@@ -149,16 +154,19 @@ class Stepper final : public StepperBase {
   void newton(int i, Statistics& stats) {
     ++stats.newton_fallbacks;
     if (J_.rows() != d_) {
-      J_.resize(d_, d_), H_.resize(d_, d_), r_.resize(d_), F_.resize(d_), gU_.resize(d_);
-      col_.resize(d_), col_hat_.resize(Q_hat_.size()),
-          lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(d_);
+      J_.resize(d_, d_);
+      H_.resize(d_, d_);
+      for (Eigen::VectorXd* x : {&r_, &F_, &gU_, &col_}) x->resize(d_);
+      col_hat_.resize(Q_hat_.size());
+      lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(d_);
       if (rkn_) M_dense_ = system_.M.to_dense(d_);
     }
     transform_.inverse(r_hat_, r_);
     Q_hat_ = r_hat_ - k_.abar(i, i) * guess_hat_;
     transform_.inverse(Q_hat_, Q_);
     double delta_old = 0, residual = 0;
-    for (int it = 1; it <= options_.max_newton_iterations; ++it) {
+    int it = 1;
+    for (; it <= options_.max_newton_iterations; ++it) {
       gradient(Q_, gU_, i, stats);
       g_ = gU_;
       add_MQ(Q_);
@@ -173,7 +181,7 @@ class Stepper final : public StepperBase {
       Q_ -= Q_new_;
       ++stats.newton_iterations, ++stats.stage_iterations;
       const double delta = Q_new_.norm() / std::max(Q_.norm(), 1e-300);
-      if (!std::isfinite(delta)) break;
+      if (!std::isfinite(delta)) break;  // the Jacobian is singular
       const double theta = it > 1 ? delta / delta_old : 1;
       if (delta == 0 || (theta < 1 && theta / (1 - theta) * delta <= options_.tolerance) ||
           (it > 1 && theta >= 1 && delta <= options_.roundoff_level)) {
@@ -188,7 +196,8 @@ class Stepper final : public StepperBase {
         "step " + std::to_string(state_->step_number) + " at t = " + format(state_->t) +
         ": stage " + std::to_string(i + 1) + " of " + std::string(method_.name()) +
         " did not converge (fixed-point iteration failed; Newton left a relative residual " +
-        format(residual, 3) + " after " + std::to_string(options_.max_newton_iterations) +
+        format(residual, 3) + " after " +
+        std::to_string(std::min(it, options_.max_newton_iterations)) +
         " iterations); the state is unchanged");
   }
 
@@ -250,11 +259,6 @@ class Stepper final : public StepperBase {
                   std::to_string(i + 1) + "; the state is unchanged");
   }
 
-  static double relative_change(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-    const double diff = (a - b).norm();
-    return diff == 0 ? 0.0 : diff / std::max(a.norm(), 1e-300);
-  }
-
   // x += dx, Kahan-compensated when enabled (error carries the lost low-order bits).
   void add(Eigen::VectorXd& x, Eigen::VectorXd& error, Eigen::VectorXd& dx) {
     if (!options_.compensated_summation) {
@@ -279,7 +283,7 @@ class Stepper final : public StepperBase {
   StepState* state_ = nullptr;
   std::array<std::array<double, kMaxStages>, kMaxStages> extrapolation_{};
   bool have_history_ = false;
-  Spectral q_hat_, p_hat_, r_hat_, Q_hat_, guess_hat_, dq_hat_, dp_hat_;
+  Spectral q_hat_, p_hat_, r_hat_, Q_hat_, Q_hat_new_, dQ_hat_, guess_hat_, dq_hat_, dp_hat_;
   std::array<Spectral, kMaxStages> G_, G_old_;  // stage gradients of this and the last step
   Eigen::VectorXd Q_, Q_new_, g_, dq_, dp_, Mq_;
   // Newton workspace, allocated at the first fallback.
