@@ -14,7 +14,7 @@
 //     const int N = 32;
 //     const double dx = 2.0 / N, pi = std::numbers::pi;
 //     Eigen::VectorXd col = Eigen::VectorXd::Zero(N), q0 = Eigen::VectorXd::Constant(N, pi), p0(N);
-//     col[0] = 2 / (dx * dx), col[1] = col[N - 1] = -1 / (dx * dx);  // M = circulant(2,-1,..,-1)/dx^2
+//     col[0] = 2 / (dx * dx), col[1] = col[N - 1] = -1 / (dx * dx);  // circulant(2,-1,..,-1)/dx^2
 //     for (int i = 0; i < N; ++i) p0[i] = std::sqrt(N) * (0.01 + std::sin(2 * pi * (i + 1) / N));
 //     erkn::System sys;
 //     sys.M = erkn::Stiffness::circulant(col);
