@@ -1,0 +1,66 @@
+// The method registry: every method the generator emitted, by id or by the paper's name.
+// The list comes from generated/include/erkn/generated/methods.def; nothing here is per-method.
+#pragma once
+
+#include <array>
+#include <span>
+#include <string_view>
+
+#include "erkn/generated/tables.hpp"
+
+namespace erkn {
+
+enum class MethodId {
+#define ERKN_METHOD(id, name, stages, order, kind) id,
+#include "erkn/generated/methods.def"
+#undef ERKN_METHOD
+};
+
+enum class Kind { erkn, rkn };
+
+inline constexpr int kMaxStages = generated::kMaxStages;
+
+/// Coefficients of one method at one v = h^2 lambda (scalar). abar(i, j) for j <= i, 0-based.
+struct Coefficients {
+  int s = 0;
+  std::array<double, kMaxStages> c{}, b{}, bbar{};
+  std::array<double, kMaxStages * (kMaxStages + 1) / 2> abar_packed{};
+  double abar(int i, int j) const { return abar_packed[i * (i + 1) / 2 + j]; }
+};
+
+class Method {
+ public:
+  static const Method& get(MethodId id);
+  /// Lookup by the paper's name ("SERKN3s4(1)") or the id ("SERKN3s4_1"); throws erkn::Error
+  /// naming the unknown method and listing the known ones.
+  static const Method& by_name(std::string_view name);
+  static std::span<const Method> all();
+
+  MethodId id() const { return id_; }
+  std::string_view name() const { return table_->name; }
+  std::string_view id_name() const { return table_->id; }
+  int stages() const { return table_->stages; }
+  int order() const { return table_->order; }
+  Kind kind() const { return table_->rkn ? Kind::rkn : Kind::erkn; }
+  std::string_view reference() const { return table_->reference; }
+  int num_coefficients() const { return 2 * stages() + stages() * (stages() + 1) / 2; }
+
+  /// Coefficients at v >= 0; throws erkn::Error for v < 0, non-finite v, or v within a relative
+  /// pole_tolerance of a pole (the message names the pole).
+  Coefficients at(double v, double pole_tolerance = 1e-6) const;
+  /// Taylor coefficient of v^k (k < generated::kSeriesTerms) of coefficient function `index`
+  /// (order b_1..b_s, bbar_1..bbar_s, abar_11, abar_21, abar_22, ...).
+  double series(int index, int k) const;
+  std::span<const double> poles() const { return {table_->poles, size_t(table_->npoles)}; }
+  /// The pole nearest to v, or a negative number if the method has none.
+  double nearest_pole(double v) const;
+  const generated::Table& table() const { return *table_; }
+
+  Method(MethodId id, const generated::Table* table) : id_(id), table_(table) {}
+
+ private:
+  MethodId id_;
+  const generated::Table* table_;
+};
+
+}  // namespace erkn
