@@ -127,10 +127,13 @@ class Stepper final : public StepperBase {
       transform_.forward(g_, G_[i]);
       Q_hat_new_ = r_hat_ - k_.abar(i, i) * G_[i];
       ++stats.stage_iterations;
-      // |dQ| / |Q| measured in eigen coordinates, so a converged stage needs no inverse transform.
+      // |dQ| / max(|Q_new|, |Q_old|) in eigen coordinates, so a converged stage needs no inverse
+      // transform. Both iterates: an iterate at 0 (a 2-cycle r -> 0 -> r) must not make delta
+      // huge and the next theta ~ 0, which would pass the stopping test without converging.
       dQ_hat_ = Q_hat_new_ - Q_hat_;
       const double change = transform_.norm(dQ_hat_);
-      delta = change == 0 ? 0.0 : change / std::max(transform_.norm(Q_hat_new_), 1e-300);
+      const double scale = std::max({transform_.norm(Q_hat_new_), transform_.norm(Q_hat_), 1e-300});
+      delta = change == 0 ? 0.0 : change / scale;
       Q_hat_.swap(Q_hat_new_);
       if (delta == 0) return true;
       if (it > 1) {
