@@ -9,7 +9,6 @@ class Progress {
  public:
   explicit Progress(long total);
   ~Progress();
-  void set_total(long total) { total_ = total; }
   /// Marks one unit of work done; `label` names the next one.
   void advance(const std::string& label);
   void label(const std::string& label);
