@@ -72,6 +72,32 @@ void BM_StepDense(benchmark::State& s) { step(s, kDense, true); }
 void BM_StepCirculantUncompensated(benchmark::State& s) { step(s, kCirculant, false); }
 void BM_StepDenseUncompensated(benchmark::State& s) { step(s, kDense, false); }
 
+// Setup cost at small d (problem 3: diagonal M = diag(4, 1), d = 2): constructing the
+// integrator, alone and followed by the ~10 steps that reach 1e-6 there.
+void construct(benchmark::State& state, int steps) {
+  const erkn::Method& method = erkn::Method::by_name("SERKN2s3");
+  const double eps = 1e-3;
+  const Eigen::Vector2d q0(1, 1), p0(0, 0);
+  for (auto _ : state) {
+    erkn::System sys;
+    sys.M = erkn::Stiffness::diagonal(Eigen::Vector2d(4, 1));
+    sys.gradient = [eps](const Eigen::VectorXd& q, Eigen::VectorXd& g) {
+      g.resize(2);
+      g[0] = -eps * q[1] * q[1];
+      g[1] = -2 * eps * q[0] * q[1];
+    };
+    sys.potential = [eps](const Eigen::VectorXd& q) { return -eps * q[0] * q[1] * q[1]; };
+    erkn::Integrator run(method, std::move(sys), 1.0 / 8, q0, p0);
+    for (int k = 0; k < steps; ++k) run.step();
+    benchmark::DoNotOptimize(run.q().data());
+  }
+}
+
+void BM_ConstructDiagonal2(benchmark::State& s) { construct(s, 0); }
+void BM_ConstructDiagonal2And10Steps(benchmark::State& s) { construct(s, 10); }
+
+BENCHMARK(BM_ConstructDiagonal2);
+BENCHMARK(BM_ConstructDiagonal2And10Steps);
 BENCHMARK(BM_StepCirculant)->RangeMultiplier(2)->Range(32, 4096)->Complexity(benchmark::oNLogN);
 BENCHMARK(BM_StepDense)->Arg(32)->Arg(256)->Arg(4096)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepCirculantUncompensated)->Arg(32)->Arg(256)->Arg(4096);

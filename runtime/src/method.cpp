@@ -46,7 +46,8 @@ double Method::nearest_pole(double v) const {
 
 Coefficients Method::at(double v, double pole_tolerance) const {
   if (!std::isfinite(v)) throw Error("coefficient argument v = h^2*lambda is not finite");
-  if (v < 0) throw Error("coefficient argument v = h^2*lambda = " + format_double(v) + " is negative");
+  if (v < 0)
+    throw Error("coefficient argument v = h^2*lambda = " + format_double(v) + " is negative");
   if (kind() == Kind::erkn) {
     if (v > generated::kPoleSearchMax)
       throw Error(std::string(name()) + ": v = h^2*lambda = " + format_double(v) +

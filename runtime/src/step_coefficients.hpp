@@ -30,22 +30,27 @@ inline void resize_coef(Eigen::ArrayXd& c, Eigen::Index m) { c.resize(m); }
 inline void set_coef(double& c, Eigen::Index, double x) { c = x; }
 inline void set_coef(Eigen::ArrayXd& c, Eigen::Index k, double x) { c[k] = x; }
 
-/// v_k = h^2 lambda_k; lambda must have one entry when Coef is double.
+/// v_k = h^2 lambda_k; lambda must have one entry when Coef is double. The caller has checked
+/// every v against the method's poles (check_step_size), so the table is evaluated directly.
+/// Only the s stages' coefficients are sized.
 template <class Coef>
 StepCoefficients<Coef> step_coefficients(const Method& method, double h,
-                                         const Eigen::VectorXd& lambda, double pole_tolerance) {
+                                         const Eigen::VectorXd& lambda) {
   StepCoefficients<Coef> k;
   k.s = method.stages();
   const Eigen::Index m = lambda.size();
-  for (auto* arr : {&k.phi0c, &k.hcphi1c, &k.h2bbar, &k.hb})
-    for (Coef& c : *arr) resize_coef(c, m);
-  for (Coef& c : k.h2abar) resize_coef(c, m);
+  for (int i = 0; i < k.s; ++i) {
+    for (auto* arr : {&k.phi0c, &k.hcphi1c, &k.h2bbar, &k.hb}) resize_coef((*arr)[i], m);
+    for (int j = 0; j <= i; ++j) resize_coef(k.h2abar[i * (i + 1) / 2 + j], m);
+  }
   for (Coef* c : {&k.phi0m1, &k.hphi1, &k.mhMphi1}) resize_coef(*c, m);
+  const generated::Table& table = method.table();
+  Coefficients co;
   for (Eigen::Index e = 0; e < m; ++e) {
     const double v = h * h * lambda[e];
-    const Coefficients co = method.at(v, pole_tolerance);
+    table.coefficients(v, co.b.data(), co.bbar.data(), co.abar_packed.data());
     for (int i = 0; i < k.s; ++i) {
-      const double c = co.c[i];
+      const double c = table.c[i];
       set_coef(k.phi0c[i], e, phi0(c * c * v));
       set_coef(k.hcphi1c[i], e, h * c * phi1(c * c * v));
       set_coef(k.h2bbar[i], e, h * h * co.bbar[i]);

@@ -51,15 +51,16 @@ class Stepper final : public StepperBase {
         rkn_(method.kind() == Kind::rkn),
         d_(d),
         s_(method.stages()),
-        k_(step_coefficients<Coef>(method, h, lambda, options.pole_tolerance)),
+        k_(step_coefficients<Coef>(method, h, lambda)),
         transform_(std::move(transform)),
         M_(system_.M, d) {
     const Eigen::Index m = transform_.spectral_size(d);
-    for (Spectral* x : {&q_hat_, &p_hat_, &r_hat_, &Q_hat_, &Q_hat_new_, &dQ_hat_, &guess_hat_,
-                        &dq_hat_, &dp_hat_})
+    for (Spectral* x :
+         {&q_hat_, &p_hat_, &r_hat_, &Q_hat_, &Q_hat_new_, &guess_hat_, &dq_hat_, &dp_hat_})
       x->setZero(m);
     for (int i = 0; i < s_; ++i) G_[i].setZero(m), G_old_[i].setZero(m);
-    for (Eigen::VectorXd* x : {&Q_, &Q_new_, &g_, &dq_, &dp_, &Mq_}) x->setZero(d);
+    for (Eigen::VectorXd* x : {&Q_, &Q_new_, &g_, &dq_, &dp_}) x->setZero(d);
+    if (rkn_) Mq_.setZero(d);
     // Lagrange weights extrapolating the previous step's nodes c_j to 1 + c_i.
     const double* c = method.table().c;
     for (int i = 0; i < s_; ++i)
@@ -120,7 +121,7 @@ class Stepper final : public StepperBase {
   // below Options::roundoff_level (a tolerance under the round-off noise); G_[i] then holds the
   // gradient of the last iterate but one (no confirming evaluation).
   bool fixed_point(int i, Statistics& stats) {
-    double delta = 0, delta_old = 0;
+    double delta = 0, delta_old = 0, norm_Q = 0;
     for (int it = 1; it <= options_.max_fixed_point_iterations; ++it) {
       if (it > 1) transform_.inverse(Q_hat_, Q_);  // (start_stage did it for the guess)
       force(Q_, i, stats);
@@ -130,10 +131,12 @@ class Stepper final : public StepperBase {
       // |dQ| / max(|Q_new|, |Q_old|) in eigen coordinates, so a converged stage needs no inverse
       // transform. Both iterates: an iterate at 0 (a 2-cycle r -> 0 -> r) must not make delta
       // huge and the next theta ~ 0, which would pass the stopping test without converging.
-      dQ_hat_ = Q_hat_new_ - Q_hat_;
-      const double change = transform_.norm(dQ_hat_);
-      const double scale = std::max({transform_.norm(Q_hat_new_), transform_.norm(Q_hat_), 1e-300});
+      const double change = transform_.norm(Q_hat_new_ - Q_hat_);
+      if (it == 1) norm_Q = transform_.norm(Q_hat_);  // later: the previous iterate's norm_new
+      const double norm_new = transform_.norm(Q_hat_new_);
+      const double scale = std::max({norm_new, norm_Q, 1e-300});
       delta = change == 0 ? 0.0 : change / scale;
+      norm_Q = norm_new;
       Q_hat_.swap(Q_hat_new_);
       if (delta == 0) return true;
       if (it > 1) {
@@ -286,7 +289,7 @@ class Stepper final : public StepperBase {
   StepState* state_ = nullptr;
   std::array<std::array<double, kMaxStages>, kMaxStages> extrapolation_{};
   bool have_history_ = false;
-  Spectral q_hat_, p_hat_, r_hat_, Q_hat_, Q_hat_new_, dQ_hat_, guess_hat_, dq_hat_, dp_hat_;
+  Spectral q_hat_, p_hat_, r_hat_, Q_hat_, Q_hat_new_, guess_hat_, dq_hat_, dp_hat_;
   std::array<Spectral, kMaxStages> G_, G_old_;  // stage gradients of this and the last step
   Eigen::VectorXd Q_, Q_new_, g_, dq_, dp_, Mq_;
   // Newton workspace, allocated at the first fallback.

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <complex>
+#include <numbers>
 #include <unsupported/Eigen/FFT>
 
 namespace erkn::detail {
@@ -16,7 +17,10 @@ struct IdentityTransform {
   Eigen::Index spectral_size(Eigen::Index d) const { return d; }
   void forward(const Eigen::VectorXd& x, Spectral& y) { y = x.array(); }
   void inverse(const Spectral& y, Eigen::VectorXd& x) { x = y.matrix(); }
-  double norm(const Spectral& y) const { return y.matrix().norm(); }
+  template <class Y>
+  double norm(const Y& y) const {
+    return y.matrix().norm();
+  }
 };
 
 /// Dense symmetric M = E diag(lambda) E^T: forward y = E^T x, inverse x = E y.
@@ -26,7 +30,66 @@ struct OrthogonalTransform {
   Eigen::Index spectral_size(Eigen::Index d) const { return d; }
   void forward(const Eigen::VectorXd& x, Spectral& y) { y.matrix().noalias() = E->transpose() * x; }
   void inverse(const Spectral& y, Eigen::VectorXd& x) { x.noalias() = *E * y.matrix(); }
-  double norm(const Spectral& y) const { return y.matrix().norm(); }
+  template <class Y>
+  double norm(const Y& y) const {
+    return y.matrix().norm();
+  }
+};
+
+/// Symmetric circulant M at small N: the real orthonormal Fourier basis, applied as explicit
+/// matrix-vector products (closed form, no eigendecomposition). Eigen coordinates:
+///   0..N/2          cos(2 pi j k / N), k = 0..N/2,        eigenvalue lambda_k
+///   N/2+1..N-1      sin(2 pi j k / N), k = 1..ceil(N/2)-1, eigenvalue lambda_k again
+/// scaled to unit norm (sqrt(1/N) for k = 0 and k = N/2, sqrt(2/N) otherwise). Cosines are even
+/// and sines odd under j -> N - j, so a transform folds x into x_j +- x_{N-j} and needs only the
+/// half-size blocks C (j, k = 0..N/2) and S (j, k = 1..ceil(N/2)-1): N^2/2 multiply-adds.
+struct FourierBasisTransform {
+  using Spectral = Eigen::ArrayXd;
+  explicit FourierBasisTransform(Eigen::Index n)
+      : n(n), nc(n / 2 + 1), ns((n - 1) / 2), C(nc, nc), S(ns, ns), even(nc), odd(ns) {
+    // Angles reduced exactly to (j k) mod N, as for the eigenvalues in Stiffness::circulant.
+    Eigen::ArrayXd cosine(n), sine(n);
+    for (Eigen::Index m = 0; m < n; ++m) {
+      cosine[m] = std::cos(2 * std::numbers::pi * double(m) / double(n));
+      sine[m] = std::sin(2 * std::numbers::pi * double(m) / double(n));
+    }
+    const double edge = std::sqrt(1 / double(n)), inner = std::sqrt(2 / double(n));
+    for (Eigen::Index k = 0; k < nc; ++k)
+      for (Eigen::Index j = 0; j < nc; ++j)
+        C(j, k) = ((k == 0 || 2 * k == n) ? edge : inner) * cosine[(j * k) % n];
+    for (Eigen::Index k = 0; k < ns; ++k)
+      for (Eigen::Index j = 0; j < ns; ++j) S(j, k) = inner * sine[((j + 1) * (k + 1)) % n];
+  }
+  /// The eigenvalue of each eigen coordinate from lambda_0..lambda_{N/2} (Stiffness::eigenvalues).
+  static Eigen::VectorXd coordinate_eigenvalues(const Eigen::VectorXd& lambda, Eigen::Index n) {
+    Eigen::VectorXd all(n);
+    all.head(n / 2 + 1) = lambda;
+    all.tail((n - 1) / 2) = lambda.segment(1, (n - 1) / 2);
+    return all;
+  }
+  Eigen::Index n, nc, ns;
+  Eigen::MatrixXd C, S;
+  Eigen::VectorXd even, odd;  // workspace
+  Eigen::Index spectral_size(Eigen::Index d) const { return d; }
+  // even_j = x_j + x_{N-j} (x_j alone for j = 0 and j = N/2), odd_j = x_j - x_{N-j}.
+  void forward(const Eigen::VectorXd& x, Spectral& y) {
+    even = x.head(nc);
+    even.segment(1, ns) += x.tail(ns).reverse();
+    odd = x.segment(1, ns) - x.tail(ns).reverse();
+    y.head(nc).matrix().noalias() = C.transpose() * even;
+    y.tail(ns).matrix().noalias() = S.transpose() * odd;
+  }
+  void inverse(const Spectral& y, Eigen::VectorXd& x) {
+    even.noalias() = C * y.head(nc).matrix();
+    odd.noalias() = S * y.tail(ns).matrix();
+    x.head(nc) = even;
+    x.segment(1, ns) += odd;
+    x.tail(ns) = (even.segment(1, ns) - odd).reverse();
+  }
+  template <class Y>
+  double norm(const Y& y) const {
+    return y.matrix().norm();
+  }
 };
 
 /// Symmetric circulant M: the real DFT (bins 0..N/2) diagonalises it.
@@ -41,9 +104,10 @@ struct RealFftTransform {
   void forward(const Eigen::VectorXd& x, Spectral& y) { fft.fwd(y.data(), x.data(), n); }
   void inverse(const Spectral& y, Eigen::VectorXd& x) { fft.inv(x.data(), y.data(), n); }
   /// The 2-norm of the physical vector (Parseval; bins 1..ceil(N/2)-1 stand for two bins each).
-  double norm(const Spectral& y) const {
-    double sum = 2 * y.abs2().sum() - std::norm(y[0]);
-    if (n % 2 == 0) sum -= std::norm(y[n / 2]);
+  template <class Y>
+  double norm(const Y& y) const {
+    double sum = 2 * y.abs2().sum() - std::norm(y.coeff(0));
+    if (n % 2 == 0) sum -= std::norm(y.coeff(n / 2));
     return std::sqrt(sum / double(n));
   }
 };
