@@ -143,12 +143,10 @@ Derived derive(const MethodSpec& spec) {
     nodes[c[i]] = make_parser(dummy)(spec.c[i]);
   }
   if (unknown.size() > 1) fail("at most one node may be left to the generator");
-  std::vector<ex> rest;
-  for (int k = s; k < spec.order; ++k) rest.push_back(normal(quad[k].subs(dsol)));
-  if (!unknown.empty()) {
-    if (rest.empty()) fail("no condition left to fix c" + idx(unknown[0]));
+  if (!unknown.empty()) {  // the first condition beyond the s that fixed d fixes the node
+    if (spec.order <= s) fail("no condition left to fix c" + idx(unknown[0]));
     const symbol& cu = c[unknown[0]];
-    ex p = expand(numer(normal(rest[0])));
+    ex p = expand(normal(quad[s].subs(dsol)).numer());
     if (p.degree(cu) != 1) fail("the node condition is not linear in c" + idx(unknown[0]));
     ex sol = normal(-p.coeff(cu, 0) / p.coeff(cu, 1));
     out.node_derivation.push_back(str(cu) + " = " + quotient(sol));
