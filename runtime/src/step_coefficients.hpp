@@ -1,68 +1,85 @@
 // The coefficients of one step, evaluated once per (h, M) at every eigenvalue of M and scaled by
-// the powers of h they appear with. Coef is double (one eigenvalue: scalar M, RKN methods) or an
-// array over the eigen coordinates.
+// the powers of h they appear with. Coef is double (one eigenvalue: scalar M, RKN methods) or
+// Eigen::ArrayXd (an array over the eigen coordinates); the accessors then return read-only maps
+// into one allocation that holds all of them.
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
+#include <type_traits>
 
 #include "erkn/method.hpp"
 #include "phi.hpp"
 
 namespace erkn::detail {
 
-template <class Coef>
-struct StepCoefficients {
-  int s = 0;
-  std::array<Coef, kMaxStages> phi0c;                        ///< phi0(c_i^2 V)
-  std::array<Coef, kMaxStages> hcphi1c;                      ///< h c_i phi1(c_i^2 V)
-  std::array<Coef, kMaxStages*(kMaxStages + 1) / 2> h2abar;  ///< h^2 abar_ij(V), packed
-  std::array<Coef, kMaxStages> h2bbar;                       ///< h^2 bbar_i(V)
-  std::array<Coef, kMaxStages> hb;                           ///< h b_i(V)
-  Coef phi0m1;                                               ///< phi0(V) - 1
-  Coef hphi1;                                                ///< h phi1(V)
-  Coef mhMphi1;                                              ///< -h M phi1(V) = -(V/h) phi1(V)
-  const Coef& abar(int i, int j) const { return h2abar[i * (i + 1) / 2 + j]; }
-};
-
-inline void resize_coef(double&, Eigen::Index) {}
-inline void resize_coef(Eigen::ArrayXd& c, Eigen::Index m) { c.resize(m); }
-inline void set_coef(double& c, Eigen::Index, double x) { c = x; }
-inline void set_coef(Eigen::ArrayXd& c, Eigen::Index k, double x) { c[k] = x; }
-
-/// v_k = h^2 lambda_k; lambda must have one entry when Coef is double. The caller has checked
-/// every v against the method's poles (check_step_size), so the table is evaluated directly.
-/// Only the s stages' coefficients are sized.
-template <class Coef>
-StepCoefficients<Coef> step_coefficients(const Method& method, double h,
-                                         const Eigen::VectorXd& lambda) {
-  StepCoefficients<Coef> k;
-  k.s = method.stages();
-  const Eigen::Index m = lambda.size();
-  for (int i = 0; i < k.s; ++i) {
-    for (auto* arr : {&k.phi0c, &k.hcphi1c, &k.h2bbar, &k.hb}) resize_coef((*arr)[i], m);
-    for (int j = 0; j <= i; ++j) resize_coef(k.h2abar[i * (i + 1) / 2 + j], m);
-  }
-  for (Coef* c : {&k.phi0m1, &k.hphi1, &k.mhMphi1}) resize_coef(*c, m);
-  const generated::Table& table = method.table();
-  Coefficients co;
-  for (Eigen::Index e = 0; e < m; ++e) {
-    const double v = h * h * lambda[e];
-    table.coefficients(v, co.b.data(), co.bbar.data(), co.abar_packed.data());
-    for (int i = 0; i < k.s; ++i) {
-      const double c = table.c[i];
-      set_coef(k.phi0c[i], e, phi0(c * c * v));
-      set_coef(k.hcphi1c[i], e, h * c * phi1(c * c * v));
-      set_coef(k.h2bbar[i], e, h * h * co.bbar[i]);
-      set_coef(k.hb[i], e, h * co.b[i]);
-      for (int j = 0; j <= i; ++j)
-        set_coef(k.h2abar[i * (i + 1) / 2 + j], e, h * h * co.abar(i, j));
-    }
-    set_coef(k.phi0m1, e, phi0_minus_1(v));
-    set_coef(k.hphi1, e, h * phi1(v));
-    set_coef(k.mhMphi1, e, -h * lambda[e] * phi1(v));
-  }
-  return k;
+/// The number of doubles from one array's start to the next: m rounded up so that every array
+/// starts on Eigen's alignment for dynamic arrays (the maps then vectorise as an ArrayXd would).
+template <class Scalar>
+Eigen::Index aligned_stride(Eigen::Index m) {
+  constexpr Eigen::Index unit = std::max<Eigen::Index>(1, EIGEN_MAX_ALIGN_BYTES / sizeof(Scalar));
+  return (m + unit - 1) / unit * unit;
 }
+
+template <class Coef>
+class StepCoefficients {
+  static constexpr bool kScalar = std::is_same_v<Coef, double>;
+  using Value =
+      std::conditional_t<kScalar, double, Eigen::Map<const Eigen::ArrayXd, Eigen::AlignedMax>>;
+  // Slots of the flat layout, per stage i (and j <= i).
+  static constexpr int kPhi0c = 0, kHcphi1c = kMaxStages, kH2bbar = 2 * kMaxStages,
+                       kHb = 3 * kMaxStages, kH2abar = 4 * kMaxStages,
+                       kPhi0m1 = kH2abar + kMaxStages * (kMaxStages + 1) / 2, kHphi1 = kPhi0m1 + 1,
+                       kMhMphi1 = kPhi0m1 + 2, kSlots = kPhi0m1 + 3;
+
+ public:
+  /// v_k = h^2 lambda_k; lambda must have one entry when Coef is double. The caller has checked
+  /// every v against the method's poles (check_step_size), so the table is evaluated directly.
+  /// Only the s stages' coefficients are set.
+  StepCoefficients(const Method& method, double h, const Eigen::VectorXd& lambda)
+      : m_(lambda.size()), stride_(kScalar ? 1 : aligned_stride<double>(m_)) {
+    if constexpr (!kScalar) values_.resize(kSlots * stride_);
+    const int s = method.stages();
+    const generated::Table& table = method.table();
+    Coefficients co;
+    for (Eigen::Index e = 0; e < m_; ++e) {
+      const auto set = [&](int slot, double x) { values_[slot * stride_ + e] = x; };
+      const double v = h * h * lambda[e];
+      table.coefficients(v, co.b.data(), co.bbar.data(), co.abar_packed.data());
+      for (int i = 0; i < s; ++i) {
+        const double c = table.c[i];
+        set(kPhi0c + i, phi0(c * c * v));
+        set(kHcphi1c + i, h * c * phi1(c * c * v));
+        set(kH2bbar + i, h * h * co.bbar[i]);
+        set(kHb + i, h * co.b[i]);
+        for (int j = 0; j <= i; ++j) set(kH2abar + i * (i + 1) / 2 + j, h * h * co.abar(i, j));
+      }
+      set(kPhi0m1, phi0_minus_1(v));
+      set(kHphi1, h * phi1(v));
+      set(kMhMphi1, -h * lambda[e] * phi1(v));
+    }
+  }
+
+  Value phi0c(int i) const { return at(kPhi0c + i); }      ///< phi0(c_i^2 V)
+  Value hcphi1c(int i) const { return at(kHcphi1c + i); }  ///< h c_i phi1(c_i^2 V)
+  Value abar(int i, int j) const { return at(kH2abar + i * (i + 1) / 2 + j); }  ///< h^2 abar_ij(V)
+  Value h2bbar(int i) const { return at(kH2bbar + i); }                         ///< h^2 bbar_i(V)
+  Value hb(int i) const { return at(kHb + i); }                                 ///< h b_i(V)
+  Value phi0m1() const { return at(kPhi0m1); }                                  ///< phi0(V) - 1
+  Value hphi1() const { return at(kHphi1); }                                    ///< h phi1(V)
+  Value mhMphi1() const { return at(kMhMphi1); }  ///< -h M phi1(V) = -(V/h) phi1(V)
+
+ private:
+  Value at(int slot) const {
+    if constexpr (kScalar)
+      return values_[slot];
+    else
+      return Value(values_.data() + slot * stride_, m_);
+  }
+
+  Eigen::Index m_, stride_;
+  std::conditional_t<kScalar, std::array<double, kSlots>, Eigen::ArrayXd> values_;
+};
 
 }  // namespace erkn::detail

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <new>
 #include <string>
 
 #include "erkn/error.hpp"
@@ -40,6 +41,9 @@ class StepperBase {
 template <class Transform, class Coef>
 class Stepper final : public StepperBase {
   using Spectral = typename Transform::Spectral;
+  using Scalar = typename Spectral::Scalar;
+  using SpectralMap = Eigen::Map<Spectral, Eigen::AlignedMax>;
+  using VectorMap = Eigen::Map<Eigen::VectorXd, Eigen::AlignedMax>;
 
  public:
   /// lambda: M's eigenvalues ({0} for RKN methods, whose force then includes -M q).
@@ -51,15 +55,26 @@ class Stepper final : public StepperBase {
         rkn_(method.kind() == Kind::rkn),
         d_(d),
         s_(method.stages()),
-        k_(step_coefficients<Coef>(method, h, lambda)),
+        k_(method, h, lambda),
         transform_(std::move(transform)),
-        M_(system_.M, d) {
-    const Eigen::Index m = transform_.spectral_size(d);
-    for (Spectral* x :
-         {&q_hat_, &p_hat_, &r_hat_, &Q_hat_, &Q_hat_new_, &guess_hat_, &dq_hat_, &dp_hat_})
-      x->setZero(m);
-    for (int i = 0; i < s_; ++i) G_[i].setZero(m), G_old_[i].setZero(m);
-    for (Eigen::VectorXd* x : {&Q_, &Q_new_, &g_, &dq_, &dp_}) x->setZero(d);
+        M_(system_.M, d),
+        m_(transform_.spectral_size(d)),
+        stride_(aligned_stride<Scalar>(m_)),
+        spectral_(Spectral::Zero((8 + 2 * s_) * stride_)),
+        q_hat_(slot(0), m_),
+        p_hat_(slot(1), m_),
+        r_hat_(slot(2), m_),
+        Q_hat_(slot(3), m_),
+        Q_hat_new_(slot(4), m_),
+        guess_hat_(slot(5), m_),
+        dq_hat_(slot(6), m_),
+        dp_hat_(slot(7), m_),
+        G_(slot(8)),
+        G_old_(slot(8 + s_)),
+        physical_(Eigen::VectorXd::Zero(2 * aligned_stride<double>(d))),
+        dq_(physical_.data(), d),
+        dp_(physical_.data() + aligned_stride<double>(d), d) {
+    for (Eigen::VectorXd* x : {&Q_, &Q_new_, &g_}) x->setZero(d);
     if (rkn_) Mq_.setZero(d);
     // Lagrange weights extrapolating the previous step's nodes c_j to 1 + c_i.
     const double* c = method.table().c;
@@ -72,6 +87,9 @@ class Stepper final : public StepperBase {
       }
   }
 
+  Stepper(const Stepper&) = delete;  // (the maps view its own buffers)
+  Stepper& operator=(const Stepper&) = delete;
+
   void step(StepState state, Statistics& stats) override {
     state_ = &state;
     transform_.forward(state.q, q_hat_);
@@ -80,17 +98,17 @@ class Stepper final : public StepperBase {
       start_stage(i);
       if (!fixed_point(i, stats)) newton(i, stats);
     }
-    dq_hat_ = k_.phi0m1 * q_hat_ + k_.hphi1 * p_hat_;
-    dp_hat_ = k_.mhMphi1 * q_hat_ + k_.phi0m1 * p_hat_;
+    dq_hat_ = k_.phi0m1() * q_hat_ + k_.hphi1() * p_hat_;
+    dp_hat_ = k_.mhMphi1() * q_hat_ + k_.phi0m1() * p_hat_;
     for (int i = 0; i < s_; ++i) {
-      dq_hat_ -= k_.h2bbar[i] * G_[i];
-      dp_hat_ -= k_.hb[i] * G_[i];
+      dq_hat_ -= k_.h2bbar(i) * G(i);
+      dp_hat_ -= k_.hb(i) * G(i);
     }
     transform_.inverse(dq_hat_, dq_);
     transform_.inverse(dp_hat_, dp_);
     add(state.q, state.q_error, dq_);
     add(state.p, state.p_error, dp_);
-    std::swap(G_, G_old_);
+    std::swap(G_, G_old_);  // (the pointers)
     have_history_ = true;
     ++stats.steps;
   }
@@ -103,13 +121,13 @@ class Stepper final : public StepperBase {
   // r_i = phi0(c_i^2 V) q + h c_i phi1(c_i^2 V) p - h^2 sum_{j<i} abar_ij g_j, and the starting
   // guess Q = r_i - h^2 abar_ii g_pred with g_pred extrapolated from the previous step.
   void start_stage(int i) {
-    r_hat_ = k_.phi0c[i] * q_hat_ + k_.hcphi1c[i] * p_hat_;
-    for (int j = 0; j < i; ++j) r_hat_ -= k_.abar(i, j) * G_[j];
+    r_hat_ = k_.phi0c(i) * q_hat_ + k_.hcphi1c(i) * p_hat_;
+    for (int j = 0; j < i; ++j) r_hat_ -= k_.abar(i, j) * G(j);
     if (have_history_) {
-      guess_hat_ = extrapolation_[i][0] * G_old_[0];
-      for (int j = 1; j < s_; ++j) guess_hat_ += extrapolation_[i][j] * G_old_[j];
+      guess_hat_ = extrapolation_[i][0] * G_old(0);
+      for (int j = 1; j < s_; ++j) guess_hat_ += extrapolation_[i][j] * G_old(j);
     } else if (i > 0) {
-      guess_hat_ = G_[i - 1];
+      guess_hat_ = G(i - 1);
     } else {
       guess_hat_.setZero();
     }
@@ -118,15 +136,15 @@ class Stepper final : public StepperBase {
   }
 
   // Fixed point Q <- r_i - h^2 abar_ii(V) g(Q). True when converged, or when the updates stall
-  // below Options::roundoff_level (a tolerance under the round-off noise); G_[i] then holds the
+  // below Options::roundoff_level (a tolerance under the round-off noise); G(i) then holds the
   // gradient of the last iterate but one (no confirming evaluation).
   bool fixed_point(int i, Statistics& stats) {
     double delta = 0, delta_old = 0, norm_Q = 0;
     for (int it = 1; it <= options_.max_fixed_point_iterations; ++it) {
       if (it > 1) transform_.inverse(Q_hat_, Q_);  // (start_stage did it for the guess)
       force(Q_, i, stats);
-      transform_.forward(g_, G_[i]);
-      Q_hat_new_ = r_hat_ - k_.abar(i, i) * G_[i];
+      transform_.forward(g_, G(i));
+      Q_hat_new_ = r_hat_ - k_.abar(i, i) * G(i);
       ++stats.stage_iterations;
       // |dQ| / max(|Q_new|, |Q_old|) in eigen coordinates, so a converged stage needs no inverse
       // transform. Both iterates: an iterate at 0 (a 2-cycle r -> 0 -> r) must not make delta
@@ -137,7 +155,7 @@ class Stepper final : public StepperBase {
       const double scale = std::max({norm_new, norm_Q, 1e-300});
       delta = change == 0 ? 0.0 : change / scale;
       norm_Q = norm_new;
-      Q_hat_.swap(Q_hat_new_);
+      swap_views(Q_hat_, Q_hat_new_);
       if (delta == 0) return true;
       if (it > 1) {
         const double theta = delta / delta_old;
@@ -176,8 +194,8 @@ class Stepper final : public StepperBase {
       gradient(Q_, gU_, i, stats);
       g_ = gU_;
       add_MQ(Q_);
-      transform_.forward(g_, G_[i]);
-      Q_hat_ = k_.abar(i, i) * G_[i];
+      transform_.forward(g_, G(i));
+      Q_hat_ = k_.abar(i, i) * G(i);
       transform_.inverse(Q_hat_, F_);
       F_ += Q_ - r_;
       residual = F_.norm() / std::max(Q_.norm(), 1e-300);
@@ -191,9 +209,9 @@ class Stepper final : public StepperBase {
       const double theta = it > 1 ? delta / delta_old : 1;
       if (delta == 0 || (theta < 1 && theta / (1 - theta) * delta <= options_.tolerance) ||
           (it > 1 && theta >= 1 && delta <= options_.roundoff_level)) {
-        // h^2 abar_ii |Hessian| may be large here, so G_[i] must be the gradient at the final Q.
+        // h^2 abar_ii |Hessian| may be large here, so G(i) must be the gradient at the final Q.
         force(Q_, i, stats);
-        transform_.forward(g_, G_[i]);
+        transform_.forward(g_, G(i));
         return;
       }
       delta_old = delta;
@@ -266,7 +284,7 @@ class Stepper final : public StepperBase {
   }
 
   // x += dx, Kahan-compensated when enabled (error carries the lost low-order bits).
-  void add(Eigen::VectorXd& x, Eigen::VectorXd& error, Eigen::VectorXd& dx) {
+  void add(Eigen::VectorXd& x, Eigen::VectorXd& error, VectorMap& dx) {
     if (!options_.compensated_summation) {
       x += dx;
       return;
@@ -275,6 +293,17 @@ class Stepper final : public StepperBase {
     Q_new_ = x + dx;
     error = (x - Q_new_) + dx;
     x.swap(Q_new_);
+  }
+
+  Scalar* slot(int k) { return spectral_.data() + k * stride_; }
+  SpectralMap G(int i) { return {G_ + i * stride_, m_}; }
+  SpectralMap G_old(int i) { return {G_old_ + i * stride_, m_}; }
+
+  // Exchanges the arrays two maps view (Map::swap would exchange their contents).
+  static void swap_views(SpectralMap& a, SpectralMap& b) {
+    Scalar* const data = a.data();
+    new (&a) SpectralMap(b.data(), b.size());
+    new (&b) SpectralMap(data, a.size());
   }
 
   Method method_;
@@ -289,9 +318,16 @@ class Stepper final : public StepperBase {
   StepState* state_ = nullptr;
   std::array<std::array<double, kMaxStages>, kMaxStages> extrapolation_{};
   bool have_history_ = false;
-  Spectral q_hat_, p_hat_, r_hat_, Q_hat_, Q_hat_new_, guess_hat_, dq_hat_, dp_hat_;
-  std::array<Spectral, kMaxStages> G_, G_old_;  // stage gradients of this and the last step
-  Eigen::VectorXd Q_, Q_new_, g_, dq_, dp_, Mq_;
+  // The arrays in eigen coordinates, m_ entries each and stride_ apart in spectral_ (one
+  // allocation): the eight below, then the s stage gradients of this step (G_) and of the last
+  // (G_old_).
+  Eigen::Index m_, stride_;
+  Spectral spectral_;
+  SpectralMap q_hat_, p_hat_, r_hat_, Q_hat_, Q_hat_new_, guess_hat_, dq_hat_, dp_hat_;
+  Scalar *G_, *G_old_;
+  Eigen::VectorXd Q_, Q_new_, g_, Mq_;  // (Q_, g_ go to the callbacks; Q_new_ swaps with q, p)
+  Eigen::VectorXd physical_;            // dq_ and dp_, one allocation
+  VectorMap dq_, dp_;
   // Newton workspace, allocated at the first fallback.
   Eigen::MatrixXd J_, H_, M_dense_;
   Eigen::VectorXd r_, F_, gU_, col_;

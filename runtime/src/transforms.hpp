@@ -1,6 +1,6 @@
 // The eigenbases of M. forward: physical x -> eigen coordinates; inverse: back. Functions of V
 // act on eigen coordinates as coefficient-wise products; norm(y) is the 2-norm of inverse(y).
-// None of them allocates after setup.
+// None of them allocates after setup. They take Eigen arrays, vectors and maps over them.
 #pragma once
 
 #include <Eigen/Core>
@@ -15,8 +15,14 @@ namespace erkn::detail {
 struct IdentityTransform {
   using Spectral = Eigen::ArrayXd;
   Eigen::Index spectral_size(Eigen::Index d) const { return d; }
-  void forward(const Eigen::VectorXd& x, Spectral& y) { y = x.array(); }
-  void inverse(const Spectral& y, Eigen::VectorXd& x) { x = y.matrix(); }
+  template <class X, class Y>
+  void forward(const X& x, Y&& y) {
+    y = x.array();
+  }
+  template <class Y, class X>
+  void inverse(const Y& y, X&& x) {
+    x = y.matrix();
+  }
   template <class Y>
   double norm(const Y& y) const {
     return y.matrix().norm();
@@ -28,8 +34,14 @@ struct OrthogonalTransform {
   using Spectral = Eigen::ArrayXd;
   const Eigen::MatrixXd* E;
   Eigen::Index spectral_size(Eigen::Index d) const { return d; }
-  void forward(const Eigen::VectorXd& x, Spectral& y) { y.matrix().noalias() = E->transpose() * x; }
-  void inverse(const Spectral& y, Eigen::VectorXd& x) { x.noalias() = *E * y.matrix(); }
+  template <class X, class Y>
+  void forward(const X& x, Y&& y) {
+    y.matrix().noalias() = E->transpose() * x;
+  }
+  template <class Y, class X>
+  void inverse(const Y& y, X&& x) {
+    x.noalias() = *E * y.matrix();
+  }
   template <class Y>
   double norm(const Y& y) const {
     return y.matrix().norm();
@@ -72,14 +84,16 @@ struct FourierBasisTransform {
   Eigen::VectorXd even, odd;  // workspace
   Eigen::Index spectral_size(Eigen::Index d) const { return d; }
   // even_j = x_j + x_{N-j} (x_j alone for j = 0 and j = N/2), odd_j = x_j - x_{N-j}.
-  void forward(const Eigen::VectorXd& x, Spectral& y) {
+  template <class X, class Y>
+  void forward(const X& x, Y&& y) {
     even = x.head(nc);
     even.segment(1, ns) += x.tail(ns).reverse();
     odd = x.segment(1, ns) - x.tail(ns).reverse();
     y.head(nc).matrix().noalias() = C.transpose() * even;
     y.tail(ns).matrix().noalias() = S.transpose() * odd;
   }
-  void inverse(const Spectral& y, Eigen::VectorXd& x) {
+  template <class Y, class X>
+  void inverse(const Y& y, X&& x) {
     even.noalias() = C * y.head(nc).matrix();
     odd.noalias() = S * y.tail(ns).matrix();
     x.head(nc) = even;
@@ -101,8 +115,14 @@ struct RealFftTransform {
   Eigen::Index n;
   Eigen::FFT<double> fft;
   Eigen::Index spectral_size(Eigen::Index) const { return n / 2 + 1; }
-  void forward(const Eigen::VectorXd& x, Spectral& y) { fft.fwd(y.data(), x.data(), n); }
-  void inverse(const Spectral& y, Eigen::VectorXd& x) { fft.inv(x.data(), y.data(), n); }
+  template <class X, class Y>
+  void forward(const X& x, Y&& y) {
+    fft.fwd(y.data(), x.data(), n);
+  }
+  template <class Y, class X>
+  void inverse(const Y& y, X&& x) {
+    fft.inv(x.data(), y.data(), n);
+  }
   /// The 2-norm of the physical vector (Parseval; bins 1..ceil(N/2)-1 stand for two bins each).
   template <class Y>
   double norm(const Y& y) const {
