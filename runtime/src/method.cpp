@@ -44,6 +44,11 @@ double Method::nearest_pole(double v) const {
   return best;
 }
 
+double Method::pole_within(double v, double tolerance) const {
+  double p = nearest_pole(v);
+  return p > 0 && std::abs(v - p) <= tolerance * p ? p : -1.0;
+}
+
 Coefficients Method::at(double v, double pole_tolerance) const {
   if (!std::isfinite(v)) throw Error("coefficient argument v = h^2*lambda is not finite");
   if (v < 0)
@@ -53,8 +58,7 @@ Coefficients Method::at(double v, double pole_tolerance) const {
       throw Error(std::string(name()) + ": v = h^2*lambda = " + format_double(v) +
                   " exceeds the range where poles are known (v <= " +
                   format_double(generated::kPoleSearchMax) + ")");
-    double p = nearest_pole(v);
-    if (p > 0 && std::abs(v - p) <= pole_tolerance * p)
+    if (double p = pole_within(v, pole_tolerance); p > 0)
       throw Error(std::string(name()) + ": coefficients are singular at v = h^2*lambda = " +
                   format_double(v) + ", within a relative " + format_double(pole_tolerance) +
                   " of the pole v = " + format_double(p));

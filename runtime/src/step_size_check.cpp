@@ -51,8 +51,7 @@ void check_step_size(const Method& method, double h, const Eigen::VectorXd& eige
                 format(std::sqrt(generated::kPoleSearchMax / lambda_max)));
   for (Eigen::Index k = 0; k < eigenvalues.size(); ++k) {
     const double v = h * h * eigenvalues[k];
-    const double P = method.nearest_pole(v);
-    if (P > 0 && std::abs(v - P) <= pole_tolerance * P)
+    if (const double P = method.pole_within(v, pole_tolerance); P > 0)
       throw Error(std::string(method.name()) + ": step size h = " + format(h, 17) +
                   " puts h^2*lambda = " + format(v, 17) + " (lambda = " + format(eigenvalues[k]) +
                   ", eigenvalue " + std::to_string(k) + " of M) within a relative " +

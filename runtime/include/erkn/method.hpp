@@ -24,7 +24,7 @@ inline constexpr int kMaxStages = generated::kMaxStages;
 struct Coefficients {
   int s = 0;
   std::array<double, kMaxStages> c{}, b{}, bbar{};
-  std::array<double, kMaxStages * (kMaxStages + 1) / 2> abar_packed{};
+  std::array<double, kMaxStages*(kMaxStages + 1) / 2> abar_packed{};
   double abar(int i, int j) const { return abar_packed[i * (i + 1) / 2 + j]; }
 };
 
@@ -54,6 +54,9 @@ class Method {
   std::span<const double> poles() const { return {table_->poles, size_t(table_->npoles)}; }
   /// The pole nearest to v, or a negative number if the method has none.
   double nearest_pole(double v) const;
+  /// The pole p with |v - p| <= tolerance * p, or a negative number if there is none: the one
+  /// test behind every refusal of a v (here and in the integrator's step-size check).
+  double pole_within(double v, double tolerance) const;
   const generated::Table& table() const { return *table_; }
 
   Method(MethodId id, const generated::Table* table) : id_(id), table_(table) {}
