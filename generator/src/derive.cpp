@@ -181,11 +181,12 @@ Derived derive(const MethodSpec& spec) {
   out.names.resize(2 * s + s * (s + 1) / 2);
   out.coef.resize(out.names.size());
   out.derivation.resize(out.names.size());
-  auto record = [&](int index, const symbol& sym, const ex& solution) {
+  // `shown` is the solution as derivation.md prints it (the symbols phi0V... spelled out).
+  auto record = [&](int index, const symbol& sym, const ex& solution, const ex& shown) {
     Rational r = trig(solution);
     out.names[index] = str(sym);
     out.coef[index] = r.is_poly() ? Rational{r.as_poly()} : r.monic();
-    out.derivation[index] = str(sym) + " = " + quotient(solution);
+    out.derivation[index] = str(sym) + " = " + quotient(shown);
     env[sym] = out.coef[index];
   };
 
@@ -202,10 +203,10 @@ Derived derive(const MethodSpec& spec) {
     env[q0] = {TrigPoly::phi0(out.c[i])}, env[q1] = {TrigPoly::phi1(out.c[i])};
     for (int k = 0; k < 2; ++k) {
       const symbol& sym = k == 0 ? b[i] : bb[i];
+      const int index = k == 0 ? i : s + i;
       ex solution = normal(ex(sym).subs(sol));
-      record(k == 0 ? i : s + i, sym, solution);
-      out.derivation[k == 0 ? i : s + i] = str(sym) + " = " + quotient(solution.subs(phis));
-      if (!out.coef[k == 0 ? i : s + i].is_poly())
+      record(index, sym, solution, solution.subs(phis));
+      if (!out.coef[index].is_poly())
         fail("symplectic solution for " + str(sym) + " did not reduce to a trig polynomial");
     }
   }
@@ -214,7 +215,8 @@ Derived derive(const MethodSpec& spec) {
   for (int i = 0; i < s; ++i)
     for (int j = 0; j < i; ++j) {
       ex sol = lsolve(lst{bb[j] * b[i] - bb[i] * b[j] == d[i] * a[i][j]}, lst{a[i][j]});
-      record(abar_index(s, i + 1, j + 1), a[i][j], normal(ex(a[i][j]).subs(sol)));
+      ex solution = normal(ex(a[i][j]).subs(sol));
+      record(abar_index(s, i + 1, j + 1), a[i][j], solution, solution);
     }
 
   // --- abar_ii: the diagonal equations of the spec, as equalities in V. --------------------
@@ -243,8 +245,10 @@ Derived derive(const MethodSpec& spec) {
   if (diag_eqs.nops() != size_t(s)) fail("need one diagonal equation per stage");
   ex dsol2 = lsolve(diag_eqs, diag_syms);
   if (dsol2.nops() != size_t(s)) fail("diagonal equations do not determine abar_ii");
-  for (int i = 0; i < s; ++i)
-    record(abar_index(s, i + 1, i + 1), a[i][i], normal(ex(a[i][i]).subs(dsol2)));
+  for (int i = 0; i < s; ++i) {
+    ex solution = normal(ex(a[i][i]).subs(dsol2));
+    record(abar_index(s, i + 1, i + 1), a[i][i], solution, solution);
+  }
 
   // --- Verify, identically in V: everything imposed holds. --------------------------------
   for (int i = 0; i < s; ++i) {
