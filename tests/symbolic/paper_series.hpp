@@ -1,7 +1,8 @@
-// The paper's printed Taylor coefficients of V^0..V^3 of every coefficient function of the six
-// methods: Shi, Zhang & Wang, "Diagonal implicit symplectic ERKN methods for solving oscillatory
-// Hamiltonian systems", Section 3 (shared/paper/000_67ac46b702f868a4.txt). 44 coefficient
-// functions in all. Typed in once, exactly as printed, in GiNaC syntax: a printed
+// The paper's choices of the diagonal abar_ii and its printed Taylor coefficients of V^0..V^3 of
+// every coefficient function of the six methods: Shi, Zhang & Wang, "Diagonal implicit symplectic
+// ERKN methods for solving oscillatory Hamiltonian systems", Section 3
+// (shared/paper/000_67ac46b702f868a4.txt). 44 coefficient functions in all. Typed in once, exactly
+// as printed, in GiNaC syntax: a printed
 // "\frac{-4+\sqrt{15}}{72} V" is "(-4+sqrt(15))/72", a printed "- \frac{4+\sqrt{15}}{72} V" is
 // "-(4+sqrt(15))/72", and a printed sum of two terms of one power stays a sum. Nothing here is
 // simplified or corrected; the tests bring both sides to a + b*sqrt(s).
@@ -17,9 +18,18 @@ struct PaperCoefficient {
   std::array<const char*, 4> v;  ///< printed coefficients of V^0, V^1, V^2, V^3
 };
 
+/// One of the paper's free choices fixing the diagonal abar_ii, imposed as an equality in V:
+/// lhs == rhs, lhs a tree sum of eq. (f) ("b.Ae", "bbar.Ae", "b.cAe") or a GiNaC expression.
+struct PaperDiagonal {
+  const char* name;
+  const char* lhs;
+  const char* rhs;
+};
+
 struct PaperMethod {
   const char* method;  ///< the paper's name
   const char* where;   ///< where the paper prints the series
+  std::vector<PaperDiagonal> diagonal;
   std::vector<PaperCoefficient> coefficients;
 };
 
@@ -27,6 +37,7 @@ inline const std::vector<PaperMethod>& paper_series() {
   static const std::vector<PaperMethod> table = {
       {"SERKN1s2(1)",
        "Sec. 3.1, Case one (abar11 = phi0(V)), the series after eq. (n)",
+       {{"Sec. 3.1 case one: abar11 = phi0", "abar11", "phi(0,v)"}},
        {
            {"b1", {"1", "-1/8", "1/384", "-1/46080"}},
            {"bbar1", {"1/2", "-1/48", "1/3840", "-1/645120"}},
@@ -34,6 +45,7 @@ inline const std::vector<PaperMethod>& paper_series() {
        }},
       {"SERKN1s2(2)",
        "Sec. 3.1, Case two (abar11 = bbar1(V))",
+       {{"Sec. 3.1 case two: abar11 = bbar1", "abar11", "bbar1"}},
        {
            {"b1", {"1", "-1/8", "1/384", "-1/46080"}},
            {"bbar1", {"1/2", "-1/48", "1/3840", "-1/645120"}},
@@ -41,6 +53,8 @@ inline const std::vector<PaperMethod>& paper_series() {
        }},
       {"SERKN2s3",
        "Sec. 3.2, Case one (c1 = 1/5), the series before 'We denote this method by SERKN2s3'",
+       {{"Sec. 3.2 case one: abar22 = abar11", "abar22", "abar11"},
+        {"(r) last, as equality: b^T A e = phi3", "b.Ae", "phi(3,v)"}},
        {
            {"b1", {"25/52", "-2/13", "8/975", "-64/365625"}},
            {"b2", {"27/52", "-1/78", "1/18954", "-1/11514555"}},
@@ -53,6 +67,8 @@ inline const std::vector<PaperMethod>& paper_series() {
       {"SERKN2s4",
        "Sec. 3.2, Case two (c = (3-+sqrt(3))/6), the series before 'We denote this method by "
        "SERKN2s4'",
+       {{"(s) 8th, corrected: bbar^T A e = phi4", "bbar.Ae", "phi(4,v)"},
+        {"(s) 9th: b^T A e = phi3", "b.Ae", "phi(3,v)"}},
        {
            {"b1", {"1/2", "-(2+sqrt(3))/24", "(7+4*sqrt(3))/1728", "-(26+15*sqrt(3))/311040"}},
            {"b2", {"1/2", "(-2+sqrt(3))/24", "(7-4*sqrt(3))/1728", "(-26+15*sqrt(3))/311040"}},
@@ -74,6 +90,9 @@ inline const std::vector<PaperMethod>& paper_series() {
       {"SERKN3s4(1)",
        "Sec. 3.3, Case one, eq. (ekrnD), the series before 'We denote this method by "
        "SERKN3s4(1)'",
+       {{"(Schems100) 8th: bbar^T A e = phi4", "bbar.Ae", "phi(4,v)"},
+        {"(Schems100) 9th: b^T A e = phi3", "b.Ae", "phi(3,v)"},
+        {"(Schems100) 10th: b^T C A e = 3 phi4", "b.cAe", "3*phi(4,v)"}},
        {
            {"b1",
             {"5/18", "-(4+sqrt(15))/72", "(31+8*sqrt(15))/8640", "-(244+63*sqrt(15))/2592000"}},
@@ -106,6 +125,9 @@ inline const std::vector<PaperMethod>& paper_series() {
       {"SERKN3s4(2)",
        "Sec. 3.3, Case two, eq. (ekrnE), the two series displays before 'We denote this method "
        "by SERKN3s4(2)'",
+       {{"(Schems100) 8th: bbar^T A e = phi4", "bbar.Ae", "phi(4,v)"},
+        {"(Schems100) 9th: b^T A e = phi3", "b.Ae", "phi(3,v)"},
+        {"(Schems100) 10th: b^T C A e = 3 phi4", "b.cAe", "3*phi(4,v)"}},
        {
            {"b1",
             {"5/18", "(-4+sqrt(15))/72", "(31-8*sqrt(15))/8640", "(-244+63*sqrt(15))/2592000"}},

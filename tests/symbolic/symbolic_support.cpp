@@ -1,5 +1,6 @@
 #include "symbolic_support.hpp"
 
+#include <cctype>
 #include <sstream>
 #include <stdexcept>
 
@@ -18,15 +19,12 @@ std::string str(const ex& e) {
 std::map<std::string, symbol>& registry() {
   static std::map<std::string, symbol> table = [] {
     std::map<std::string, symbol> t;
-    for (int i = 1; i <= 3; ++i) {
+    for (int i = 1; i <= generated::kMaxStages; ++i) {
       for (const char* p : {"b", "bbar", "c", "d"}) {
         std::string n = p + std::to_string(i);
         t.emplace(n, symbol(n));
       }
-      for (int j = 1; j <= i; ++j) {
-        std::string n = "abar" + std::to_string(i) + std::to_string(j);
-        t.emplace(n, symbol(n));
-      }
+      for (int j = 1; j <= i; ++j) t.emplace(abar_name(i, j), symbol(abar_name(i, j)));
     }
     return t;
   }();
@@ -87,6 +85,57 @@ Series raw_series(const ex& e, int K) {
 
 }  // namespace
 
+std::string abar_name(int i, int j) { return "abar" + std::to_string(i) + std::to_string(j); }
+
+namespace {
+// A decimal literal in a table's text: [begin, end) of "123.456e-7", its digits without the point
+// and the power of ten they are scaled by; found only where no name continues into it.
+struct Decimal {
+  size_t begin = 0, end = 0;
+  std::string digits;
+  long exponent = 0;
+};
+bool is_name_char(char ch) { return std::isalnum((unsigned char)ch) || ch == '_'; }
+std::vector<Decimal> decimals(const std::string& t) {
+  std::vector<Decimal> out;
+  for (size_t i = 0; i < t.size(); ++i) {
+    if (!std::isdigit((unsigned char)t[i]) || (i > 0 && is_name_char(t[i - 1]))) continue;
+    size_t j = i;
+    while (j < t.size() && std::isdigit((unsigned char)t[j])) ++j;
+    if (j == t.size() || t[j] != '.') {
+      i = j;
+      continue;
+    }
+    Decimal d{i, j + 1, t.substr(i, j - i), 0};
+    for (j = j + 1; j < t.size() && std::isdigit((unsigned char)t[j]); ++j)
+      d.digits += t[j], --d.exponent;
+    size_t k = j + 1;
+    if (j < t.size() && (t[j] == 'e' || t[j] == 'E')) {
+      if (k < t.size() && (t[k] == '-' || t[k] == '+')) ++k;
+      size_t first = k;
+      while (k < t.size() && std::isdigit((unsigned char)t[k])) ++k;
+      if (k > first) d.exponent += std::stol(t.substr(j + 1, k - j - 1)), j = k;
+    }
+    d.end = j;
+    out.push_back(d);
+    i = j;
+  }
+  return out;
+}
+}  // namespace
+
+std::string exact_text(const std::string& text) {
+  std::string out;
+  size_t at = 0;
+  for (const Decimal& d : decimals(text)) {
+    long e = d.exponent;
+    out += text.substr(at, d.begin - at) + "(" + d.digits + (e < 0 ? "/" : "*") + "10^" +
+           std::to_string(e < 0 ? -e : e) + ")";
+    at = d.end;
+  }
+  return out + text.substr(at);
+}
+
 const symbol& vsym() {
   static const symbol v("v");
   return v;
@@ -104,7 +153,7 @@ ex parse(const std::string& text) {
   table["v"] = vsym();
   for (const auto& [name, s] : registry()) table[name] = s;
   parser read(table, true);
-  return read(text);
+  return read(exact_text(text));
 }
 
 Qs exact_number(const ex& e) {
@@ -203,7 +252,7 @@ std::vector<std::string> coefficient_names(int s) {
   for (int i = 1; i <= s; ++i) names.push_back("b" + std::to_string(i));
   for (int i = 1; i <= s; ++i) names.push_back("bbar" + std::to_string(i));
   for (int i = 1; i <= s; ++i)
-    for (int j = 1; j <= i; ++j) names.push_back("abar" + std::to_string(i) + std::to_string(j));
+    for (int j = 1; j <= i; ++j) names.push_back(abar_name(i, j));
   return names;
 }
 
@@ -213,16 +262,54 @@ int Method::index(const std::string& coefficient) const {
   throw std::invalid_argument(name + " has no coefficient " + coefficient);
 }
 
+GiNaC::numeric Method::tolerance() const {
+  return digits == 0 ? numeric(0) : numeric(1) / GiNaC::pow(numeric(10), numeric(digits - 3));
+}
+
+bool Method::negligible(const Qs& r) const {
+  if (digits == 0) return r.is_zero();
+  return abs(r.to_float(40)) <= tolerance();
+}
+
 namespace {
+// The fewest significant digits of a decimal literal in the text, 0 if there is none.
+int decimal_digits(const std::string& text) {
+  int fewest = 0;
+  for (const Decimal& d : decimals(text)) {
+    size_t first = d.digits.find_first_not_of('0');
+    int n = first == std::string::npos ? 1 : int(d.digits.size() - first);
+    fewest = fewest == 0 ? n : std::min(fewest, n);
+  }
+  return fewest;
+}
+
+// The name of the ERKN method an RKN table is the V -> 0 limit of, from its reference
+// ("V -> 0 limit of NAME (...)"); empty for any other table.
+std::string limit_parent(const generated::Table& t) {
+  static const std::string prefix = "V -> 0 limit of ";
+  std::string ref = t.reference;
+  if (!t.rkn || ref.rfind(prefix, 0) != 0) return "";
+  ref = ref.substr(prefix.size());
+  return ref.substr(0, ref.find(" ("));
+}
+
 Method load(const generated::Table& t) {
   Method m;
   m.name = t.name, m.s = t.stages, m.order = t.order, m.rkn = t.rkn;
   m.names = coefficient_names(m.s);
+  std::string all;
   for (int i = 0; i < m.s; ++i) {
     m.c.push_back(exact_number(parse(t.c_exact[i])));
     m.d.push_back(exact_number(parse(t.d_exact[i])));
+    all += std::string(t.c_exact[i]) + " " + t.d_exact[i] + " ";
   }
-  for (size_t k = 0; k < m.names.size(); ++k) m.closed.push_back(t.closed_forms[k]);
+  for (size_t k = 0; k < m.names.size(); ++k) {
+    m.closed.push_back(t.closed_forms[k]);
+    all += std::string(t.closed_forms[k]) + " ";
+  }
+  m.digits = decimal_digits(all);
+  for (int k = 0; k < generated::kNumTables; ++k)
+    if (limit_parent(generated::kTables[k]) == m.name) m.limit = generated::kTables[k].name;
   return m;
 }
 }  // namespace
@@ -240,12 +327,18 @@ Method find_method(const std::string& name) {
   throw std::invalid_argument("no method " + name);
 }
 
+std::vector<Method> paper_methods() {
+  std::vector<Method> out;
+  for (const PaperMethod& p : paper_series()) out.push_back(find_method(p.method));
+  return out;
+}
+
 // ---------------------------------------------------------------------------------------------
 
 namespace {
 ex B(int i) { return sym("b" + std::to_string(i)); }
 ex BB(int i) { return sym("bbar" + std::to_string(i)); }
-ex A(int i, int j) { return sym("abar" + std::to_string(i) + std::to_string(j)); }
+ex A(int i, int j) { return sym(abar_name(i, j)); }
 ex C(int i) { return sym("c" + std::to_string(i)); }
 ex Dw(int i) { return sym("d" + std::to_string(i)); }
 }  // namespace
@@ -351,24 +444,17 @@ std::vector<Condition> classical_rkn_conditions(const Method& m) {
 }
 
 std::vector<Condition> defining_conditions(const Method& m) {
-  const ex v = vsym();
-  if (m.name == "SERKN1s2(1)")
-    return {{"Sec. 3.1 case one: abar11 = phi0", A(1, 1) - phi(0, v), kIdentity}};
-  if (m.name == "SERKN1s2(2)")
-    return {{"Sec. 3.1 case two: abar11 = bbar1", A(1, 1) - BB(1), kIdentity}};
-  if (m.name == "SERKN2s3")
-    return {{"Sec. 3.2 case one: abar22 = abar11", A(2, 2) - A(1, 1), kIdentity},
-            {"(r) last, as equality: b^T A e = phi3", tree_sum(m, "b.Ae") - phi(3, v), kIdentity}};
-  if (m.name == "SERKN2s4")
-    return {
-        {"(s) 8th, corrected: bbar^T A e = phi4", tree_sum(m, "bbar.Ae") - phi(4, v), kIdentity},
-        {"(s) 9th: b^T A e = phi3", tree_sum(m, "b.Ae") - phi(3, v), kIdentity}};
-  if (m.name == "SERKN3s4(1)" || m.name == "SERKN3s4(2)")
-    return {
-        {"(Schems100) 8th: bbar^T A e = phi4", tree_sum(m, "bbar.Ae") - phi(4, v), kIdentity},
-        {"(Schems100) 9th: b^T A e = phi3", tree_sum(m, "b.Ae") - phi(3, v), kIdentity},
-        {"(Schems100) 10th: b^T C A e = 3 phi4", tree_sum(m, "b.cAe") - 3 * phi(4, v), kIdentity}};
-  throw std::invalid_argument("no defining conditions for " + m.name);
+  for (const PaperMethod& p : paper_series()) {
+    if (m.name != p.method) continue;
+    std::vector<Condition> out;
+    for (const PaperDiagonal& c : p.diagonal) {
+      std::string lhs = c.lhs;
+      ex left = lhs.find('.') == std::string::npos ? parse(lhs) : tree_sum(m, lhs);
+      out.push_back({c.name, left - parse(c.rhs), kIdentity});
+    }
+    return out;
+  }
+  throw std::invalid_argument("no defining conditions for " + m.name + ": not a paper method");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -383,8 +469,9 @@ Series eval_series(const ex& e, const Method& m, const std::vector<Series>& coef
   }
   if (is_a<symbol>(e)) {
     std::string name = ex_to<symbol>(e).get_name();
-    if (name[0] == 'c' && name.size() == 2) return constant_series(m.c.at(name[1] - '1'), n);
-    if (name[0] == 'd' && name.size() == 2) return constant_series(m.d.at(name[1] - '1'), n);
+    bool indexed = name.size() > 1 && name.find_first_not_of("0123456789", 1) == std::string::npos;
+    if (indexed && name[0] == 'c') return constant_series(m.c.at(std::stoi(name.substr(1)) - 1), n);
+    if (indexed && name[0] == 'd') return constant_series(m.d.at(std::stoi(name.substr(1)) - 1), n);
     Series s = coefficients.at(m.index(name));
     s.resize(n, Qs(0));
     return s;
@@ -459,7 +546,7 @@ std::vector<Failure> series_failures(const std::vector<Condition>& conditions, c
     Series r = eval_series(c.residual, m, coefficients);
     int upto = std::min<int>(c.terms, int(r.size()));
     for (int k = 0; k < upto; ++k)
-      if (!r[k].is_zero()) {
+      if (!m.negligible(r[k])) {
         out.push_back({c.name, k, r[k].to_string()});
         break;
       }
@@ -471,13 +558,15 @@ std::vector<Failure> exact_failures(const std::vector<Condition>& conditions, co
   std::vector<Failure> out;
   for (const Condition& c : conditions) {
     gen::Rational r = exact(c.residual, m);
-    if (c.terms == kIdentity) {
+    if (c.terms == kIdentity && m.digits == 0) {
       if (!r.num.is_zero()) out.push_back({c.name, -1, "not identically zero"});
       continue;
     }
-    Series t = gen::taylor(r, c.terms);
-    for (int k = 0; k < c.terms; ++k)
-      if (!t[k].is_zero()) {
+    // Decimal coefficients meet an identity only to their digits: checked through V^7.
+    const int terms = c.terms == kIdentity ? kDecimalIdentityTerms : c.terms;
+    Series t = gen::taylor(r, terms);
+    for (int k = 0; k < terms; ++k)
+      if (!m.negligible(t[k])) {
         out.push_back({c.name, k, t[k].to_string()});
         break;
       }

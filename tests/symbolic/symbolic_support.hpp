@@ -23,6 +23,12 @@ using gen::Qs;
 /// Coefficients of V^0, V^1, ... of a power series (truncated).
 using Series = std::vector<Qs>;
 
+/// The name of the coefficient abar_ij in the tables (abar21, ...).
+std::string abar_name(int i, int j);
+/// A table's text with every decimal literal (0.125, 1.5e-3) replaced by the exact rational of
+/// the digits written, so that decimal coefficients enter the exact arithmetic as given.
+std::string exact_text(const std::string& text);
+
 /// The symbol v (scalar stand-in for V) of every parsed expression.
 const GiNaC::symbol& vsym();
 /// The unique symbol of a name (b1, bbar2, abar21, ...), so that expressions built in different
@@ -50,16 +56,28 @@ struct Method {
   std::string name;
   int s = 0, order = 0;
   bool rkn = false;
+  std::string limit;  ///< name of the V -> 0 limit (an rkn table), empty if none is emitted
   std::vector<Qs> c, d;
   std::vector<std::string> names;   ///< b1..bs, bbar1..bbars, abar11, abar21, abar22, ...
   std::vector<std::string> closed;  ///< emitted closed forms (GiNaC syntax), same order
+  /// 0: every number is exact (rationals and square roots). Otherwise the fewest significant
+  /// digits of a decimal literal in the table: such a method meets its conditions to within
+  /// tolerance() only.
+  int digits = 0;
   int index(const std::string& coefficient) const;  ///< throws if unknown
+  /// 0 for exact methods, 10^(3 - digits) for decimal ones.
+  GiNaC::numeric tolerance() const;
+  /// |r| <= tolerance() (r == 0 for exact methods).
+  bool negligible(const Qs& r) const;
 };
 std::vector<std::string> coefficient_names(int s);
-/// The six ERKN methods (rkn = false), in table order.
+/// Every method of the tables that is not an RKN limit (implicit and explicit ERKN), in table
+/// order.
 std::vector<Method> erkn_methods();
 /// Any method of the table (ERKN or RKN limit) by name.
 Method find_method(const std::string& name);
+/// The methods of the paper (paper_series.hpp), read from the tables; throws if one is missing.
+std::vector<Method> paper_methods();
 
 /// A condition on the coefficients, written with the symbols b_i, bbar_i, abar_ij, v and phi.
 struct Condition {
@@ -69,6 +87,8 @@ struct Condition {
   int terms;
 };
 inline constexpr int kIdentity = 1 << 20;
+/// A method with decimal coefficients meets an identity to within its tolerance through V^7.
+inline constexpr int kDecimalIdentityTerms = 8;
 
 /// Theorem 2, eq. (g): lines 1-2 per stage, line 3 for j < i.
 std::vector<Condition> symplectic_conditions(const Method& m);
@@ -77,7 +97,8 @@ std::vector<Condition> order_conditions(const Method& m);
 /// The same trees with rho <= order, each at V^0 only, with the classical RKN right-hand sides
 /// of Hairer-Norsett-Wanner (Table II.14.3) instead of rho!/gamma * phi_rho(0).
 std::vector<Condition> classical_rkn_conditions(const Method& m);
-/// The paper's free choices that fix the diagonal abar_ii (Section 3), as equalities in V.
+/// The paper's free choices that fix the diagonal abar_ii (Section 3, from paper_series.hpp), as
+/// equalities in V; throws for a method that is not the paper's.
 std::vector<Condition> defining_conditions(const Method& m);
 /// Tree sums of eq. (f) in the symbols: b^T c^k, bbar^T c^k, b^T A e, bbar^T A e, b^T C A e,
 /// b^T A c.
@@ -98,7 +119,8 @@ std::string to_string(const std::vector<Failure>& f);
 /// is checked at V^0..V^(min(terms, n)-1)).
 std::vector<Failure> series_failures(const std::vector<Condition>& conditions, const Method& m,
                                      const std::vector<Series>& coefficients);
-/// Checks each condition exactly: every coefficient is to_rational(parse(closed form)).
+/// Checks each condition exactly: every coefficient is to_rational(parse(closed form)); an
+/// identity of a method with decimal coefficients through V^7, to within its tolerance.
 std::vector<Failure> exact_failures(const std::vector<Condition>& conditions, const Method& m);
 
 /// The trigonometric normal form of an expression in the method's symbols (coefficients from

@@ -2,6 +2,8 @@
 // (Theorem 1, eq. (f)), the diagonal choices of Section 3, and their V -> 0 limits as RKN methods.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "symbolic_support.hpp"
 
 namespace erkn::symtest {
@@ -17,7 +19,7 @@ TEST(Conditions, SymplecticConditionsHoldIdentically) {
 }
 
 TEST(Conditions, DiagonalChoicesOfThePaperHoldIdentically) {
-  for (const Method& m : erkn_methods()) {
+  for (const Method& m : paper_methods()) {
     std::vector<Condition> c = defining_conditions(m);
     ASSERT_EQ(int(c.size()), m.s) << m.name;
     std::vector<Failure> f = exact_failures(c, m);
@@ -28,9 +30,13 @@ TEST(Conditions, DiagonalChoicesOfThePaperHoldIdentically) {
 TEST(Conditions, OrderConditionsHoldToClaimedOrder) {
   for (const Method& m : erkn_methods()) {
     std::vector<Condition> c = order_conditions(m);
-    // Trees of (f) up to order 4: 7 for b (rho <= r), 4 for bbar (rho <= r - 1).
-    const int expected = m.order == 2 ? 2 + 1 : m.order == 3 ? 4 + 2 : 7 + 4;
-    ASSERT_EQ(int(c.size()), expected) << m.name;
+    // The instances of (f) the paper lists: (i) for order 2 (3 conditions), (r) for order 3 (6),
+    // (s) and (Schems100) for order 4 (11). Trees of order 5 and more are not modelled here (the
+    // generator certifies them); a method of higher order is checked on these 11, each to the
+    // power of V its order requires.
+    const int listed[] = {0, 1, 3, 6, 11};
+    ASSERT_GE(m.order, 1) << m.name;
+    ASSERT_EQ(int(c.size()), listed[std::min(m.order, 4)]) << m.name;
     // Series by GiNaC's series() of the emitted closed forms ...
     std::vector<Failure> f = series_failures(c, m, emitted_series(m, 3));
     EXPECT_TRUE(f.empty()) << m.name << " (GiNaC series):\n" << to_string(f);
@@ -57,8 +63,11 @@ TEST(Conditions, ClaimedOrderIsSharpBelowFour) {
 // order and the symplecticity conditions of Suris for RKN methods (bbar_i = b_i (1 - c_i),
 // b_i (bbar_j - a_ij) = b_j (bbar_i - a_ji)).
 TEST(Conditions, RknLimitsSatisfyClassicalRknConditions) {
+  int limits = 0;
   for (const Method& m : erkn_methods()) {
-    Method r = find_method(m.name.substr(2));  // SERKN2s3 -> RKN2s3
+    if (m.limit.empty()) continue;
+    ++limits;
+    Method r = find_method(m.limit);
     ASSERT_TRUE(r.rkn) << r.name;
     EXPECT_EQ(r.s, m.s);
     EXPECT_EQ(r.order, m.order);
@@ -66,24 +75,25 @@ TEST(Conditions, RknLimitsSatisfyClassicalRknConditions) {
     for (size_t k = 0; k < r.closed.size(); ++k) {
       Qs value = exact_number(parse(r.closed[k]));
       constants.push_back({value});
-      EXPECT_TRUE(value == limit[k][0]) << r.name << " " << r.names[k];
+      EXPECT_TRUE(r.negligible(value - limit[k][0])) << r.name << " " << r.names[k];
     }
-    for (int i = 0; i < m.s; ++i) EXPECT_TRUE(r.c[i] == m.c[i] && r.d[i] == m.d[i]) << r.name;
+    for (int i = 0; i < m.s; ++i)
+      EXPECT_TRUE(r.negligible(r.c[i] - m.c[i]) && r.negligible(r.d[i] - m.d[i])) << r.name;
     std::vector<Failure> f = series_failures(classical_rkn_conditions(r), r, constants);
     EXPECT_TRUE(f.empty()) << r.name << ":\n" << to_string(f);
 
-    auto a = [&](int i, int j) {
-      return j > i ? Qs(0) : constants[r.index("abar" + std::to_string(i) + std::to_string(j))][0];
-    };
+    auto a = [&](int i, int j) { return j > i ? Qs(0) : constants[r.index(abar_name(i, j))][0]; };
     auto b = [&](int i) { return constants[r.index("b" + std::to_string(i))][0]; };
     auto bb = [&](int i) { return constants[r.index("bbar" + std::to_string(i))][0]; };
     for (int i = 1; i <= r.s; ++i) {
-      EXPECT_TRUE(bb(i) == b(i) * (Qs(1) - r.c[i - 1])) << r.name << " i=" << i;
+      EXPECT_TRUE(r.negligible(bb(i) - b(i) * (Qs(1) - r.c[i - 1]))) << r.name << " i=" << i;
       for (int j = 1; j <= r.s; ++j)
-        EXPECT_TRUE(b(i) * (bb(j) - a(i, j)) == b(j) * (bb(i) - a(j, i)))
+        EXPECT_TRUE(r.negligible(b(i) * (bb(j) - a(i, j)) - b(j) * (bb(i) - a(j, i))))
             << r.name << " i=" << i << " j=" << j;
     }
   }
+  // Every method of the paper has its V -> 0 limit in the tables.
+  EXPECT_GE(limits, int(paper_methods().size()));
 }
 
 }  // namespace

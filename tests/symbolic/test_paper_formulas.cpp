@@ -31,7 +31,7 @@ bool equals_emitted(const std::string& formula, const std::string& coefficient, 
 // coefficient would vanish. Every method of the paper has abar_ii(0) != 0, and a method with
 // abar_ii = 0 could not meet the order conditions it claims (b^T A e = phi3 at V^0 for r >= 3).
 TEST(PaperFormulas, TheoremTwoThirdConditionWithJEqualIForcesZeroDiagonal) {
-  for (const Method& m : erkn_methods()) {
+  for (const Method& m : paper_methods()) {
     std::vector<Series> series = emitted_series(m, 4);
     for (int i = 1; i <= m.s; ++i) {
       ASSERT_FALSE(m.d[i - 1].is_zero());
@@ -192,7 +192,7 @@ TEST(PaperFormulas, DiagonalFormulasEkrnBAsPrintedAreGarbled) {
 // for abar_ij (j < i), Sec. 3.2 case one for abar11 = abar22, and the node formulas (x), (ppmn),
 // (ekrnC) with (ekrnD), (ekrnE).
 TEST(PaperFormulas, PrintedFormulasThatAreRightReproduceEmittedMethods) {
-  for (const Method& m : erkn_methods()) {
+  for (const Method& m : paper_methods()) {
     for (int i = 1; i <= m.s; ++i) {
       std::string c = "c" + I(i), d = "d" + I(i);
       EXPECT_TRUE(equals_emitted(d + "*phi(0,(1-" + c + ")^2*v)", "b" + I(i), m)) << m.name;
