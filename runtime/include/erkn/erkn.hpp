@@ -1,9 +1,10 @@
 // erkn: diagonal implicit symplectic extended RKN (ERKN) integrators for q'' + M q = -grad U(q).
 //
 // One header for everything: methods (erkn/method.hpp), the matrix M in its cheapest exact form
-// (erkn/stiffness.hpp), the system (erkn/system.hpp), the integrator (erkn/integrator.hpp) and
-// the one exception type erkn::Error (erkn/error.hpp). A complete program (sine-Gordon, problem 1
-// of the paper; link with erkn::runtime):
+// (erkn/stiffness.hpp), the system (erkn/system.hpp), the integrator (erkn/integrator.hpp), many
+// trajectories on threads (erkn/ensemble.hpp) and the one exception type erkn::Error
+// (erkn/error.hpp). A complete program (sine-Gordon, problem 1 of the paper; link with
+// erkn::runtime):
 //
 //   #include <cmath>
 //   #include <cstdio>
@@ -32,6 +33,7 @@
 // ("SERKN3s4(1)") or the id ("SERKN3s4_1"), Method::get(MethodId::SERKN3s4_1) the id.
 #pragma once
 
+#include "erkn/ensemble.hpp"
 #include "erkn/error.hpp"
 #include "erkn/integrator.hpp"
 #include "erkn/method.hpp"
