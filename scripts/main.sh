@@ -13,3 +13,4 @@ cmake --build "$build" -j 2
 "$build"/runtime/cli/erkn run --out docs "$@"
 "$build"/runtime/cli/erkn stability all --out docs/charts
 "$build"/tests/stability/erkn_stability_hmax docs/stability.md
+"$build"/scaling/erkn-ensemble-speedup --out docs
