@@ -27,6 +27,9 @@ class ErknSolver : public Solver {
     return method_.kind() == erkn::Kind::erkn ? Family::erkn : Family::rkn;
   }
   int order() const override { return method_.order(); }
+  // Every method of today's registry is the paper's (an ERKN method or its V -> 0 limit).
+  bool from_paper() const override { return true; }
+  bool exact_for_linear_part() const override { return method_.kind() != erkn::Kind::rkn; }
 
   RunResult run(const Problem& pr, double h, long steps, const Observer* obs) const override {
     erkn::System system;

@@ -11,7 +11,7 @@ ProblemResult run_problem(const Problem& problem, const SolverList& solvers,
   out.reference = reference_solution(problem, problem.t_error, config.reference_tolerance);
   for (const auto& solver : solvers) {
     progress.label(problem.key + " " + solver->name() + " sweep");
-    MethodResult m{solver->name(), solver->family(), solver->order(), {}, {}};
+    MethodResult m{solver->name(), solver->family(), solver->from_paper(), solver->order(), {}, {}};
     m.sweep = sweep(*solver, problem, problem.t_error, out.reference.q, config.sweep, config.steps);
     progress.label(problem.key + " " + solver->name() + " energy");
     m.energy = energy_errors(*solver, problem, problem.h_energy, config.energy_t_ends);
@@ -23,7 +23,8 @@ ProblemResult run_problem(const Problem& problem, const SolverList& solvers,
 
 ScalingResult run_scaling(const SolverList& solvers, const RunConfig& config, Progress& progress) {
   ScalingResult out{config.scaling_tolerance, config.scaling_t_end, config.scaling_sizes, {}, {}};
-  for (const auto& solver : solvers) out.lines.push_back({solver->name(), solver->family(), {}});
+  for (const auto& solver : solvers)
+    out.lines.push_back({solver->name(), solver->family(), solver->from_paper(), {}});
   for (int n : config.scaling_sizes) {
     Problem problem = sine_gordon(n);
     problem.t_error = config.scaling_t_end;
@@ -32,8 +33,11 @@ ScalingResult run_scaling(const SolverList& solvers, const RunConfig& config, Pr
         problem, config.scaling_t_end, config.scaling_reference_tolerance, Precision::double_));
     for (size_t i = 0; i < solvers.size(); ++i) {
       progress.label("scaling N=" + std::to_string(n) + " " + solvers[i]->name());
-      // Explicit peers start at their stability limit h = 2/omega_max ~ 2/N; others at h = 1/8.
-      const long start = solvers[i]->family() == Family::peer ? std::max(8L, long(n)) : 8L;
+      // Peers that resolve M's frequencies start at their stability limit h = 2/omega_max ~ 2/N;
+      // methods exact for the linear part at h = 1/8.
+      const bool resolves =
+          solvers[i]->family() == Family::peer && !solvers[i]->exact_for_linear_part();
+      const long start = resolves ? std::max(8L, long(n)) : 8L;
       out.lines[i].brackets.push_back(bracket(*solvers[i], problem, config.scaling_t_end,
                                               out.references.back().q, config.scaling_tolerance,
                                               start, config.sweep));

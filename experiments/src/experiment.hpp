@@ -16,6 +16,7 @@ namespace ex {
 struct MethodResult {
   std::string name;
   Family family;
+  bool from_paper;
   int order;
   std::vector<Measurement> sweep;
   EnergyCurve energy;
@@ -35,6 +36,7 @@ struct ScalingResult {
   struct Line {
     std::string name;
     Family family;
+    bool from_paper;
     std::vector<std::vector<Measurement>> brackets;  ///< per size
   };
   std::vector<Line> lines;

@@ -34,6 +34,10 @@ class Solver {
   virtual std::string name() const = 0;  ///< the paper's name, or the peer's
   virtual Family family() const = 0;
   virtual int order() const = 0;
+  /// True when q'' + Mq = 0 is integrated exactly (no step-size limit from M's frequencies).
+  virtual bool exact_for_linear_part() const { return false; }
+  /// True for the methods of the source paper (read from the registry; false for peers).
+  virtual bool from_paper() const { return false; }
   /// Integrates from t = 0 with `steps` steps of size h (coefficient setup included); throws on
   /// failure (a pole of the method, a stage solver that does not converge).
   virtual RunResult run(const Problem& problem, double h, long steps,
@@ -46,6 +50,9 @@ std::unique_ptr<Solver> make_stormer_verlet();
 std::unique_ptr<Solver> make_mclachlan_sb3a();     ///< Boost.Odeint symplectic_rkn_sb3a_mclachlan
 std::unique_ptr<Solver> make_mclachlan_sb3a_m4();  ///< Boost.Odeint ..._sb3a_m4_mclachlan
 std::unique_ptr<Solver> make_gauss2();             ///< 2-stage Gauss-Legendre, Nystrom form
+/// The exact-flow splitting peers (splitting.hpp): Strang, SRKN6b, SRKN14a, ABA(10,6,4),
+/// mollified impulse.
+SolverList make_splitting_peers();
 /// Every ERKN method and RKN limit of the runtime's registry, in its order.
 SolverList make_erkn_solvers();
 /// The ERKN/RKN methods followed by the peers.

@@ -1,4 +1,5 @@
 #include "solver.hpp"
+#include "splitting.hpp"
 
 namespace ex {
 
@@ -8,6 +9,7 @@ SolverList all_solvers() {
   list.push_back(make_mclachlan_sb3a());
   list.push_back(make_mclachlan_sb3a_m4());
   list.push_back(make_gauss2());
+  for (auto& s : make_splitting_peers()) list.push_back(std::move(s));
   return list;
 }
 

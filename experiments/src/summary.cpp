@@ -36,6 +36,38 @@ Cost best_peer(const ProblemResult& result, double tolerance) {
   return best;
 }
 
+bool in_group(Family family, bool from_paper, Group group) {
+  switch (group) {
+    case Group::shipped:
+      return family != Family::peer;
+    case Group::paper:
+      return family != Family::peer && from_paper;
+    case Group::peer:
+      return family == Family::peer;
+  }
+  return false;
+}
+
+Best best_of(const ProblemResult& result, Group group, double tolerance) {
+  Best best;
+  for (const MethodResult& m : result.methods) {
+    if (!in_group(m.family, m.from_paper, group)) continue;
+    const auto c = cost_to_tolerance(m.sweep, tolerance).cpu;
+    if (c && (!best.cpu || *c < *best.cpu)) best = {c, m.name};
+  }
+  return best;
+}
+
+Best best_of(const ScalingResult& result, Group group, size_t i) {
+  Best best;
+  for (size_t l = 0; l < result.lines.size(); ++l) {
+    if (!in_group(result.lines[l].family, result.lines[l].from_paper, group)) continue;
+    const auto c = scaling_cpu(result, l, i);
+    if (c && (!best.cpu || *c < *best.cpu)) best = {c, result.lines[l].name};
+  }
+  return best;
+}
+
 std::optional<double> mean_stage_iterations(const RunStats& stats) {
   if (stats.stage_solves == 0) return std::nullopt;
   return double(stats.stage_iterations) / double(stats.stage_solves);

@@ -18,6 +18,20 @@ Cost cost_to_tolerance(const std::vector<Measurement>& sweep, double tolerance);
 /// The cheapest peer cost at `tolerance` (evaluations and CPU time taken separately).
 Cost best_peer(const ProblemResult& result, double tolerance);
 
+/// The methods a target compares: every method erkn ships (the registry's), the source paper's
+/// methods only, or the peers.
+enum class Group { shipped, paper, peer };
+bool in_group(Family family, bool from_paper, Group group);
+
+/// The cheapest method of a group in CPU time; empty cpu when none reaches the tolerance.
+struct Best {
+  std::optional<double> cpu;
+  std::string name;
+};
+Best best_of(const ProblemResult& result, Group group, double tolerance);
+/// The same for the scaling scene at size index i.
+Best best_of(const ScalingResult& result, Group group, size_t i);
+
 /// Mean fixed-point/Newton iterations per stage solve of a run; empty for explicit methods.
 std::optional<double> mean_stage_iterations(const RunStats& stats);
 

@@ -1,0 +1,38 @@
+// Exact-flow splitting peers: compositions of the exact flow of q'' + Mq = 0 (computed in M's
+// eigen coordinates) with kicks p -= h b_i grad U(q), the strongest explicit competitors of the
+// ERKN methods (DESIGN.md section 1, "the explicit family"). Written independently of the runtime:
+// own coefficient tables, own linear flow, the problem's own grad U.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "solver.hpp"
+
+namespace ex {
+
+/// exp(h b_0 B) exp(h a_1 A) exp(h b_1 B) ... exp(h a_m A) exp(h b_m B), A the linear flow, B the
+/// kick; kick.size() == flow.size() + 1, zero kicks are skipped. When b_0 and b_m are both non-zero
+/// the last kick of a step and the first of the next share one evaluation (FSAL).
+struct Composition {
+  std::string name;
+  std::string source;  ///< citation of the coefficients
+  int order = 0;
+  std::vector<double> kick, flow;
+  /// Mollified kicks: grad U(q) replaced by Phi grad U(Phi q), Phi = sinc(h Omega), Omega =
+  /// M^{1/2}.
+  bool filtered = false;
+};
+
+Composition strang();               ///< Strang / impulse, order 2
+Composition blanes_moan_srkn6b();   ///< Blanes & Moan 2002, SRKN_6^b, order 4
+Composition blanes_moan_srkn14a();  ///< Blanes & Moan 2002, SRKN_14^a, order 6
+Composition aba1064();              ///< Blanes et al. 2013, ABA(10,6,4), order 4 (10, 6, 4 in eps)
+Composition mollified_impulse();    ///< Garcia-Archilla, Sanz-Serna & Skeel 1999, sinc filter
+
+/// Kicks (evaluations of grad U) per step, after FSAL.
+int evaluations_per_step(const Composition& c);
+
+std::unique_ptr<Solver> make_splitting(Composition composition);
+
+}  // namespace ex
