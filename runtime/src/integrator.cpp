@@ -63,8 +63,16 @@ std::unique_ptr<detail::StepperBase> make_stepper(const Method& method, System s
         return std::make_unique<Stepper<FourierBasisTransform, Eigen::ArrayXd>>(
             method, std::move(system), h, options, FourierBasisTransform(d),
             FourierBasisTransform::coordinate_eigenvalues(lambda, d), d);
+      if (grid_backend_is_fftw())
+        return std::make_unique<Stepper<GridTransform, Eigen::ArrayXd>>(
+            method, std::move(system), h, options,
+            GridTransform({{d, 1.0, GridAxis::Boundary::periodic}}),
+            GridTransform::halfcomplex_eigenvalues(lambda, d), d);
       return std::make_unique<Stepper<RealFftTransform, Eigen::ArrayXd>>(
           method, std::move(system), h, options, RealFftTransform(d), lambda, d);
+    case Stiffness::Structure::grid:
+      return std::make_unique<Stepper<GridTransform, Eigen::ArrayXd>>(
+          method, std::move(system), h, options, GridTransform(M.axes()), lambda, d);
   }
   throw Error("unknown structure of M");
 }

@@ -22,6 +22,9 @@ void MOperator::apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) {
     case Stiffness::Structure::dense:
       y.noalias() = M_.matrix() * x;
       return;
+    case Stiffness::Structure::grid:
+      apply_grid(x, y);
+      return;
     case Stiffness::Structure::circulant:
       if (fft_) {
         fft_->forward(x, spectrum_);
@@ -38,6 +41,39 @@ void MOperator::apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) {
         y.head(j) += c * x.tail(j);
       }
       return;
+  }
+}
+
+// y = shift x + sum_a (-D2_a) x. Along axis a each outer block of the row-major array is an
+// inner x n column-major matrix X whose column j is the line index j; the stencil
+// (2 x_j - x_{j-1} - x_{j+1}) / spacing^2 acts on whole columns, the ends by the boundary rule.
+void MOperator::apply_grid(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  const Eigen::Index d = x.size();
+  y = M_.shift() * x;
+  Eigen::Index inner = d;
+  for (const GridAxis& axis : M_.axes()) {
+    const Eigen::Index n = axis.n;
+    inner /= n;
+    const double w = 1 / (axis.spacing * axis.spacing);
+    for (Eigen::Index o = 0; o < d / (n * inner); ++o) {
+      Eigen::Map<const Eigen::MatrixXd> X(x.data() + o * n * inner, inner, n);
+      Eigen::Map<Eigen::MatrixXd> Y(y.data() + o * n * inner, inner, n);
+      Y += (2 * w) * X;
+      Y.rightCols(n - 1) -= w * X.leftCols(n - 1);
+      Y.leftCols(n - 1) -= w * X.rightCols(n - 1);
+      switch (axis.boundary) {
+        case GridAxis::Boundary::periodic:
+          Y.col(0) -= w * X.col(n - 1);
+          Y.col(n - 1) -= w * X.col(0);
+          break;
+        case GridAxis::Boundary::neumann:  // mirrored neighbours x_{-1} = x_0, x_n = x_{n-1}
+          Y.col(0) -= w * X.col(0);
+          Y.col(n - 1) -= w * X.col(n - 1);
+          break;
+        case GridAxis::Boundary::dirichlet:  // zero outside
+          break;
+      }
+    }
   }
 }
 

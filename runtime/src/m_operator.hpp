@@ -1,6 +1,7 @@
 // y = M x for every Stiffness form, without allocating: scalar and diagonal elementwise, dense
 // one matrix-vector product, circulant a direct stencil when the first column has few nonzeros
-// (nnz <= 2 log2 N) and otherwise an FFT product with the closed-form eigenvalues.
+// (nnz <= 2 log2 N) and otherwise an FFT product with the closed-form eigenvalues; grid its
+// stencil along each axis (O(d)).
 #pragma once
 
 #include <Eigen/Core>
@@ -17,6 +18,8 @@ class MOperator {
   void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y);
 
  private:
+  void apply_grid(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+
   Stiffness M_;
   std::optional<RealFftTransform> fft_;  // set for a circulant M applied through the FFT
   Eigen::ArrayXcd spectrum_;

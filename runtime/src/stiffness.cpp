@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -16,6 +17,8 @@ struct Stiffness::Data {
   Eigen::VectorXd eigenvalues, entries;
   Eigen::MatrixXd eigenvectors, matrix;
   Eigen::VectorXi nonzeros;
+  std::vector<GridAxis> axes;
+  double shift = 0;
 };
 
 namespace {
@@ -122,6 +125,76 @@ Stiffness Stiffness::dense(const Eigen::MatrixXd& m) {
   return Stiffness(d);
 }
 
+Eigen::VectorXd GridAxis::eigenvalues() const {
+  using std::numbers::pi;
+  const double scale = 4 / (spacing * spacing);
+  Eigen::VectorXd mu(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    double angle = 0;  // the argument of sin^2
+    switch (boundary) {
+      case Boundary::periodic:
+        angle = pi * double(std::min(k, n - k)) / double(n);
+        break;
+      case Boundary::dirichlet:
+        angle = pi * double(k + 1) / double(2 * (n + 1));
+        break;
+      case Boundary::neumann:
+        angle = pi * double(k) / double(2 * n);
+        break;
+    }
+    const double sine = std::sin(angle);
+    mu[k] = scale * sine * sine;
+  }
+  return mu;
+}
+
+namespace {
+
+void require_axis(const GridAxis& axis, std::size_t a) {
+  const std::string name = "grid M: axis " + std::to_string(a);
+  if (axis.n < 1)
+    throw Error(name + " has n = " + std::to_string(axis.n) + " unknowns (need >= 1)");
+  if (!std::isfinite(axis.spacing) || axis.spacing <= 0)
+    throw Error(name + " has spacing " + format(axis.spacing) + " (need finite and > 0)");
+  switch (axis.boundary) {
+    case GridAxis::Boundary::periodic:
+    case GridAxis::Boundary::dirichlet:
+    case GridAxis::Boundary::neumann:
+      return;
+  }
+  throw Error(name + " has an unknown boundary condition");
+}
+
+}  // namespace
+
+Stiffness Stiffness::grid(std::vector<GridAxis> axes, double shift) {
+  if (axes.empty()) throw Error("grid M needs at least one axis");
+  if (!std::isfinite(shift)) throw Error("grid M: the shift " + format(shift) + " is not finite");
+  Eigen::Index dim = 1;
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    require_axis(axes[a], a);
+    if (dim > std::numeric_limits<Eigen::Index>::max() / axes[a].n)
+      throw Error("grid M: the number of unknowns overflows");
+    dim *= axes[a].n;
+  }
+  auto d = std::make_shared<Data>();
+  d->structure = Structure::grid;
+  d->dim = dim;
+  d->shift = shift;
+  // lambda(k_0, ..., k_{K-1}) = shift + sum_a mu_a[k_a], built one axis at a time (row-major).
+  d->eigenvalues = Eigen::VectorXd::Constant(1, shift);
+  for (const GridAxis& axis : axes) {
+    const Eigen::VectorXd mu = axis.eigenvalues();
+    Eigen::VectorXd next(d->eigenvalues.size() * axis.n);
+    for (Eigen::Index i = 0; i < d->eigenvalues.size(); ++i)
+      next.segment(i * axis.n, axis.n) = mu.array() + d->eigenvalues[i];
+    d->eigenvalues.swap(next);
+  }
+  require_psd(d->eigenvalues, "grid M");
+  d->axes = std::move(axes);
+  return Stiffness(d);
+}
+
 Stiffness::Structure Stiffness::structure() const { return data_->structure; }
 Eigen::Index Stiffness::dim() const { return data_->dim; }
 const Eigen::VectorXd& Stiffness::eigenvalues() const { return data_->eigenvalues; }
@@ -129,6 +202,38 @@ const Eigen::MatrixXd& Stiffness::eigenvectors() const { return data_->eigenvect
 const Eigen::VectorXd& Stiffness::entries() const { return data_->entries; }
 const Eigen::MatrixXd& Stiffness::matrix() const { return data_->matrix; }
 const Eigen::VectorXi& Stiffness::nonzeros() const { return data_->nonzeros; }
+const std::vector<GridAxis>& Stiffness::axes() const { return data_->axes; }
+double Stiffness::shift() const { return data_->shift; }
+
+namespace {
+
+// The dense grid M: shift on the diagonal, then each axis's stencil (-1, 2, -1) / spacing^2
+// along its lines, with the boundary's neighbour rule (accumulated, so n = 1, 2 come out right).
+Eigen::MatrixXd grid_to_dense(const std::vector<GridAxis>& axes, double shift, Eigen::Index d) {
+  Eigen::MatrixXd m = shift * Eigen::MatrixXd::Identity(d, d);
+  Eigen::Index inner = d;  // the stride of axis a: product of n over the axes after it
+  for (const GridAxis& axis : axes) {
+    const Eigen::Index n = axis.n;
+    inner /= n;
+    const double w = 1 / (axis.spacing * axis.spacing);
+    for (Eigen::Index i = 0; i < d; ++i) {
+      const Eigen::Index j = (i / inner) % n;  // i's index along this axis
+      m(i, i) += 2 * w;
+      for (const Eigen::Index step : {Eigen::Index(-1), Eigen::Index(1)}) {
+        Eigen::Index k = j + step;  // the neighbour's index along the axis
+        if (k < 0 || k >= n) {
+          if (axis.boundary == GridAxis::Boundary::dirichlet) continue;  // x = 0 outside
+          if (axis.boundary == GridAxis::Boundary::neumann) k = j;       // mirrored: x_{-1} = x_0
+          if (axis.boundary == GridAxis::Boundary::periodic) k = (k + n) % n;
+        }
+        m(i, i + (k - j) * inner) -= w;
+      }
+    }
+  }
+  return m;
+}
+
+}  // namespace
 
 Eigen::MatrixXd Stiffness::to_dense(Eigen::Index d) const {
   switch (data_->structure) {
@@ -145,6 +250,8 @@ Eigen::MatrixXd Stiffness::to_dense(Eigen::Index d) const {
         for (Eigen::Index i = 0; i < n; ++i) m(i, k) = data_->entries[(i - k + n) % n];
       return m;
     }
+    case Structure::grid:
+      return grid_to_dense(data_->axes, data_->shift, data_->dim);
   }
   return {};
 }

@@ -6,8 +6,12 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <complex>
+#include <memory>
 #include <numbers>
 #include <unsupported/Eigen/FFT>
+#include <vector>
+
+#include "grid_backend.hpp"
 
 namespace erkn::detail {
 
@@ -129,6 +133,46 @@ struct RealFftTransform {
     double sum = 2 * y.abs2().sum() - std::norm(y.coeff(0));
     if (n % 2 == 0) sum -= std::norm(y.coeff(n / 2));
     return std::sqrt(sum / double(n));
+  }
+};
+
+/// Grid M (Stiffness::grid), and circulant M beyond the Fourier basis size when built with FFTW
+/// (one periodic axis): the separable real transform of grid_backend.hpp. Eigen coordinates are
+/// real, d of them, in the transform's order (row-major over the axes' coordinates k).
+struct GridTransform {
+  using Spectral = Eigen::ArrayXd;
+  explicit GridTransform(const std::vector<GridAxis>& axes)
+      : backend(make_grid_backend(axes)), weight(Eigen::ArrayXd::Ones(1)) {
+    // Parseval weights of the unnormalised forward transform: a tensor product of the axes'.
+    for (const GridAxis& axis : axes) {
+      const Eigen::ArrayXd w = axis_weights(axis);
+      Eigen::ArrayXd next(weight.size() * axis.n);
+      for (Eigen::Index i = 0; i < weight.size(); ++i)
+        next.segment(i * axis.n, axis.n) = weight[i] * w;
+      weight.swap(next);
+    }
+  }
+  /// The eigenvalue of each coordinate of a circulant M with one periodic axis (halfcomplex
+  /// order) from lambda_0..lambda_{N/2} (Stiffness::eigenvalues()).
+  static Eigen::VectorXd halfcomplex_eigenvalues(const Eigen::VectorXd& lambda, Eigen::Index n) {
+    Eigen::VectorXd all(n);
+    for (Eigen::Index k = 0; k < n; ++k) all[k] = lambda[std::min(k, n - k)];
+    return all;
+  }
+  std::unique_ptr<GridBackend> backend;
+  Eigen::ArrayXd weight;
+  Eigen::Index spectral_size(Eigen::Index d) const { return d; }
+  template <class X, class Y>
+  void forward(const X& x, Y&& y) {
+    backend->forward(x.data(), y.data());
+  }
+  template <class Y, class X>
+  void inverse(const Y& y, X&& x) {
+    backend->inverse(y.data(), x.data());
+  }
+  template <class Y>
+  double norm(const Y& y) const {
+    return std::sqrt((weight * y.square()).sum());
   }
 };
 

@@ -1,0 +1,141 @@
+// The grid transforms through FFTW (compiled when erkn is built with ERKN_WITH_FFTW): one
+// multi-dimensional r2r plan each way, made once per Integrator. FFTW's planner is not
+// thread-safe (ensembles construct integrators on threads), so planning and destroying plans
+// holds one mutex; executing a plan on new arrays (fftw_execute_r2r) is thread-safe.
+#include <fftw3.h>
+
+#include <limits>
+#include <mutex>
+#include <string>
+
+#include "erkn/error.hpp"
+#include "grid_backend.hpp"
+
+namespace erkn::detail {
+namespace {
+
+std::mutex& planner_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+fftw_r2r_kind forward_kind(GridAxis::Boundary b) {
+  switch (b) {
+    case GridAxis::Boundary::periodic:
+      return FFTW_R2HC;
+    case GridAxis::Boundary::dirichlet:
+      return FFTW_RODFT00;
+    case GridAxis::Boundary::neumann:
+      return FFTW_REDFT10;
+  }
+  return FFTW_R2HC;
+}
+
+fftw_r2r_kind inverse_kind(GridAxis::Boundary b) {
+  switch (b) {
+    case GridAxis::Boundary::periodic:
+      return FFTW_HC2R;
+    case GridAxis::Boundary::dirichlet:
+      return FFTW_RODFT00;
+    case GridAxis::Boundary::neumann:
+      return FFTW_REDFT01;
+  }
+  return FFTW_HC2R;
+}
+
+// FFTW's logical size N of a kind: inverse(forward(x)) = N x along the axis.
+double logical_size(const GridAxis& axis) {
+  switch (axis.boundary) {
+    case GridAxis::Boundary::periodic:
+      return double(axis.n);
+    case GridAxis::Boundary::dirichlet:
+      return 2.0 * double(axis.n + 1);
+    case GridAxis::Boundary::neumann:
+      return 2.0 * double(axis.n);
+  }
+  return 1;
+}
+
+struct Buffer {
+  explicit Buffer(Eigen::Index d) : data(fftw_alloc_real(std::size_t(d))) {
+    if (!data)
+      throw Error("FFTW could not allocate a grid buffer of " + std::to_string(d) + " doubles");
+  }
+  ~Buffer() { fftw_free(data); }
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+  double* data;
+};
+
+class FftwBackend final : public GridBackend {
+ public:
+  explicit FftwBackend(const std::vector<GridAxis>& axes) : d_(size(axes)), in_(d_), out_(d_) {
+    std::vector<int> n;
+    std::vector<fftw_r2r_kind> fk, ik;
+    for (const GridAxis& axis : axes) {
+      if (axis.n > std::numeric_limits<int>::max())
+        throw Error("FFTW: a grid axis of " + std::to_string(axis.n) + " points is too long");
+      n.push_back(int(axis.n));
+      fk.push_back(forward_kind(axis.boundary));
+      ik.push_back(inverse_kind(axis.boundary));
+      scale_ /= logical_size(axis);
+    }
+    // Out of place; the input is a private copy, so FFTW may destroy it (faster for HC2R).
+    const unsigned flags = FFTW_ESTIMATE | FFTW_DESTROY_INPUT;
+    std::lock_guard lock(planner_mutex());
+    forward_ = fftw_plan_r2r(int(n.size()), n.data(), in_.data, out_.data, fk.data(), flags);
+    inverse_ = fftw_plan_r2r(int(n.size()), n.data(), in_.data, out_.data, ik.data(), flags);
+    if (!forward_ || !inverse_) {
+      destroy();
+      throw Error("FFTW could not plan the grid transforms");
+    }
+  }
+  ~FftwBackend() override {
+    std::lock_guard lock(planner_mutex());
+    destroy();
+  }
+
+  void forward(const double* x, double* y) override { run(forward_, x, y, 1.0); }
+  void inverse(const double* y, double* x) override { run(inverse_, y, x, scale_); }
+
+ private:
+  static Eigen::Index size(const std::vector<GridAxis>& axes) {
+    Eigen::Index d = 1;
+    for (const GridAxis& axis : axes) d *= axis.n;
+    return d;
+  }
+
+  // to = factor * plan(from): from is copied (r2r plans may overwrite their input); the output
+  // goes straight to `to` when its alignment is the planned one (fftw_execute_r2r's rule).
+  void run(fftw_plan plan, const double* from, double* to, double factor) {
+    Eigen::Map<Eigen::VectorXd>(in_.data, d_) = Eigen::Map<const Eigen::VectorXd>(from, d_);
+    Eigen::Map<Eigen::VectorXd> result(to, d_);
+    if (fftw_alignment_of(to) == fftw_alignment_of(out_.data)) {
+      fftw_execute_r2r(plan, in_.data, to);
+      if (factor != 1.0) result *= factor;
+    } else {
+      fftw_execute_r2r(plan, in_.data, out_.data);
+      result = factor * Eigen::Map<const Eigen::VectorXd>(out_.data, d_);
+    }
+  }
+
+  void destroy() {
+    if (forward_) fftw_destroy_plan(forward_);
+    if (inverse_) fftw_destroy_plan(inverse_);
+    forward_ = inverse_ = nullptr;
+  }
+
+  Eigen::Index d_;
+  Buffer in_, out_;
+  double scale_ = 1;
+  fftw_plan forward_ = nullptr, inverse_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<GridBackend> make_grid_backend(const std::vector<GridAxis>& axes) {
+  return std::make_unique<FftwBackend>(axes);
+}
+bool grid_backend_is_fftw() { return true; }
+
+}  // namespace erkn::detail
