@@ -1,6 +1,8 @@
 #include "erkn/integrator.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "erkn/error.hpp"
@@ -31,6 +33,12 @@ void require_state(const System& system, const Eigen::VectorXd& q, const Eigen::
     if (!std::isfinite(p[i]))
       throw Error("p[" + std::to_string(i) + "] = " + format(p[i]) + " is not finite");
   }
+}
+
+// Round-off in forming a time t0 + n h (and in the caller's t_end): a few ulps of the largest
+// magnitude involved. Never proportional to n h itself beyond that (issue 12, defect 2).
+double grid_tolerance(double t, double t_end, double h) {
+  return 4 * std::numeric_limits<double>::epsilon() * std::max({std::abs(t), std::abs(t_end), h});
 }
 
 // Circulant M up to this N uses the explicit Fourier basis (folded matrix-vector products,
@@ -124,24 +132,102 @@ void Integrator::set_step_size(double h) {
   stepper_ = std::move(fresh);
 }
 
-long Integrator::steps_until(double t_end) const {
-  const double span = t_end - t();
-  if (!std::isfinite(span) || span < 0)
-    throw Error("t_end = " + format(t_end) + " is not finite or lies before t = " + format(t()));
-  const double n = std::round(span / h_);
-  if (std::abs(n * h_ - span) > 1e-9 * std::max(h_, std::abs(t_end)))
-    throw Error("t_end - t = " + format(span, 17) +
-                " is not a whole number of steps h = " + format(h_, 17) + " (" + format(n, 17) +
-                " steps reach t = " + format(t() + n * h_, 17) + ")");
-  return long(n);
+Integrator::EndPlan Integrator::plan_to(double t_end) const {
+  const double t0 = t(), span = t_end - t0;
+  const double tol = grid_tolerance(t0, t_end, h_);
+  if (!std::isfinite(span) || span < -tol)
+    throw Error("t_end = " + format(t_end, 17) +
+                " is not finite or lies before t = " + format(t0, 17));
+  if (span <= tol) return {0, false};
+  const double steps = span / h_;
+  if (!(steps <= kMaxSteps))  // (before any conversion to an integer: no overflow)
+    throw Error("t_end - t = " + format(span) + " needs " + format(steps) + " steps of h = " +
+                format(h_) + ", more than the step-count limit 2^53 = " + format(kMaxSteps, 17) +
+                " (beyond it t0 + n h is not exact); integrate in shorter spans or with a "
+                "larger h");
+  // The grid points around t_end; t_end within round-off of one of them is it.
+  const auto grid = [&](double n) { return t_base_ + (double(steps_since_base_) + n) * h_; };
+  if (h_ <= 2 * tol)
+    throw Error("h = " + format(h_) + " is below the round-off of t = " + format(t0) +
+                " and t_end = " + format(t_end) + ": the time grid cannot be resolved");
+  double n = std::floor(steps);  // (a rounded quotient: may be one off, fixed below)
+  while (n > 0 && grid(n) > t_end + tol) --n;
+  while (grid(n + 1) <= t_end + tol) ++n;
+  return {long(n), std::abs(grid(n) - t_end) > tol};
 }
 
-double Integrator::energy() const {
+long Integrator::steps_until(double t_end) const { return plan_to(t_end).whole; }
+
+Integrator::EndPlan Integrator::prepare_end(double t_end, long every) {
+  if (every < 1)
+    throw Error("the observer interval must be >= 1 step; got " + std::to_string(every));
+  const EndPlan plan = plan_to(t_end);
+  if (plan.shorter) {
+    const double t_n = t_base_ + double(steps_since_base_ + plan.whole) * h_;
+    stepper_of_size(t_end - t_n);  // validates the shorter step (poles) before any step
+  }
+  return plan;
+}
+
+detail::StepperBase& Integrator::stepper_of_size(double h) {
+  if (!short_stepper_ || short_h_ != h) {
+    try {
+      short_stepper_ = make_stepper(method_, system(), h, options_, q_.size());
+    } catch (const Error& e) {
+      short_stepper_.reset();
+      throw Error("a step of size " + format(h, 17) + " (to a time off the grid of h = " +
+                  format(h_, 17) + ") is refused: " + e.what());
+    }
+    short_h_ = h;
+  }
+  short_stepper_->forget_history();  // (its last use started from another state)
+  return *short_stepper_;
+}
+
+void Integrator::step_to(double t_end) {
+  detail::StepperBase& s = stepper_of_size(t_end - t());
+  s.step({q_, p_, q_error_, p_error_, statistics_.steps + 1, t()}, statistics_);
+  t_base_ = t_end;
+  steps_since_base_ = 0;
+  stepper_->forget_history();  // (the next step of h does not follow a step of h)
+}
+
+void Integrator::state_at(double t_out, Eigen::VectorXd& q, Eigen::VectorXd& p) {
+  const double t0 = t(), tol = grid_tolerance(t0, t_out, h_);
+  if (!(t_out >= t0 - tol && t_out <= t0 + h_ + tol))
+    throw Error("state_at(" + format(t_out, 17) + "): the time must lie within one step of t = " +
+                format(t0, 17) + " (in [t, t + h], h = " + format(h_, 17) + ")");
+  q = q_;
+  p = p_;
+  if (std::abs(t_out - t0) <= tol) return;
+  detail::StepperBase& s = stepper_of_size(t_out - t0);
+  Eigen::VectorXd q_error = q_error_, p_error = p_error_;
+  const long steps = statistics_.steps;
+  s.step({q, p, q_error, p_error, steps + 1, t0}, statistics_);
+  statistics_.steps = steps;  // (not a step of the trajectory)
+}
+
+void Integrator::require_output_times(double t_end,
+                                      const Eigen::Ref<const Eigen::VectorXd>& times) const {
+  for (Eigen::Index k = 0; k < times.size(); ++k) {
+    const double tau = times[k], lo = k == 0 ? t() : times[k - 1];
+    if (!std::isfinite(tau) || tau < lo || tau > t_end)
+      throw Error("output time " + std::to_string(k) + " = " + format(tau, 17) +
+                  " is not finite, not ascending, or outside [t, t_end] = [" + format(t(), 17) +
+                  ", " + format(t_end, 17) + "]");
+  }
+}
+
+double Integrator::energy() const { return energy(q_, p_); }
+
+double Integrator::energy(const Eigen::VectorXd& q, const Eigen::VectorXd& p) const {
   const System& s = system();
   if (!s.potential) throw Error("energy() needs System::potential");
-  Eigen::VectorXd Mq(q_.size());
-  stepper_->apply_M(q_, Mq);
-  return 0.5 * p_.squaredNorm() + 0.5 * q_.dot(Mq) + s.potential(q_);
+  if (q.size() != q_.size() || p.size() != q_.size())
+    throw Error("energy(q, p): q and p must have size " + std::to_string(q_.size()));
+  Eigen::VectorXd Mq(q.size());
+  stepper_->apply_M(q, Mq);
+  return 0.5 * p.squaredNorm() + 0.5 * q.dot(Mq) + s.potential(q);
 }
 
 }  // namespace erkn

@@ -198,10 +198,11 @@ TEST(BadInput, MissingCallbacks) {
   expect_error([&] { Integrator(method(), s, 0.1, kQ, kP); }, {"System::gradient is not set"});
 }
 
-TEST(BadInput, EndTimeOffTheStepGrid) {
+TEST(BadInput, EndTimeBeforeTOrNotFinite) {
   Fixture f;
-  expect_error([&] { f.run.integrate(0.35); }, {"not a whole number of steps", "h = 0.1"});
   expect_error([&] { f.run.integrate(0.0); }, {"lies before t"});
+  expect_error([&] { f.run.integrate(kNaN); }, {"not finite"});
+  expect_error([&] { f.run.integrate(kInf); }, {"not finite"});
   f.expect_unchanged();
 }
 

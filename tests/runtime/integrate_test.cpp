@@ -1,4 +1,5 @@
-// integrate(t_end, observer) takes whole steps, reports every one, and matches step().
+// integrate(t_end, observer) on the grid takes whole steps, reports every one, and matches step()
+// (off-grid ends and output times: output_test.cpp).
 #include <gtest/gtest.h>
 
 #include "problems.hpp"

@@ -66,18 +66,58 @@ class Integrator {
 
   /// One step of size h.
   void step();
-  /// Steps to t_end, which must lie a whole number of steps ahead (else erkn::Error, nothing
-  /// done); calls observer(t, q, p) after every step.
+
+  // Time semantics. The integrator's grid is t0 + n h (t0: the start, or the last set_state,
+  // set_step_size or off-grid integrate). A time within round-off of a grid point (relative
+  // 4 eps of max(|t|, |t_end|, h): the error of forming t0 + n h) counts as that grid point.
+
+  /// Steps from t() to t_end and calls observer(t, q, p) after every `every`-th step of this call
+  /// and after the last one. On the grid, t_end is reached by whole steps of h. Off the grid, the
+  /// last step is a shorter one, of size t_end - t_n from the last grid point t_n before t_end,
+  /// with the method's own coefficients at that step size: it is a step of the same symplectic
+  /// method (exact for U = 0, no interpolation error), so t() == t_end afterwards and the grid
+  /// restarts there. Validated before any step (t_end finite, not before t(), at most kMaxSteps
+  /// steps, the shorter step clear of the method's poles); a failed step keeps the steps before.
   template <class Observer>
-  void integrate(double t_end, Observer&& observer) {
-    for (long n = steps_until(t_end); n > 0; --n) {
+  void integrate(double t_end, Observer&& observer, long every = 1) {
+    const EndPlan plan = prepare_end(t_end, every);
+    for (long n = 1; n <= plan.whole; ++n) {
       step();
+      if (n % every == 0 || (n == plan.whole && !plan.shorter)) observer(t(), q(), p());
+    }
+    if (plan.shorter) {
+      step_to(t_end);
       observer(t(), q(), p());
     }
   }
   void integrate(double t_end) {
     integrate(t_end, [](double, const Eigen::VectorXd&, const Eigen::VectorXd&) {});
   }
+  /// Steps to t_end as integrate(t_end) does and calls observer(t, q, p) at each of `times`
+  /// (ascending, within [t(), t_end]) with the state at that time from state_at: off-grid
+  /// output does not move the grid, so the trajectory is the one without output.
+  template <class Observer>
+  void integrate(double t_end, const Eigen::Ref<const Eigen::VectorXd>& times,
+                 Observer&& observer) {
+    require_output_times(t_end, times);
+    prepare_end(t_end, 1);
+    Eigen::VectorXd q(q_.size()), p(p_.size());
+    for (double tau : times) {
+      for (long n = steps_until(tau); n > 0; --n) step();
+      state_at(tau, q, p);
+      observer(tau, q, p);
+    }
+    integrate(t_end);
+  }
+  /// The state at t in [t(), t() + h] without changing the integrator: one step of size t - t()
+  /// from the current state with the method's coefficients at that step size (the current state
+  /// itself when t is t() up to round-off). Its error is the method's: O(h^order) globally, and
+  /// it inherits the method's energy behaviour (measured in tests/runtime/output_test.cpp).
+  /// Counts its gradient evaluations and iterations in statistics(), not in steps.
+  void state_at(double t, Eigen::VectorXd& q, Eigen::VectorXd& p);
+
+  /// At most this many steps per integrate call: beyond 2^53 the grid t0 + n h is not exact.
+  static constexpr double kMaxSteps = 9007199254740992.0;
 
   /// Replaces the state (validated first; forgets the stage history used for starting guesses).
   void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p, double t);
@@ -94,7 +134,11 @@ class Integrator {
   const Statistics& statistics() const { return statistics_; }
   /// H(q, p) = 1/2 p^T p + 1/2 q^T M q + U(q); needs System::potential.
   double energy() const;
-  /// The number of steps of size h from t() to t_end (erkn::Error unless a whole number).
+  /// H at another state (of this system's dimension), e.g. one from state_at.
+  double energy(const Eigen::VectorXd& q, const Eigen::VectorXd& p) const;
+  /// The number of whole steps of size h from t() towards t_end: t_end on the grid counts as
+  /// reached, else the steps stop at the last grid point before t_end. erkn::Error if t_end is
+  /// not finite, lies before t(), or needs more than kMaxSteps steps.
   long steps_until(double t_end) const;
 
  private:
@@ -106,6 +150,20 @@ class Integrator {
   long steps_since_base_ = 0;
   Statistics statistics_;
   std::unique_ptr<detail::StepperBase> stepper_;
+  // The stepper of the last step size other than h (a shorter last step, state_at), reused
+  // while that size recurs.
+  std::unique_ptr<detail::StepperBase> short_stepper_;
+  double short_h_ = 0;
+
+  struct EndPlan {
+    long whole = 0;        // steps of size h
+    bool shorter = false;  // then one shorter step to t_end
+  };
+  EndPlan plan_to(double t_end) const;
+  EndPlan prepare_end(double t_end, long every);
+  void require_output_times(double t_end, const Eigen::Ref<const Eigen::VectorXd>& times) const;
+  detail::StepperBase& stepper_of_size(double h);
+  void step_to(double t_end);
 };
 
 }  // namespace erkn

@@ -1,0 +1,212 @@
+// Output at any time: integrate to an off-grid t_end (a last shorter step with its own
+// coefficients), state_at / output times between grid points, observers every k steps, and the
+// step-count and grid-resolution limits (issue 12, defects 1 and 2).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "problems.hpp"
+
+namespace erkn::test {
+namespace {
+
+const Eigen::Vector3d kQ(0.6, -0.4, 0.3), kP(0.2, 0.5, -0.7);
+
+Integrator make(double h, const Method& m = Method::by_name("SERKN2s4")) {
+  return Integrator(m, polynomial_system(), h, kQ, kP);
+}
+
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Least-squares slope of log(err) against log(h) over the last four points.
+double slope(const std::vector<double>& x, const std::vector<double>& y) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (size_t i = x.size() - 4; i < x.size(); ++i)
+    sx += x[i], sy += y[i], sxx += x[i] * x[i], sxy += x[i] * y[i];
+  return (4 * sxy - sx * sy) / (4 * sxx - sx * sx);
+}
+
+TEST(Output, OffGridEndTakesWholeStepsThenOneShorterStepOfTheSameMethod) {
+  Integrator a = make(0.1), b = make(0.1);
+  a.integrate(0.35);
+  EXPECT_EQ(a.t(), 0.35);
+  EXPECT_EQ(a.statistics().steps, 4);
+  for (int k = 0; k < 3; ++k) b.step();
+  Integrator c(b.method(), polynomial_system(), 0.35 - b.t(), b.q(), b.p());
+  c.step();  // the shorter step, by a fresh integrator whose h is that step
+  EXPECT_LT((a.q() - c.q()).norm(), 1e-15);
+  EXPECT_LT((a.p() - c.p()).norm(), 1e-15);
+  a.step();  // the grid restarts at 0.35
+  EXPECT_DOUBLE_EQ(a.t(), 0.45);
+}
+
+TEST(Output, EndTimeWithinRoundOffOfTheGridIsTheGridPoint) {
+  Integrator a = make(0.1);
+  a.integrate(0.3);  // 3 * 0.1 = 0.30000000000000004
+  EXPECT_EQ(a.statistics().steps, 3);
+  EXPECT_EQ(a.steps_until(0.3), 0);
+}
+
+TEST(Output, ObserverEveryKStepsAndAtTheEnd) {
+  for (const double t_end : {1.0, 1.05}) {
+    Integrator a = make(0.1);
+    std::vector<double> times;
+    a.integrate(
+        t_end,
+        [&](double t, const Eigen::VectorXd&, const Eigen::VectorXd&) { times.push_back(t); }, 3);
+    ASSERT_EQ(times.size(), 4u) << t_end;
+    EXPECT_NEAR(times[0], 0.3, 1e-15);
+    EXPECT_NEAR(times[2], 0.9, 1e-15);
+    EXPECT_EQ(times[3], t_end);
+  }
+  Integrator a = make(0.1);
+  EXPECT_NE(error_of([&] {
+              a.integrate(
+                  1.0, [](double, auto&, auto&) {}, 0);
+            }).find("observer interval must be >= 1"),
+            std::string::npos);
+  EXPECT_EQ(a.t(), 0.0);
+}
+
+// Issue 12, defect 1: the step count 1e31 used to overflow a long (undefined behaviour) and
+// integrate returned at once without a step or an error.
+TEST(Output, StepCountBeyondTheLimitIsAClearError) {
+  Integrator a = make(0.1);
+  const std::string what = error_of([&] { a.integrate(1e30); });
+  EXPECT_NE(what.find("step-count limit 2^53"), std::string::npos) << what;
+  EXPECT_NE(error_of([&] { a.steps_until(1e30); }), "");
+  EXPECT_EQ(a.t(), 0.0);
+  EXPECT_EQ(a.statistics().steps, 0);
+  EXPECT_EQ(a.steps_until(1e13), 100000000000000L);  // 1e14 steps: within the limit
+}
+
+// Issue 12, defect 2: the whole-number tolerance used to scale with |t_end|, so t_end = 1e8 +
+// 0.05 (h = 0.1) ended at 1e8 + 0.1, and 1e7 + 0.01 (h = 0.02) at 1e7 + 0.02.
+TEST(Output, LargeOffGridEndTimesEndExactlyThere) {
+  for (const auto& [t0, h, rest] : {std::tuple{1e8, 0.1, 0.05}, std::tuple{1e7, 0.02, 0.01}}) {
+    Integrator a = make(h);
+    a.set_state(kQ, kP, t0);
+    a.integrate(t0 + rest);
+    EXPECT_EQ(a.t(), t0 + rest);
+    EXPECT_EQ(a.statistics().steps, 1);
+    // One step of the representable t0 + rest - t0 from the same state.
+    Integrator b(a.method(), polynomial_system(), (t0 + rest) - t0, kQ, kP);
+    b.step();
+    EXPECT_LT((a.q() - b.q()).norm(), 1e-15);
+  }
+  Integrator a = make(0.1);  // on the grid at large t: whole steps only
+  a.set_state(kQ, kP, 1e8);
+  a.integrate(1e8 + 0.3);
+  EXPECT_EQ(a.statistics().steps, 3);
+}
+
+TEST(Output, StepSizeBelowTheRoundOffOfTIsRefused) {
+  Integrator a = make(1e-9);
+  a.set_state(kQ, kP, 1e8);
+  EXPECT_NE(error_of([&] { a.integrate(1e8 + 1); }).find("time grid cannot be resolved"),
+            std::string::npos);
+}
+
+TEST(Output, OutputTimesDoNotChangeTheTrajectory) {
+  Integrator a = make(0.1), b = make(0.1);
+  Eigen::VectorXd times(4);
+  times << 0.0, 0.123, 0.5, 0.77;
+  std::vector<double> seen;
+  a.integrate(0.8, times, [&](double t, const Eigen::VectorXd& q, const Eigen::VectorXd&) {
+    seen.push_back(t);
+    if (t == 0.0) EXPECT_EQ(q, Eigen::VectorXd(kQ));
+  });
+  b.integrate(0.8);
+  EXPECT_EQ(seen, std::vector<double>(times.begin(), times.end()));
+  EXPECT_EQ(a.q(), b.q());
+  EXPECT_EQ(a.p(), b.p());
+  EXPECT_EQ(a.statistics().steps, b.statistics().steps);
+  EXPECT_GT(a.statistics().gradient_evaluations, b.statistics().gradient_evaluations);
+  Eigen::VectorXd bad(2);
+  bad << 0.5, 0.4;
+  EXPECT_NE(
+      error_of([&] { a.integrate(2.0, bad, [](double, auto&, auto&) {}); }).find("not ascending"),
+      std::string::npos);
+  Eigen::VectorXd q, p;
+  EXPECT_NE(error_of([&] { a.state_at(a.t() + 0.2, q, p); }).find("within one step"),
+            std::string::npos);
+}
+
+// Output between grid points has the method's order: the global error at the grid point before
+// plus the local error of the shorter step. Negative control: the state at the grid point before
+// (zero-order hold, error ~ |p| theta h with theta varying with h) fails the same fit.
+TEST(Output, OutputBetweenGridPointsHasTheOrderOfTheMethod) {
+  const double T = 2.0;
+  Eigen::VectorXd times(3);
+  times << 0.37, 1.2345, 1.9;  // off the grid for every h below
+  std::vector<Eigen::VectorXd> ref;
+  const System s = polynomial_system();
+  for (double tau : times) {
+    Eigen::VectorXd q = kQ, p = kP;
+    rk4(s, s.M.matrix(), tau, 60000, q, p);
+    ref.push_back(q);
+  }
+  for (const Method& m : Method::all()) {
+    SCOPED_TRACE(std::string(m.name()));
+    std::vector<double> x, y, y_hold;
+    for (int n = 10; n <= 2560; n *= 2) {
+      Integrator run = make(T / n, m);
+      double err = 0, err_hold = 0;
+      size_t k = 0;
+      run.integrate(T, times, [&](double, const Eigen::VectorXd& q, const Eigen::VectorXd&) {
+        err = std::max(err, (q - ref[k]).norm());
+        err_hold = std::max(err_hold, (run.q() - ref[k]).norm());  // (the grid point before)
+        ++k;
+      });
+      if (err < 3e-13) break;
+      x.push_back(std::log(T / n)), y.push_back(std::log(err)),
+          y_hold.push_back(std::log(err_hold));
+    }
+    ASSERT_GE(x.size(), 4u);
+    const double order = slope(x, y);
+    std::printf("%-14s order %d: output between grid points, observed order %.2f\n",
+                std::string(m.name()).c_str(), m.order(), order);
+    EXPECT_NEAR(order, m.order(), 0.15);
+    EXPECT_LT(slope(x, y_hold), m.order() - 0.5);
+  }
+}
+
+// Over a long run the energy of the output between grid points stays within the grid's own
+// energy error (no drift), and so does stepping to each output time with a shorter step.
+TEST(Output, EnergyAtOutputTimesBehavesLikeTheGrid) {
+  const double h = 0.1, T = 1000;
+  for (const Method& m : methods_of(Kind::erkn)) {
+    SCOPED_TRACE(std::string(m.name()));
+    Integrator grid = make(h, m), stepped = make(h, m);
+    const double H0 = grid.energy();
+    double e_grid = 0, e_out[2] = {0, 0}, e_step[2] = {0, 0};
+    grid.integrate(
+        T, [&](double, auto&, auto&) { e_grid = std::max(e_grid, std::abs(grid.energy() - H0)); });
+    Integrator out = make(h, m);
+    Eigen::VectorXd times = Eigen::VectorXd::LinSpaced(2000, 0.0, T).array() + 0.0371;
+    times[times.size() - 1] = T;
+    out.integrate(T, times, [&](double t, const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
+      e_out[t > T / 2] = std::max(e_out[t > T / 2], std::abs(out.energy(q, p) - H0));
+      stepped.integrate(t);
+      e_step[t > T / 2] = std::max(e_step[t > T / 2], std::abs(stepped.energy() - H0));
+    });
+    std::printf(
+        "%-14s max |H - H0| over t <= %g: grid %.2e; output between grid points %.2e "
+        "(first half) %.2e (second half); stepping to each output time %.2e %.2e\n",
+        std::string(m.name()).c_str(), T, e_grid, e_out[0], e_out[1], e_step[0], e_step[1]);
+    EXPECT_LE(std::max(e_out[0], e_out[1]), 1.5 * e_grid);
+    EXPECT_LE(e_out[1], 2 * e_out[0]);
+    EXPECT_LE(e_step[1], 2 * e_step[0]);
+  }
+}
+
+}  // namespace
+}  // namespace erkn::test
