@@ -1,0 +1,99 @@
+// erkn::mpi (optional component erkn::mpi; needs MPI and FFTW-MPI): beyond one machine.
+//
+// GridIntegrator integrates q'' + M q = -grad U(q) for M = Stiffness::grid (two or more axes)
+// with the state distributed in slabs along axis 0 over the ranks of a communicator (FFTW-MPI's
+// layout). Per step the only communication is the transforms into M's eigenbasis (FFTW-MPI,
+// transposed output: one all-to-all per transform) and one MPI_Allreduce per stage iteration
+// (the stage solver's norms); the coefficients act on each rank's spectral rows and grad U on
+// each rank's slab. The step is erkn::Integrator's (eq. (d) of the paper, the same starting
+// guesses and stopping test of the fixed-point stage iteration), so the result agrees with
+// erkn::Integrator's on the whole grid to round-off. A stage whose fixed-point iteration fails is
+// an error (there is no distributed Newton fallback): reduce h.
+//
+// The System's callbacks see the rank's slab: gradient must be pointwise (grad U(q)_j depends on
+// q_j only, as for sine-Gordon or phi^4), and potential returns the slab's part of U (the
+// integrator sums the parts). Every call below is collective over the communicator; an error on
+// any rank is thrown on every rank, with the same message.
+//
+//   MPI_Init(&argc, &argv);
+//   using B = erkn::GridAxis::Boundary;
+//   const erkn::Stiffness M = erkn::Stiffness::grid({{256, 1.0 / 64, B::periodic},
+//                                                    {256, 1.0 / 64, B::periodic}});
+//   const erkn::mpi::Slab slab = erkn::mpi::slab(MPI_COMM_WORLD, M);  // this rank's rows
+//   Eigen::VectorXd q0(slab.size), p0 = Eigen::VectorXd::Zero(slab.size);
+//   for (Eigen::Index r = 0; r < slab.rows; ++r)      // global row slab.first + r of axis 0
+//     for (Eigen::Index j = 0; j < 256; ++j) q0[r * 256 + j] = initial(slab.first + r, j);
+//   erkn::System sys;
+//   sys.M = M;
+//   sys.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = q.array().sin(); };
+//   erkn::mpi::GridIntegrator run(MPI_COMM_WORLD, erkn::Method::by_name("SERKN2s4"), sys, 0.01,
+//                                 q0, p0);
+//   run.integrate(1.0);
+//   MPI_Finalize();
+#pragma once
+
+#include <mpi.h>
+
+#include <Eigen/Core>
+#include <erkn/erkn.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace erkn::mpi {
+
+/// The part of a grid one rank owns: rows first..first+rows-1 of axis 0 with all of the other
+/// axes, `size` unknowns in row-major order (rows may be 0 when there are more ranks than rows).
+struct Slab {
+  Eigen::Index first = 0, rows = 0, size = 0;
+};
+
+/// This rank's slab of the grid M (collective).
+Slab slab(MPI_Comm comm, const Stiffness& M);
+
+namespace detail {
+class GridStepper;
+}
+
+class GridIntegrator {
+ public:
+  /// q0, p0: this rank's slab. Validates everything on every rank (sizes, finiteness, h > 0,
+  /// poles) and plans the transforms.
+  GridIntegrator(MPI_Comm comm, const Method& method, System system, double h,
+                 const Eigen::VectorXd& q0, const Eigen::VectorXd& p0, const Options& options = {});
+  ~GridIntegrator();
+  GridIntegrator(GridIntegrator&&) noexcept;
+  GridIntegrator& operator=(GridIntegrator&&) noexcept;
+
+  void step();
+  /// Steps to t_end (a whole number of steps ahead, else erkn::Error and nothing done).
+  void integrate(double t_end);
+
+  /// This rank's slab of the state.
+  const Eigen::VectorXd& q() const;
+  const Eigen::VectorXd& p() const;
+  double t() const;
+  double h() const;
+  const Slab& slab() const;
+  /// This rank's counts (the same on every rank: the stage decisions are collective).
+  const Statistics& statistics() const;
+  /// Distributed transforms so far (each one all-to-all).
+  long transforms() const;
+  /// Wall time this rank spent in them (including the all-to-all waits).
+  double transform_seconds() const;
+  /// H(q, p) over the whole grid; needs System::potential (the slab's part of U).
+  double energy();
+  /// The whole vector from every rank's slab, on every rank (for output and tests).
+  Eigen::VectorXd gather(const Eigen::VectorXd& local) const;
+
+ private:
+  std::unique_ptr<detail::GridStepper> stepper_;
+};
+
+/// The trajectories of an ensemble distributed over the ranks of comm (contiguous blocks, each on
+/// `threads` threads per rank, 0: one per hardware thread) and all results on every rank, in
+/// trajectory order and bit-identical to Ensemble::integrate in one process.
+std::vector<TrajectoryResult> integrate(MPI_Comm comm, const Ensemble& ensemble, double t_end,
+                                        int threads = 0);
+
+}  // namespace erkn::mpi

@@ -1,0 +1,102 @@
+// erkn-mpi: sine-Gordon on a tensor grid distributed over MPI ranks (FFTW-MPI slabs).
+//   mpirun -np N erkn-mpi run [--grid 256x256] [--boundary periodic] [--shift 0]
+//                             [--method SERKN2s4] [--h 1e-3] [--steps 20] [--repeats 3]
+//   mpirun -np N erkn-mpi scaling --table FILE   appends this rank count's strong- and
+//                                                weak-scaling rows to FILE (tab-separated)
+//   erkn-mpi report --table FILE --out FILE.md   the scaling tables and the model beyond them
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <string>
+
+#include "report.hpp"
+#include "scene.hpp"
+
+namespace {
+
+using namespace erkn::mpi;
+
+std::map<std::string, std::string> options(int argc, char** argv, int first) {
+  std::map<std::string, std::string> o{{"--grid", "256x256"}, {"--boundary", "periodic"},
+                                       {"--shift", "0"},      {"--method", "SERKN2s4"},
+                                       {"--h", "1e-3"},       {"--steps", "20"},
+                                       {"--repeats", "3"},    {"--weak-rows", "64"}};
+  for (int i = first; i < argc; i += 2) {
+    if (i + 1 >= argc) throw erkn::Error(std::string("option ") + argv[i] + " needs a value");
+    o[argv[i]] = argv[i + 1];
+  }
+  return o;
+}
+
+scene::Settings settings(std::map<std::string, std::string>& o) {
+  scene::Settings s;
+  s.axes = scene::parse_axes(o["--grid"], o["--boundary"]);
+  s.shift = std::stod(o["--shift"]);
+  s.method = o["--method"];
+  s.h = std::stod(o["--h"]);
+  s.steps = std::stoi(o["--steps"]);
+  s.repeats = std::stoi(o["--repeats"]);
+  if (s.steps < 1 || s.repeats < 1) throw erkn::Error("--steps and --repeats must be >= 1");
+  return s;
+}
+
+void print(const std::string& kind, const scene::Settings& s, const scene::Timing& t) {
+  std::printf(
+      "%s: ranks %d, grid %s (d = %ld), %s, h = %g: %.3e s per step (%.0f %% in transforms), "
+      "%.1f transforms and %.1f grad U per step, all-to-all %.3g MB per step, energy drift "
+      "%.2e, sum q = %.15e\n",
+      kind.c_str(), t.ranks, scene::describe(s.axes).c_str(), t.d, s.method.c_str(), s.h,
+      t.seconds_per_step, 100 * t.transform_seconds_per_step / t.seconds_per_step,
+      t.transforms_per_step, t.gradients_per_step,
+      report::alltoall_bytes(t.d, t.ranks, t.transforms_per_step) / 1e6, t.energy_drift, t.sum_q);
+}
+
+int scaling(std::map<std::string, std::string>& o, int rank, int ranks) {
+  scene::Settings strong = settings(o), weak = strong;
+  weak.axes[0].n = std::stol(o["--weak-rows"]) * ranks;  // fixed rows per rank along axis 0
+  weak.axes[0].spacing = strong.axes[0].spacing * double(strong.axes[0].n) / double(weak.axes[0].n);
+  const scene::Timing ts = scene::run(MPI_COMM_WORLD, strong),
+                      tw = scene::run(MPI_COMM_WORLD, weak);
+  if (rank == 0) {
+    print("strong", strong, ts), print("weak", weak, tw);
+    std::ofstream table(o.at("--table"), std::ios::app);
+    report::append(table, "strong", scene::describe(strong.axes), strong.method, ts);
+    report::append(table, "weak", scene::describe(weak.axes), weak.method, tw);
+    if (!table) throw erkn::Error("cannot write " + o.at("--table"));
+  }
+  return 0;
+}
+
+int dispatch(int argc, char** argv, int rank, int ranks) {
+  const std::string command = argc > 1 ? argv[1] : "";
+  auto o = options(argc, argv, 2);
+  if (command == "run") {
+    const scene::Settings s = settings(o);
+    const scene::Timing t = scene::run(MPI_COMM_WORLD, s);
+    if (rank == 0) print("run", s, t);
+    return 0;
+  }
+  if (command == "scaling") return scaling(o, rank, ranks);
+  if (command == "report") {
+    if (rank == 0) report::write(o.at("--table"), o.at("--out"));
+    return 0;
+  }
+  throw erkn::Error("usage: erkn-mpi run|scaling|report [options] (see the header of main.cpp)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  int rank = 0, ranks = 1, status = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  try {
+    status = dispatch(argc, argv, rank, ranks);
+  } catch (const std::exception& e) {  // (erkn::Errors are thrown on every rank alike)
+    if (rank == 0) std::fprintf(stderr, "erkn-mpi: %s\n", e.what());
+    status = 2;
+  }
+  MPI_Finalize();
+  return status;
+}

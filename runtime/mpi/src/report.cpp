@@ -1,0 +1,144 @@
+#include "report.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <vector>
+
+namespace erkn::mpi::report {
+namespace {
+
+struct Row {
+  std::string kind, grid, method;
+  scene::Timing t;
+};
+
+std::map<std::pair<std::string, int>, Row> read(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error("cannot read " + path);
+  std::map<std::pair<std::string, int>, Row> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream f(line);
+    Row r;
+    scene::Timing& t = r.t;
+    if (f >> r.kind >> r.grid >> r.method >> t.ranks >> t.d >> t.seconds_per_step >>
+        t.transform_seconds_per_step >> t.transforms_per_step >> t.gradients_per_step >>
+        t.energy_drift >> t.sum_q >> t.norm_q)
+      rows[{r.kind, t.ranks}] = r;
+  }
+  return rows;
+}
+
+std::string format(const char* f, double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, x);
+  return buf;
+}
+
+void measured_table(std::ostream& md, const std::map<std::pair<std::string, int>, Row>& rows,
+                    const std::string& kind) {
+  const auto one = rows.find({kind, 1});
+  md << "| ranks | grid | d | d per rank | time per step [ms] | "
+     << (kind == "strong" ? "speedup" : "time(1)/time(P)")
+     << " | in transforms | transforms per step | all-to-all per step [MB] | "
+        "relative energy drift | sum of q, relative to 1 rank |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& [key, r] : rows) {
+    if (key.first != kind) continue;
+    const scene::Timing& t = r.t;
+    const bool base = one != rows.end();
+    md << "| " << t.ranks << " | " << r.grid << " | " << t.d << " | " << t.d / t.ranks << " | "
+       << format("%.2f", 1e3 * t.seconds_per_step) << " | "
+       << (base ? format("%.2f", one->second.t.seconds_per_step / t.seconds_per_step) : "-")
+       << " | " << format("%.0f %%", 100 * t.transform_seconds_per_step / t.seconds_per_step)
+       << " | " << format("%.1f", t.transforms_per_step) << " | "
+       << format("%.2f", alltoall_bytes(double(t.d), t.ranks, t.transforms_per_step) / 1e6) << " | "
+       << format("%.1e", t.energy_drift) << " | "
+       << (base && kind == "strong" ? format("%.1e", std::abs(t.sum_q - one->second.t.sum_q) /
+                                                         std::abs(one->second.t.sum_q))
+                                    : "-")
+       << " |\n";
+  }
+}
+
+// Time per step predicted for d unknowns (grid side n) on P ranks: the measured local costs per
+// unknown, plus per transform an all-to-all with latency alpha per message and bandwidth beta.
+void model_table(std::ostream& md, const Row& base) {
+  const scene::Timing& t = base.t;
+  const double nT = t.transforms_per_step, d1 = double(t.d);
+  const double local = (t.seconds_per_step - t.transform_seconds_per_step) / d1;
+  const double fft = t.transform_seconds_per_step / (nT * d1 * std::log2(d1));
+  const double alpha = 2e-6, beta = 5e9;
+  md << "Measured on 1 rank (" << base.grid << ", " << base.method << "): " << format("%.1f", nT)
+     << " transforms per step, " << format("%.2f ns", 1e9 * local)
+     << " per unknown per step outside the transforms, " << format("%.3f ns", 1e9 * fft)
+     << " per unknown per log2(d) per transform. Assumed network "
+     << "(typical of an InfiniBand cluster, an assumption, not a measurement): latency alpha = "
+     << alpha * 1e6 << " us per message, bandwidth beta = " << beta / 1e9
+     << " GB/s per rank. Model per step:\n\n"
+     << "    T(d, P) = d/P (local + nT fft log2 d) + nT [ (P-1) alpha + 8 d (P-1) / (P^2 beta) "
+        "]\n\n"
+     << "Each transform is one all-to-all in which every rank sends 8 d (P-1)/P^2 bytes in P-1 "
+        "messages (total 8 d (P-1)/P bytes): the volume per rank falls like 1/P, the number of "
+        "messages grows like P, so latency dominates once d/P is small. Slabs need P <= the "
+        "smaller of the first two axes; beyond that a pencil decomposition (not FFTW-MPI) is "
+        "needed.\n\n"
+        "| grid | d | P | predicted time per step | all-to-all share | parallel efficiency |\n"
+        "|---|---|---|---|---|---|\n";
+  for (const auto& [grid, side, dims] :
+       {std::tuple{"1024^2", 1024.0, 2}, std::tuple{"4096^2", 4096.0, 2},
+        std::tuple{"256^3", 256.0, 3}, std::tuple{"1024^3", 1024.0, 3}}) {
+    const double d = std::pow(side, dims);
+    const double T1 = d * (local + nT * fft * std::log2(d));
+    for (int P : {1, 16, 64, 256, 1024, 4096}) {
+      if (P > side) {
+        md << "| " << grid << " | " << format("%.3g", d) << " | " << P
+           << " | beyond the slab limit (P > " << side << ") | | |\n";
+        continue;
+      }
+      const double comm = nT * ((P - 1) * alpha + 8 * d * (P - 1) / (double(P) * P * beta));
+      const double T = T1 / P + comm;
+      md << "| " << grid << " | " << format("%.3g", d) << " | " << P << " | "
+         << format(T < 1 ? "%.3g ms" : "%.3g s", T < 1 ? 1e3 * T : T) << " | "
+         << format("%.0f %%", 100 * comm / T) << " | " << format("%.0f %%", 100 * T1 / (P * T))
+         << " |\n";
+    }
+  }
+}
+
+}  // namespace
+
+void append(std::ostream& table, const std::string& kind, const std::string& grid,
+            const std::string& method, const scene::Timing& t) {
+  table.precision(17);
+  table << kind << '\t' << grid << '\t' << method << '\t' << t.ranks << '\t' << t.d << '\t'
+        << t.seconds_per_step << '\t' << t.transform_seconds_per_step << '\t'
+        << t.transforms_per_step << '\t' << t.gradients_per_step << '\t' << t.energy_drift << '\t'
+        << t.sum_q << '\t' << t.norm_q << '\n';
+}
+
+void write(const std::string& table, const std::string& markdown) {
+  const auto rows = read(table);
+  std::ofstream md(markdown);
+  md << "# Beyond one machine: MPI scaling\n\n"
+        "Written by `erkn-mpi report` from the rows `mpirun -np P erkn-mpi scaling` appended for "
+        "P = 1, 2, 4 (run by `scripts/main.sh`). Sine-Gordon on a periodic grid over [-1, 1]^2, "
+        "distributed in slabs along the first axis; times are the best of the repeats, of the "
+        "slowest rank. This machine has 2 cores shared with other jobs: 4 ranks are "
+        "oversubscribed (`--oversubscribe`), so the 4-rank rows show the cost of the exchange "
+        "rather than a speedup.\n\n## Strong scaling (fixed grid)\n\n";
+  measured_table(md, rows, "strong");
+  md << "\n## Weak scaling (fixed rows per rank)\n\n";
+  measured_table(md, rows, "weak");
+  md << "\n## Beyond this machine: the model\n\n";
+  const auto base = rows.find({"strong", 1});
+  if (base == rows.end())
+    md << "(no 1-rank strong-scaling row in the table: no model)\n";
+  else
+    model_table(md, base->second);
+  if (!md) throw Error("cannot write " + markdown);
+}
+
+}  // namespace erkn::mpi::report

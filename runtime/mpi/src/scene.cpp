@@ -1,0 +1,115 @@
+#include "scene.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <sstream>
+
+namespace erkn::mpi::scene {
+namespace {
+
+using Boundary = GridAxis::Boundary;
+
+Boundary boundary_of(const std::string& name) {
+  if (name == "periodic") return Boundary::periodic;
+  if (name == "dirichlet") return Boundary::dirichlet;
+  if (name == "neumann") return Boundary::neumann;
+  throw Error("unknown boundary '" + name + "' (periodic, dirichlet or neumann)");
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> parts;
+  std::stringstream in(s);
+  for (std::string part; std::getline(in, part, sep);) parts.push_back(part);
+  return parts;
+}
+
+// Coordinate of point j of an axis on [-1, 1] (periodic: nodes from -1; Dirichlet: interior
+// nodes; Neumann: cell centres).
+double coordinate(const GridAxis& a, Eigen::Index j) {
+  switch (a.boundary) {
+    case Boundary::periodic:
+      return -1 + double(j) * a.spacing;
+    case Boundary::dirichlet:
+      return -1 + double(j + 1) * a.spacing;
+    case Boundary::neumann:
+      return -1 + (double(j) + 0.5) * a.spacing;
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::vector<GridAxis> parse_axes(const std::string& grid, const std::string& boundaries) {
+  const std::vector<std::string> n = split(grid, 'x'), b = split(boundaries, ',');
+  if (n.size() < 2) throw Error("--grid needs two or more axes, like 256x256");
+  if (b.size() != 1 && b.size() != n.size())
+    throw Error("--boundary needs one name or one per axis");
+  std::vector<GridAxis> axes;
+  for (std::size_t a = 0; a < n.size(); ++a) {
+    const long size = std::stol(n[a]);
+    if (size < 2) throw Error("every axis needs at least 2 points");
+    const Boundary kind = boundary_of(b.size() == 1 ? b[0] : b[a]);
+    const double spacing = 2.0 / double(kind == Boundary::dirichlet ? size + 1 : size);
+    axes.push_back({Eigen::Index(size), spacing, kind});
+  }
+  return axes;
+}
+
+std::string describe(const std::vector<GridAxis>& axes) {
+  std::string s;
+  for (const GridAxis& a : axes) s += (s.empty() ? "" : "x") + std::to_string(a.n);
+  return s;
+}
+
+Timing run(MPI_Comm comm, const Settings& s) {
+  const Stiffness M = Stiffness::grid(s.axes, s.shift);
+  const Slab slab = mpi::slab(comm, M);
+  Eigen::VectorXd q0(slab.size), p0 = Eigen::VectorXd::Zero(slab.size);
+  for (Eigen::Index k = 0; k < slab.size; ++k) {  // Gaussian bump exp(-8|x|^2)
+    Eigen::Index rest = k;
+    double r2 = 0;
+    for (std::size_t a = s.axes.size(); a-- > 1;) {
+      const double x = coordinate(s.axes[a], rest % s.axes[a].n);
+      r2 += x * x, rest /= s.axes[a].n;
+    }
+    const double x0 = coordinate(s.axes[0], slab.first + rest);
+    r2 += x0 * x0;
+    q0[k] = 2 * std::exp(-8 * r2);
+  }
+  System sys;
+  sys.M = M;
+  sys.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = q.array().sin(); };
+  sys.potential = [](const Eigen::VectorXd& q) { return (1 - q.array().cos()).sum(); };
+  GridIntegrator run(comm, Method::by_name(s.method), sys, s.h, q0, p0);
+  Timing t;
+  MPI_Comm_size(comm, &t.ranks);
+  t.d = long(M.dim());
+  const double H0 = run.energy();
+  run.step();  // warm-up
+  t.seconds_per_step = 1e300;
+  for (int r = 0; r < s.repeats; ++r) {
+    const Statistics before = run.statistics();
+    const long transforms = run.transforms();
+    const double transform_seconds = run.transform_seconds();
+    MPI_Barrier(comm);
+    const double start = MPI_Wtime();
+    for (int k = 0; k < s.steps; ++k) run.step();
+    std::array<double, 2> times{MPI_Wtime() - start, run.transform_seconds() - transform_seconds};
+    MPI_Allreduce(MPI_IN_PLACE, times.data(), 2, MPI_DOUBLE, MPI_MAX, comm);
+    if (times[0] / s.steps < t.seconds_per_step) {
+      t.seconds_per_step = times[0] / s.steps;
+      t.transform_seconds_per_step = times[1] / s.steps;
+    }
+    t.transforms_per_step = double(run.transforms() - transforms) / s.steps;
+    t.gradients_per_step =
+        double(run.statistics().gradient_evaluations - before.gradient_evaluations) / s.steps;
+  }
+  t.energy_drift = std::abs(run.energy() - H0) / std::abs(H0);
+  std::array<double, 2> sums{run.q().sum(), run.q().squaredNorm()};
+  MPI_Allreduce(MPI_IN_PLACE, sums.data(), 2, MPI_DOUBLE, MPI_SUM, comm);
+  t.sum_q = sums[0], t.norm_q = std::sqrt(sums[1]);
+  return t;
+}
+
+}  // namespace erkn::mpi::scene

@@ -1,0 +1,143 @@
+#include "slab_transform.hpp"
+
+#include <mutex>
+#include <string>
+
+#include "erkn/error.hpp"
+
+namespace erkn::mpi::detail {
+namespace {
+
+using Boundary = GridAxis::Boundary;
+
+struct AxisKind {
+  fftw_r2r_kind forward, inverse;
+  double logical_size;  // FFTW's N: inverse(forward(x)) = N x
+};
+
+AxisKind kind_of(const GridAxis& a) {
+  const double n = double(a.n);
+  switch (a.boundary) {
+    case Boundary::periodic:
+      return {FFTW_R2HC, FFTW_HC2R, n};
+    case Boundary::dirichlet:
+      return {FFTW_RODFT00, FFTW_RODFT00, 2 * (n + 1)};
+    case Boundary::neumann:
+      return {FFTW_REDFT10, FFTW_REDFT01, 2 * n};
+  }
+  throw Error("unknown grid boundary");
+}
+
+// |x|^2 = sum_k w_k y_k^2 for the unnormalised forward transform y of one axis.
+Eigen::ArrayXd axis_weights(const GridAxis& a) {
+  const Eigen::Index n = a.n;
+  Eigen::ArrayXd w(n);
+  switch (a.boundary) {
+    case Boundary::periodic:  // halfcomplex: k and n-k are the cosine and sine of one frequency
+      w.setConstant(2.0 / double(n));
+      w[0] = 1.0 / double(n);
+      if (n % 2 == 0) w[n / 2] = 1.0 / double(n);
+      break;
+    case Boundary::dirichlet:
+      w.setConstant(1.0 / (2.0 * double(n + 1)));
+      break;
+    case Boundary::neumann:
+      w.setConstant(1.0 / (2.0 * double(n)));
+      w[0] = 1.0 / (4.0 * double(n));
+      break;
+  }
+  return w;
+}
+
+// The outer sum (eigenvalues) or product (weights) of per-axis factors, row-major.
+Eigen::ArrayXd outer(const std::vector<Eigen::ArrayXd>& factors, bool product) {
+  Eigen::ArrayXd acc = Eigen::ArrayXd::Constant(1, product ? 1.0 : 0.0);
+  for (const Eigen::ArrayXd& f : factors) {
+    Eigen::ArrayXd next(acc.size() * f.size());
+    for (Eigen::Index i = 0; i < acc.size(); ++i)
+      next.segment(i * f.size(), f.size()) = product ? (acc[i] * f).eval() : (acc[i] + f).eval();
+    acc.swap(next);
+  }
+  return acc;
+}
+
+void init_fftw_mpi() {
+  static std::once_flag once;
+  std::call_once(once, [] { fftw_mpi_init(); });
+}
+
+}  // namespace
+
+SlabTransform::SlabTransform(MPI_Comm comm, const Stiffness& M) {
+  if (M.structure() != Stiffness::Structure::grid || M.axes().size() < 2)
+    throw Error(
+        "the distributed integrator needs M = Stiffness::grid with at least two axes (FFTW-MPI "
+        "distributes slabs of axis 0); use erkn::Integrator for other forms of M");
+  init_fftw_mpi();
+  const std::vector<GridAxis>& axes = M.axes();
+  const int rank = int(axes.size());
+  std::vector<ptrdiff_t> n(axes.size());
+  std::vector<fftw_r2r_kind> forward_kinds(axes.size()), inverse_kinds(axes.size());
+  ptrdiff_t rest = 1;  // prod of n_2.. n_{K-1}
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    const AxisKind k = kind_of(axes[a]);
+    n[a] = ptrdiff_t(axes[a].n);
+    forward_kinds[a] = k.forward, inverse_kinds[a] = k.inverse;
+    scale_ /= k.logical_size;
+    if (a >= 2) rest *= n[a];
+  }
+  ptrdiff_t rows0, first0, rows1, first1;
+  const ptrdiff_t local = fftw_mpi_local_size_many_transposed(
+      rank, n.data(), 1, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, comm, &rows0, &first0,
+      &rows1, &first1);
+  first0_ = first0, rows0_ = rows0;
+  physical_size_ = rows0 * n[1] * rest;
+  spectral_size_ = rows1 * n[0] * rest;
+  in_ = fftw_alloc_real(std::max<ptrdiff_t>(local, 1));
+  out_ = fftw_alloc_real(std::max<ptrdiff_t>(local, 1));
+  forward_ = fftw_mpi_plan_r2r(rank, n.data(), in_, out_, comm, forward_kinds.data(),
+                               FFTW_ESTIMATE | FFTW_MPI_TRANSPOSED_OUT);
+  inverse_ = fftw_mpi_plan_r2r(rank, n.data(), in_, out_, comm, inverse_kinds.data(),
+                               FFTW_ESTIMATE | FFTW_MPI_TRANSPOSED_IN);
+  if (!forward_ || !inverse_) throw Error("FFTW-MPI could not plan the grid transforms");
+  // Spectral layout: (k1 local, k0, k2, ...).
+  std::vector<Eigen::ArrayXd> mu, w;
+  const auto add = [&](const GridAxis& a, Eigen::Index first, Eigen::Index count) {
+    mu.push_back(a.eigenvalues().array().segment(first, count));
+    w.push_back(axis_weights(a).segment(first, count));
+  };
+  add(axes[1], first1, rows1);
+  add(axes[0], 0, axes[0].n);
+  for (std::size_t a = 2; a < axes.size(); ++a) add(axes[a], 0, axes[a].n);
+  lambda_ = (outer(mu, false) + M.shift()).max(0.0);  // (round-off negatives, as M.eigenvalues())
+  weights_ = outer(w, true);
+}
+
+SlabTransform::~SlabTransform() {
+  if (forward_) fftw_destroy_plan(forward_);
+  if (inverse_) fftw_destroy_plan(inverse_);
+  fftw_free(in_);
+  fftw_free(out_);
+}
+
+void SlabTransform::forward(const Eigen::Ref<const Eigen::VectorXd>& x,
+                            Eigen::Ref<Eigen::ArrayXd> y) {
+  const double start = MPI_Wtime();
+  Eigen::Map<Eigen::VectorXd>(in_, physical_size_) = x;
+  fftw_execute(forward_);
+  y = Eigen::Map<const Eigen::ArrayXd>(out_, spectral_size_);
+  ++count_;
+  seconds_ += MPI_Wtime() - start;
+}
+
+void SlabTransform::inverse(const Eigen::Ref<const Eigen::ArrayXd>& y,
+                            Eigen::Ref<Eigen::VectorXd> x) {
+  const double start = MPI_Wtime();
+  Eigen::Map<Eigen::ArrayXd>(in_, spectral_size_) = y;
+  fftw_execute(inverse_);
+  x = scale_ * Eigen::Map<const Eigen::VectorXd>(out_, physical_size_);
+  ++count_;
+  seconds_ += MPI_Wtime() - start;
+}
+
+}  // namespace erkn::mpi::detail

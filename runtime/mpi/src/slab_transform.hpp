@@ -1,0 +1,61 @@
+// The transforms into M's eigenbasis for a tensor grid distributed in slabs, with FFTW-MPI.
+//
+// Per axis the real transform of erkn::GridAxis (periodic: R2HC / HC2R; Dirichlet: RODFT00 both
+// ways; Neumann: REDFT10 / REDFT01). The forward transform ends transposed
+// (FFTW_MPI_TRANSPOSED_OUT: physical slab rows of axis 0 in, spectral rows of axis 1 out, each of
+// the two axes whole in the other's layout) and the inverse starts from that layout
+// (FFTW_MPI_TRANSPOSED_IN), so each costs exactly one all-to-all and the spectral data never needs
+// transposing back. In spectral coordinates the local entry (k1 - first1, k0, k2, ..., k_{K-1})
+// (row-major) has the eigenvalue shift + mu_0[k0] + mu_1[k1] + ... and the norm weight W_0[k0]
+// W_1[k1] ... with |x|^2 = sum W y^2 (Parseval for the unnormalised forward transform).
+#pragma once
+
+#include <fftw3-mpi.h>
+#include <mpi.h>
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "erkn/stiffness.hpp"
+
+namespace erkn::mpi::detail {
+
+class SlabTransform {
+ public:
+  /// M must be a grid with at least two axes (collective over comm; throws erkn::Error on every
+  /// rank otherwise).
+  SlabTransform(MPI_Comm comm, const Stiffness& M);
+  ~SlabTransform();
+  SlabTransform(const SlabTransform&) = delete;
+  SlabTransform& operator=(const SlabTransform&) = delete;
+
+  Eigen::Index physical_size() const { return physical_size_; }
+  Eigen::Index spectral_size() const { return spectral_size_; }
+  Eigen::Index first_row() const { return first0_; }  ///< first local index along axis 0
+  Eigen::Index rows() const { return rows0_; }        ///< local extent along axis 0
+  /// Eigenvalue of M and norm weight of each local spectral coordinate.
+  const Eigen::ArrayXd& eigenvalues() const { return lambda_; }
+  const Eigen::ArrayXd& weights() const { return weights_; }
+  /// Collective: y = forward(x), x = inverse(y) (normalised so inverse(forward(x)) = x).
+  void forward(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::ArrayXd> y);
+  void inverse(const Eigen::Ref<const Eigen::ArrayXd>& y, Eigen::Ref<Eigen::VectorXd> x);
+  /// Transforms executed by this rank (each one all-to-all over comm).
+  long count() const { return count_; }
+  /// Wall time spent in them (MPI_Wtime).
+  double seconds() const { return seconds_; }
+  /// Local partial sum of W y^2 (allreduce it for |x|^2).
+  double local_squared_norm(const Eigen::Ref<const Eigen::ArrayXd>& y) const {
+    return (weights_ * y.square()).sum();
+  }
+
+ private:
+  Eigen::Index physical_size_ = 0, spectral_size_ = 0, first0_ = 0, rows0_ = 0;
+  Eigen::ArrayXd lambda_, weights_;
+  double scale_ = 1;                       // 1 / prod of FFTW's logical sizes
+  double *in_ = nullptr, *out_ = nullptr;  // FFTW-MPI buffers (local size incl. transpose room)
+  fftw_plan forward_ = nullptr, inverse_ = nullptr;
+  long count_ = 0;
+  double seconds_ = 0;
+};
+
+}  // namespace erkn::mpi::detail

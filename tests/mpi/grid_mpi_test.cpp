@@ -1,0 +1,205 @@
+// erkn::mpi on 1, 2 and 4 ranks (ctest runs this program under mpirun with each count): the
+// distributed integrator agrees with erkn::Integrator on the whole grid to round-off, for every
+// method and every boundary; errors on one rank are errors on all; ensembles over ranks are
+// bit-identical to one process.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <erkn/mpi.hpp>
+#include <limits>
+
+namespace erkn::test {
+namespace {
+
+using B = GridAxis::Boundary;
+
+int rank() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+int ranks() {
+  int n = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &n);
+  return n;
+}
+
+// Uneven sizes (7 and 6 rows over 2 or 4 ranks), every boundary, and a mass shift. Spacing 0.55
+// keeps h^2 lambda <= 0.45 at h = 0.1, below every method's poles.
+struct Grid {
+  std::vector<GridAxis> axes;
+  double shift;
+};
+std::vector<Grid> grids() {
+  return {{{{8, 0.55, B::periodic}, {6, 0.55, B::periodic}}, 0.0},
+          {{{7, 0.55, B::dirichlet}, {6, 0.55, B::neumann}, {5, 0.55, B::periodic}}, 0.5},
+          {{{6, 0.55, B::neumann}, {7, 0.55, B::dirichlet}}, 0.0}};
+}
+
+System sine_gordon(const Stiffness& M) {
+  System s;
+  s.M = M;
+  s.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = q.array().sin(); };
+  s.potential = [](const Eigen::VectorXd& q) { return (1 - q.array().cos()).sum(); };
+  return s;
+}
+
+// The whole initial state (a smooth function of the global index) and this rank's slab of it.
+void initial(Eigen::Index d, Eigen::VectorXd& q, Eigen::VectorXd& p) {
+  q.resize(d), p.resize(d);
+  for (Eigen::Index k = 0; k < d; ++k) {
+    q[k] = 1.5 * std::sin(0.37 * double(k) + 0.2);
+    p[k] = 0.8 * std::cos(0.23 * double(k));
+  }
+}
+
+double max_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  return (a - b).lpNorm<Eigen::Infinity>() / std::max(1.0, b.lpNorm<Eigen::Infinity>());
+}
+
+struct Runs {
+  Eigen::VectorXd q_mpi, p_mpi, q_serial, p_serial;
+  double H_mpi, H_serial;
+};
+
+Runs run_both(const Method& method, const Grid& g, double h, int steps) {
+  const Stiffness M = Stiffness::grid(g.axes, g.shift);
+  Eigen::VectorXd q0, p0;
+  initial(M.dim(), q0, p0);
+  const mpi::Slab slab = mpi::slab(MPI_COMM_WORLD, M);
+  const Eigen::Index offset = slab.size == 0 ? 0 : slab.first * (M.dim() / g.axes[0].n);
+  mpi::GridIntegrator distributed(MPI_COMM_WORLD, method, sine_gordon(M), h,
+                                  q0.segment(offset, slab.size), p0.segment(offset, slab.size));
+  Integrator serial(method, sine_gordon(M), h, q0, p0);
+  for (int k = 0; k < steps; ++k) distributed.step(), serial.step();
+  return {distributed.gather(distributed.q()),
+          distributed.gather(distributed.p()),
+          serial.q(),
+          serial.p(),
+          distributed.energy(),
+          serial.energy()};
+}
+
+TEST(GridMpi, SlabsPartitionTheGrid) {
+  for (const Grid& g : grids()) {
+    const Stiffness M = Stiffness::grid(g.axes, g.shift);
+    const mpi::Slab s = mpi::slab(MPI_COMM_WORLD, M);
+    long sizes = long(s.size), rows = long(s.rows);
+    MPI_Allreduce(MPI_IN_PLACE, &sizes, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+    MPI_Allreduce(MPI_IN_PLACE, &rows, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+    EXPECT_EQ(sizes, M.dim());
+    EXPECT_EQ(rows, g.axes[0].n);
+  }
+}
+
+TEST(GridMpi, AgreesWithTheSingleProcessIntegratorForEveryMethodAndBoundary) {
+  for (const Method& method : Method::all())
+    for (const Grid& g : grids()) {
+      SCOPED_TRACE(std::string(method.name()) + ", grid of " + std::to_string(g.axes.size()) +
+                   " axes, " + std::to_string(ranks()) + " ranks");
+      const Runs r = run_both(method, g, 0.1, 12);
+      EXPECT_LE(max_difference(r.q_mpi, r.q_serial), 1e-13);
+      EXPECT_LE(max_difference(r.p_mpi, r.p_serial), 1e-13);
+      EXPECT_NEAR(r.H_mpi, r.H_serial, 1e-13 * std::abs(r.H_serial));
+      EXPECT_GT(r.q_serial.lpNorm<Eigen::Infinity>(), 0.1);  // (a non-trivial state)
+    }
+}
+
+TEST(GridMpi, TheComparisonDetectsADifferentStepSize) {  // negative control
+  const Grid g = grids()[1];
+  const Runs a = run_both(Method::by_name("SERKN2s4"), g, 0.1, 12);
+  const Runs b = run_both(Method::by_name("SERKN2s4"), g, 0.1 * (1 + 1e-6), 12);
+  EXPECT_GT(max_difference(a.q_mpi, b.q_serial), 1e-9);
+}
+
+TEST(GridMpi, ANonFiniteGradientOnOneRankIsAnErrorOnEveryRankAndTheStateIsUnchanged) {
+  const Grid g = grids()[0];
+  const Stiffness M = Stiffness::grid(g.axes, g.shift);
+  System sys = sine_gordon(M);
+  const bool culprit = rank() == ranks() - 1;
+  sys.gradient = [culprit, calls = 0](const Eigen::VectorXd& q, Eigen::VectorXd& g) mutable {
+    g = q.array().sin();
+    if (culprit && ++calls == 25 && g.size() > 0) g[0] = std::numeric_limits<double>::infinity();
+  };
+  const mpi::Slab slab = mpi::slab(MPI_COMM_WORLD, M);
+  mpi::GridIntegrator run(MPI_COMM_WORLD, Method::by_name("SERKN3s4(1)"), sys, 0.1,
+                          Eigen::VectorXd::Constant(slab.size, 0.3),
+                          Eigen::VectorXd::Constant(slab.size, 0.1));
+  std::string message;
+  Eigen::VectorXd before;
+  try {
+    for (int k = 0; k < 10; ++k) {
+      before = run.q();
+      run.step();
+    }
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("non-finite"), std::string::npos) << message;
+  if (ranks() > 1)
+    EXPECT_NE(message.find("rank " + std::to_string(ranks() - 1)), std::string::npos) << message;
+  EXPECT_EQ(run.q(), before);
+  EXPECT_GT(run.statistics().steps, 0);
+}
+
+TEST(GridMpi, BadInputIsRefusedOnEveryRank) {
+  const Grid g = grids()[0];
+  const Stiffness M = Stiffness::grid(g.axes, g.shift);
+  const mpi::Slab slab = mpi::slab(MPI_COMM_WORLD, M);
+  const Method& m = Method::by_name("SERKN2s4");
+  const Eigen::VectorXd z = Eigen::VectorXd::Zero(slab.size);
+  // A wrong size on rank 0 only.
+  const Eigen::VectorXd q0 = Eigen::VectorXd::Zero(slab.size + (rank() == 0 ? 1 : 0));
+  EXPECT_THROW(mpi::GridIntegrator(MPI_COMM_WORLD, m, sine_gordon(M), 0.1, q0, z), Error);
+  EXPECT_THROW(mpi::GridIntegrator(MPI_COMM_WORLD, m, sine_gordon(M), -0.1, z, z), Error);
+  EXPECT_THROW(mpi::GridIntegrator(MPI_COMM_WORLD, m, sine_gordon(Stiffness::scalar(1)), 0.1, z, z),
+               Error);
+  const Stiffness line = Stiffness::grid({{16, 0.5, B::periodic}});
+  EXPECT_THROW(mpi::slab(MPI_COMM_WORLD, line), Error);
+  // Still usable afterwards: no rank is stuck in a collective call.
+  mpi::GridIntegrator ok(MPI_COMM_WORLD, m, sine_gordon(M), 0.1, z, z);
+  ok.integrate(0.5);
+  EXPECT_DOUBLE_EQ(ok.t(), 0.5);
+}
+
+Member pendulum(std::size_t i) {
+  Member m;
+  m.system.M = Stiffness::scalar(1 + 0.1 * double(i));
+  m.system.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = q.array().sin(); };
+  m.q0 = Eigen::VectorXd::Constant(2, 0.1 * double(i));
+  m.p0 = Eigen::VectorXd::Constant(2, i == 5 ? std::numeric_limits<double>::quiet_NaN() : 0.5);
+  return m;
+}
+
+TEST(GridMpi, AnEnsembleOverRanksIsBitIdenticalToOneProcess) {
+  const Ensemble ensemble(Method::by_name("SERKN3s4(2)"), 0.05, 11, pendulum);
+  const auto distributed = mpi::integrate(MPI_COMM_WORLD, ensemble, 2.0, 2);
+  const auto local = ensemble.integrate(2.0, 1);
+  ASSERT_EQ(distributed.size(), local.size());
+  for (std::size_t i = 0; i < local.size(); ++i) {
+    EXPECT_EQ(distributed[i].q, local[i].q) << i;
+    EXPECT_EQ(distributed[i].p.size(), local[i].p.size()) << i;
+    EXPECT_EQ(distributed[i].t, local[i].t) << i;
+    EXPECT_EQ(distributed[i].error, local[i].error) << i;
+    EXPECT_EQ(distributed[i].statistics.gradient_evaluations,
+              local[i].statistics.gradient_evaluations);
+  }
+  EXPECT_FALSE(distributed[5].ok());  // (p0 is NaN)
+  EXPECT_TRUE(distributed[10].ok());
+}
+
+}  // namespace
+}  // namespace erkn::test
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  // Every rank checks the same gathered results; rank 0 reports.
+  if (erkn::test::rank() != 0)
+    delete ::testing::UnitTest::GetInstance()->listeners().Release(
+        ::testing::UnitTest::GetInstance()->listeners().default_result_printer());
+  int failed = RUN_ALL_TESTS();
+  MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Finalize();
+  return failed;
+}
