@@ -1,6 +1,15 @@
 # cmake -P script: install the runtime component into PREFIX, extract the example program from
 # the installed <erkn/erkn.hpp> (its lines that start with "//   "), then configure, build and
-# run the consumer project against the installed package.
+# run the consumer project against the installed package. Optional: COMPONENTS (more components
+# to install), HEADER (the header holding the example), LINK_TARGET (what the program links) and
+# LAUNCH (a command line that starts the program, e.g. "mpiexec -n 2").
+if(NOT HEADER)
+  set(HEADER erkn/erkn.hpp)
+endif()
+if(NOT LINK_TARGET)
+  set(LINK_TARGET erkn::runtime)
+endif()
+separate_arguments(LAUNCH)
 function(run)
   execute_process(COMMAND ${ARGV} RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0)
@@ -8,9 +17,11 @@ function(run)
   endif()
 endfunction()
 file(REMOVE_RECURSE ${PREFIX} ${CONSUMER_BUILD})
-run(${CMAKE_COMMAND} --install ${BUILD_DIR} --component runtime --prefix ${PREFIX})
+foreach(component runtime ${COMPONENTS})
+  run(${CMAKE_COMMAND} --install ${BUILD_DIR} --component ${component} --prefix ${PREFIX})
+endforeach()
 
-file(STRINGS ${PREFIX}/include/erkn/erkn.hpp lines)
+file(STRINGS ${PREFIX}/include/${HEADER} lines)
 set(example "")
 foreach(line IN LISTS lines)
   if(line MATCHES "^//   (.*)$")
@@ -18,12 +29,12 @@ foreach(line IN LISTS lines)
   endif()
 endforeach()
 if(NOT example MATCHES "int main")
-  message(FATAL_ERROR "no example program found in the installed erkn.hpp")
+  message(FATAL_ERROR "no example program found in the installed ${HEADER}")
 endif()
 file(WRITE ${CONSUMER_BUILD}/example/main.cpp "${example}")
 
 run(${CMAKE_COMMAND} -S ${CONSUMER_SOURCE} -B ${CONSUMER_BUILD}/build
     -DCMAKE_PREFIX_PATH=${PREFIX} -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_BUILD_TYPE=Release
-    -DEXAMPLE_SOURCE=${CONSUMER_BUILD}/example/main.cpp)
+    -DEXAMPLE_SOURCE=${CONSUMER_BUILD}/example/main.cpp -DERKN_TARGET=${LINK_TARGET})
 run(${CMAKE_COMMAND} --build ${CONSUMER_BUILD}/build)
-run(${CONSUMER_BUILD}/build/app)
+run(${LAUNCH} ${CONSUMER_BUILD}/build/app)

@@ -15,21 +15,43 @@
 // integrator sums the parts). Every call below is collective over the communicator; an error on
 // any rank is thrown on every rank, with the same message.
 //
-//   MPI_Init(&argc, &argv);
-//   using B = erkn::GridAxis::Boundary;
-//   const erkn::Stiffness M = erkn::Stiffness::grid({{256, 1.0 / 64, B::periodic},
-//                                                    {256, 1.0 / 64, B::periodic}});
-//   const erkn::mpi::Slab slab = erkn::mpi::slab(MPI_COMM_WORLD, M);  // this rank's rows
-//   Eigen::VectorXd q0(slab.size), p0 = Eigen::VectorXd::Zero(slab.size);
-//   for (Eigen::Index r = 0; r < slab.rows; ++r)      // global row slab.first + r of axis 0
-//     for (Eigen::Index j = 0; j < 256; ++j) q0[r * 256 + j] = initial(slab.first + r, j);
-//   erkn::System sys;
-//   sys.M = M;
-//   sys.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = q.array().sin(); };
-//   erkn::mpi::GridIntegrator run(MPI_COMM_WORLD, erkn::Method::by_name("SERKN2s4"), sys, 0.01,
-//                                 q0, p0);
-//   run.integrate(1.0);
-//   MPI_Finalize();
+// A complete program (2-D sine-Gordon; link with erkn::mpi, run with mpirun -np N):
+//
+//   #include <cmath>
+//   #include <cstdio>
+//   #include <erkn/mpi.hpp>
+//
+//   int main(int argc, char** argv) {
+//     MPI_Init(&argc, &argv);
+//     int rank = 0, status = 0;
+//     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+//     {  // (the integrator must be gone before MPI_Finalize)
+//       using B = erkn::GridAxis::Boundary;
+//       const int n = 64;  // periodic n x n grid on the square of side 2, spacing 2/n
+//       const erkn::Stiffness M =
+//           erkn::Stiffness::grid({{n, 2.0 / n, B::periodic}, {n, 2.0 / n, B::periodic}});
+//       const erkn::mpi::Slab slab = erkn::mpi::slab(MPI_COMM_WORLD, M);  // this rank's rows
+//       Eigen::VectorXd q0(slab.size), p0 = Eigen::VectorXd::Zero(slab.size);
+//       for (Eigen::Index r = 0; r < slab.rows; ++r)
+//         for (Eigen::Index j = 0; j < n; ++j) {
+//           const double x = -1 + 2.0 * double(slab.first + r) / n, y = -1 + 2.0 * double(j) / n;
+//           q0[r * n + j] = 2 * std::exp(-8 * (x * x + y * y));
+//         }
+//       erkn::System sys;
+//       sys.M = M;
+//       sys.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = q.array().sin(); };
+//       sys.potential = [](const Eigen::VectorXd& q) { return (1 - q.array().cos()).sum(); };
+//       erkn::mpi::GridIntegrator run(MPI_COMM_WORLD, erkn::Method::by_name("SERKN2s4"), sys,
+//                                     0.01, q0, p0);
+//       const double H0 = run.energy();
+//       run.integrate(1.0);
+//       const double drift = std::abs(run.energy() - H0) / H0;
+//       if (rank == 0) std::printf("|H(1) - H(0)| / H(0) = %.1e\n", drift);
+//       status = drift < 1e-6 ? 0 : 1;
+//     }
+//     MPI_Finalize();
+//     return status;
+//   }
 #pragma once
 
 #include <mpi.h>
