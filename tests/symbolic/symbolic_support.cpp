@@ -424,6 +424,9 @@ std::vector<Condition> order_conditions(const Method& m) {
     // b: O(h^(r+1-rho)) -> V^k with 2k <= r - rho; bbar: O(h^(r-rho)) -> 2k <= r - rho - 1.
     int slack = bbar ? r - t.rho - 1 : r - t.rho;
     if (slack < 0) continue;
+    // A tree with an abar-edge is a condition in two matrices (edge_failures); read with one V
+    // it holds at V^0 only (beyond, the right-hand side is not rho!/gamma phi_rho(V)).
+    if (std::string(t.name).find('A') != std::string::npos) slack = 0;
     std::string rhs =
         (t.factor == 1 ? "" : std::to_string(t.factor)) + "phi" + std::to_string(t.phi);
     out.push_back({std::string("(f) ") + t.name + " = " + rhs,
@@ -439,6 +442,57 @@ std::vector<Condition> classical_rkn_conditions(const Method& m) {
     if ((bbar ? m.order - 1 : m.order) < t.rho) continue;
     out.push_back({std::string("RKN ") + t.name + " = " + str(t.classical),
                    tree_sum(m, t.name) - t.classical, 1});
+  }
+  return out;
+}
+
+std::vector<EdgeTree> edge_trees() {
+  return {{"b.Ae", false, 0, 0, 3},
+          {"bbar.Ae", true, 0, 0, 3},
+          {"b.cAe", false, 1, 0, 4},
+          {"b.Ac", false, 0, 1, 4}};
+}
+
+Qs edge_weight(const EdgeTree& t, int j, int k) {
+  // Edge: int_0^z (z-u) phi1((z-u)^2 W) u^q du, [W^k] = (-1)^k q! z^(2k+q+2) / (2k+q+2)!.
+  // Root: int_0^1 phi0((1-z)^2 V) z^m dz, [V^j] = (-1)^j m! / (2j+m+1)!; bbar: (1-z) phi1(...),
+  // (-1)^j m! / (2j+m+2)!. Here m = p + 2k + q + 2 with p the root's p-leaves.
+  const int q = t.edge_leaves, m = t.root_leaves + 2 * k + q + 2;
+  numeric w = factorial(numeric(q)) / factorial(numeric(2 * k + q + 2)) * factorial(numeric(m)) /
+              factorial(numeric(2 * j + m + 1 + (t.bbar ? 1 : 0)));
+  return Qs((j + k) % 2 ? -w : w);
+}
+
+std::vector<Failure> edge_failures(const Method& m, const std::vector<Series>& coefficients) {
+  std::vector<Failure> out;
+  auto at = [&](const std::string& name, int power) {
+    const Series& x = coefficients.at(m.index(name));
+    return power < int(x.size()) ? x[power] : Qs(0);
+  };
+  auto pow_c = [&](int i, int e) {
+    Qs r(1);
+    for (int n = 0; n < e; ++n) r = r * m.c[i];
+    return r;
+  };
+  for (const EdgeTree& t : edge_trees()) {
+    const int slack = m.order - t.rho - (t.bbar ? 1 : 0);  // 2(j + k) <= slack
+    for (int n = 0; 2 * n <= slack; ++n)
+      for (int j = 0; j <= n; ++j) {
+        const int k = n - j;
+        Qs sum(0);
+        for (int i = 1; i <= m.s; ++i) {
+          Qs edge(0);
+          for (int l = 1; l <= i; ++l)
+            edge = edge + at(abar_name(i, l), k) * pow_c(l - 1, t.edge_leaves);
+          std::string w = (t.bbar ? "bbar" : "b") + std::to_string(i);
+          sum = sum + at(w, j) * pow_c(i - 1, t.root_leaves) * edge;
+        }
+        Qs r = sum - edge_weight(t, j, k);
+        if (!m.negligible(r))
+          out.push_back({std::string("(f) ") + t.name + " at V^" + std::to_string(j) + " W^" +
+                             std::to_string(k),
+                         n, r.to_string()});
+      }
   }
   return out;
 }

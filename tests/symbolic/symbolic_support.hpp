@@ -92,8 +92,10 @@ inline constexpr int kDecimalIdentityTerms = 8;
 
 /// Theorem 2, eq. (g): lines 1-2 per stage, line 3 for j < i.
 std::vector<Condition> symplectic_conditions(const Method& m);
-/// Theorem 1, eq. (f): trees up to order 4, each to the power of V the claimed order requires.
+/// Theorem 1, eq. (f): trees up to order 4, each to the power of V the claimed order requires;
+/// the trees with an abar-edge at V^0 only (their higher powers: edge_failures).
 std::vector<Condition> order_conditions(const Method& m);
+
 /// The same trees with rho <= order, each at V^0 only, with the classical RKN right-hand sides
 /// of Hairer-Norsett-Wanner (Table II.14.3) instead of rho!/gamma * phi_rho(0).
 std::vector<Condition> classical_rkn_conditions(const Method& m);
@@ -114,6 +116,27 @@ struct Failure {
   std::string value;
 };
 std::string to_string(const std::vector<Failure>& f);
+
+/// A tree of eq. (f) with one abar-edge (b^T A e, bbar^T A e, b^T C A e, b^T A c). The root's
+/// weight b_i(V) or bbar_i(V) and the edge's abar_ij(W) act on either side of the Jacobian of
+/// grad U, which does not commute with M: the condition holds power by power in two matrices,
+/// V^j W^k, against the weight of the variation-of-constants formula,
+///   int_0^1 w((1-z)^2 V) z^p  int_0^z (z-u) phi1((z-u)^2 W) u^q du dz,
+/// w = phi0 (b) or (1-z) phi1 (bbar). At V^0 W^0 this is rho!/gamma phi_rho(0); the paper's
+/// rho!/gamma phi_rho(V) in a single V is not its restriction to W = V beyond V^0 (SEN-trees with
+/// M-vertices, Wu, You, Shi & Wang 2010).
+struct EdgeTree {
+  const char* name;
+  bool bbar;
+  int root_leaves, edge_leaves;  ///< p-leaves (factors c) at the root and below the edge
+  int rho;
+};
+std::vector<EdgeTree> edge_trees();
+/// The exact [V^j W^k] weight of a tree.
+Qs edge_weight(const EdgeTree& t, int j, int k);
+/// Every V^j W^k with rho + 2(j + k) <= order (b) or rho + 1 + 2(j + k) <= order (bbar) that fails
+/// (power = j + k).
+std::vector<Failure> edge_failures(const Method& m, const std::vector<Series>& coefficients);
 
 /// Evaluates each condition as a series in V from coefficient series (n terms each; a condition
 /// is checked at V^0..V^(min(terms, n)-1)).

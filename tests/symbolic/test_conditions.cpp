@@ -46,6 +46,29 @@ TEST(Conditions, OrderConditionsHoldToClaimedOrder) {
   }
 }
 
+// The trees with an abar-edge in two matrices, V^j W^k, to the power of h the claimed order
+// requires (beyond V^0 W^0 from order 5 on, and for b^T A e at V^0 W^1 or V^1 W^0 from order 5).
+TEST(Conditions, EdgeTreesHoldInTwoMatrices) {
+  for (const Method& m : erkn_methods()) {
+    std::vector<Failure> f = edge_failures(m, emitted_series(m, 4));
+    EXPECT_TRUE(f.empty()) << m.name << ":\n" << to_string(f);
+  }
+}
+
+// The exact weights are those of the classical trees at V^0 W^0 (rho!/gamma phi_rho(0)), and in a
+// single V they are not the paper's phi_rho(V): b^T A e has (phi2(V) - phi3(V))/2, whose V^1
+// coefficient -1/60 differs from phi3's -1/120.
+TEST(Conditions, EdgeWeightsAreTheExactFlowsNotThePapersPhi) {
+  const std::vector<EdgeTree> t = edge_trees();
+  EXPECT_TRUE(edge_weight(t[0], 0, 0) == Qs(GiNaC::numeric(1, 6)));
+  EXPECT_TRUE(edge_weight(t[1], 0, 0) == Qs(GiNaC::numeric(1, 24)));
+  EXPECT_TRUE(edge_weight(t[2], 0, 0) == Qs(GiNaC::numeric(1, 8)));
+  EXPECT_TRUE(edge_weight(t[3], 0, 0) == Qs(GiNaC::numeric(1, 24)));
+  Qs single_v = edge_weight(t[0], 1, 0) + edge_weight(t[0], 0, 1);
+  EXPECT_TRUE(single_v == Qs(GiNaC::numeric(-1, 60)));
+  EXPECT_TRUE(phi_series(3, Qs(1), 2)[1] == Qs(GiNaC::numeric(-1, 120)));
+}
+
 // The claimed order is not an understatement: for the methods of order 2 and 3 a condition of
 // order r + 1 fails (at V^0). (For order 4 the trees of order 5 are not modelled here.)
 TEST(Conditions, ClaimedOrderIsSharpBelowFour) {
