@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <ctime>
 #include <sstream>
 
 namespace erkn::mpi::scene {
@@ -94,12 +95,15 @@ Timing run(MPI_Comm comm, const Settings& s) {
     const double transform_seconds = run.transform_seconds();
     MPI_Barrier(comm);
     const double start = MPI_Wtime();
+    const std::clock_t cpu_start = std::clock();
     for (int k = 0; k < s.steps; ++k) run.step();
-    std::array<double, 2> times{MPI_Wtime() - start, run.transform_seconds() - transform_seconds};
-    MPI_Allreduce(MPI_IN_PLACE, times.data(), 2, MPI_DOUBLE, MPI_MAX, comm);
+    std::array<double, 3> times{MPI_Wtime() - start, run.transform_seconds() - transform_seconds,
+                                double(std::clock() - cpu_start) / CLOCKS_PER_SEC};
+    MPI_Allreduce(MPI_IN_PLACE, times.data(), 3, MPI_DOUBLE, MPI_MAX, comm);
     if (times[0] / s.steps < t.seconds_per_step) {
       t.seconds_per_step = times[0] / s.steps;
       t.transform_seconds_per_step = times[1] / s.steps;
+      t.cpu_seconds_per_step = times[2] / s.steps;
     }
     t.transforms_per_step = double(run.transforms() - transforms) / s.steps;
     t.gradients_per_step =

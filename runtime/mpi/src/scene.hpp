@@ -29,6 +29,7 @@ struct Timing {
   long d = 0;
   double seconds_per_step = 0;            ///< best of the repeats, slowest rank
   double transform_seconds_per_step = 0;  ///< of that repeat, slowest rank
+  double cpu_seconds_per_step = 0;        ///< process CPU time of that repeat, largest rank
   double transforms_per_step = 0, gradients_per_step = 0;
   double energy_drift = 0;       ///< |H(t) - H(0)| / |H(0)| at the end
   double sum_q = 0, norm_q = 0;  ///< of the final state (rank-count independent to round-off)
