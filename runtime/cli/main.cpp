@@ -13,6 +13,10 @@
 
 int main(int argc, char** argv) {
   const std::string command = argc > 1 ? argv[1] : "";
+  if (command == "--version") {
+    std::cout << "erkn " << ERKN_VERSION << "\n";
+    return 0;
+  }
   try {
     if (command == "list") return erkn::cli::list_command(argc - 1, argv + 1);
     if (command == "tableau") return erkn::cli::tableau_command(argc - 1, argv + 1);
@@ -22,7 +26,7 @@ int main(int argc, char** argv) {
     std::cerr << e.what() << "\n";
     return 1;
   }
-  std::cerr << "usage: erkn list\n"
+  std::cerr << "usage: erkn list | --version\n"
                "       erkn tableau NAME (--v X | --series K | --poles VMAX)\n"
                "       erkn run [--quick | --full] [experiment options; erkn run --help]\n"
                "       erkn stability NAME|all [--vmax V --zmin Z --zmax Z --grid N --out DIR]\n";
