@@ -1,0 +1,185 @@
+// erkn.Integrator: the runtime's Integrator over a System from Python. Loops run in C++ and
+// collect their output into arrays handed to NumPy without a copy; with built-in potentials
+// the GIL is released while stepping.
+#include "erkn/integrator.hpp"
+
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <vector>
+
+#include "bindings.hpp"
+#include "erkn/error.hpp"
+#include "system.hpp"
+
+namespace erkn::python {
+namespace {
+
+// A (rows x cols) C-order array owning `data` (moved, not copied).
+py::array_t<double> to_numpy(std::vector<double>&& data, py::ssize_t rows, py::ssize_t cols) {
+  auto* owner = new std::vector<double>(std::move(data));
+  py::capsule free(owner, [](void* p) { delete static_cast<std::vector<double>*>(p); });
+  if (cols < 0) return py::array_t<double>({rows}, owner->data(), free);
+  return py::array_t<double>({rows, cols}, owner->data(), free);
+}
+
+// Output of a run: times, states and (with a potential) energies, row k for time k.
+struct Output {
+  Eigen::Index d;
+  bool energy;
+  std::vector<double> t, q, p, H;
+  void add(const Integrator& run, double tk, const Eigen::VectorXd& qk, const Eigen::VectorXd& pk) {
+    t.push_back(tk);
+    q.insert(q.end(), qk.data(), qk.data() + d);
+    p.insert(p.end(), pk.data(), pk.data() + d);
+    if (energy) H.push_back(run.energy(qk, pk));
+  }
+  py::tuple to_python() {
+    const auto n = py::ssize_t(t.size());
+    py::object E = py::none();
+    if (energy) E = to_numpy(std::move(H), n, -1);
+    return py::make_tuple(to_numpy(std::move(t), n, -1), to_numpy(std::move(q), n, d),
+                          to_numpy(std::move(p), n, d), E);
+  }
+};
+
+class PyIntegrator {
+ public:
+  PyIntegrator(const std::string& method, const PySystem& system, double h,
+               const Eigen::VectorXd& q0, const Eigen::VectorXd& p0, double t0)
+      : calls_python_(system.calls_python),
+        run_(Method::by_name(method), system.system, h, q0, p0) {
+    if (t0 != 0) run_.set_state(q0, p0, t0);
+  }
+
+  void step(long n) {
+    if (n < 0) throw Error("step(n): n must be >= 0; got " + std::to_string(n));
+    stepping([&] {
+      for (long k = 0; k < n; ++k) run_.step();
+    });
+  }
+
+  // Steps to t_end; output at `t_eval` (ascending, in [t, t_end]) or else at the start, every
+  // `every`-th step and t_end. Returns (t, q, p, energy or None).
+  py::tuple run(double t_end, const py::object& t_eval, long every, bool energy) {
+    Output out{run_.q().size(), energy && bool(run_.system().potential), {}, {}, {}, {}};
+    const auto add = [&](double t, const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
+      out.add(run_, t, q, p);
+    };
+    using Times = py::array_t<double, py::array::c_style | py::array::forcecast>;
+    const Times times = t_eval.is_none() ? Times() : Times::ensure(t_eval);
+    if (!t_eval.is_none() && (!times || times.ndim() != 1))
+      throw Error("t_eval must be a 1-D array of times");
+    stepping([&] {
+      if (!t_eval.is_none()) {
+        run_.integrate(t_end, Eigen::Map<const Eigen::VectorXd>(times.data(), times.size()), add);
+      } else {
+        add(run_.t(), run_.q(), run_.p());
+        run_.integrate(t_end, add, every);
+      }
+    });
+    return out.to_python();
+  }
+
+  // Python observer(t, q, p) with copies of the state (the loop holds the GIL).
+  void integrate(double t_end, const py::object& observer, long every) {
+    if (observer.is_none()) return step_to(t_end, every);
+    run_.integrate(
+        t_end,
+        [&](double t, const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
+          observer(t, Eigen::VectorXd(q), Eigen::VectorXd(p));
+        },
+        every);
+  }
+
+  py::tuple state_at(double t) {
+    Eigen::VectorXd q, p;
+    run_.state_at(t, q, p);
+    return py::make_tuple(q, p);
+  }
+
+  py::dict statistics() const {
+    const Statistics& s = run_.statistics();
+    py::dict d;
+    d["steps"] = s.steps;
+    d["gradient_evaluations"] = s.gradient_evaluations;
+    d["hessian_evaluations"] = s.hessian_evaluations;
+    d["stage_iterations"] = s.stage_iterations;
+    d["newton_fallbacks"] = s.newton_fallbacks;
+    d["newton_iterations"] = s.newton_iterations;
+    d["wall_time"] = wall_time_;
+    return d;
+  }
+
+  Integrator& get() { return run_; }
+
+ private:
+  void step_to(double t_end, long every) {
+    stepping([&] {
+      run_.integrate(
+          t_end, [](double, auto&, auto&) {}, every);
+    });
+  }
+
+  // Runs f without the GIL unless a callback is Python code; adds its wall time.
+  template <class F>
+  void stepping(F&& f) {
+    const auto start = std::chrono::steady_clock::now();
+    if (calls_python_) {
+      f();
+    } else {
+      py::gil_scoped_release release;
+      f();
+    }
+    wall_time_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  bool calls_python_;
+  Integrator run_;
+  double wall_time_ = 0;
+};
+
+}  // namespace
+
+void bind_integrator(py::module_& m) {
+  py::class_<PyIntegrator>(m, "_Integrator")
+      .def(py::init<const std::string&, const PySystem&, double, const Eigen::VectorXd&,
+                    const Eigen::VectorXd&, double>(),
+           py::arg("method"), py::arg("system"), py::arg("h"), py::arg("q0"), py::arg("p0"),
+           py::arg("t0") = 0.0)
+      .def("step", &PyIntegrator::step, py::arg("n") = 1, "n steps of size h")
+      .def("integrate", &PyIntegrator::integrate, py::arg("t_end"),
+           py::arg("observer") = py::none(), py::arg("every") = 1,
+           "steps to t_end (off the grid: a last shorter step); observer(t, q, p) after every "
+           "`every`-th step and at t_end")
+      .def("_run", &PyIntegrator::run, py::arg("t_end"), py::arg("t_eval"), py::arg("every"),
+           py::arg("energy"))
+      .def("state_at", &PyIntegrator::state_at, py::arg("t"),
+           "(q, p) at t in [t, t + h] by a step of size t - self.t; the integrator is unchanged")
+      .def(
+          "set_state",
+          [](PyIntegrator& r, const Eigen::VectorXd& q, const Eigen::VectorXd& p, double t) {
+            r.get().set_state(q, p, t);
+          },
+          py::arg("q"), py::arg("p"), py::arg("t"))
+      .def(
+          "set_step_size", [](PyIntegrator& r, double h) { r.get().set_step_size(h); },
+          py::arg("h"))
+      .def("steps_until", [](PyIntegrator& r, double t) { return r.get().steps_until(t); })
+      .def(
+          "energy", [](PyIntegrator& r) { return r.get().energy(); },
+          "H(q, p) at the current state")
+      .def_property_readonly(
+          "q", [](PyIntegrator& r) { return Eigen::VectorXd(r.get().q()); }, "a copy of q")
+      .def_property_readonly(
+          "p", [](PyIntegrator& r) { return Eigen::VectorXd(r.get().p()); }, "a copy of p")
+      .def_property_readonly("t", [](PyIntegrator& r) { return r.get().t(); })
+      .def_property_readonly("h", [](PyIntegrator& r) { return r.get().h(); })
+      .def_property_readonly("method",
+                             [](PyIntegrator& r) { return std::string(r.get().method().name()); })
+      .def_property_readonly("statistics", &PyIntegrator::statistics);
+}
+
+}  // namespace erkn::python

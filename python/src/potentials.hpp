@@ -1,0 +1,19 @@
+// Built-in potentials U, evaluated in C++ so small systems do not pay a Python call per
+// gradient. Each is a sum of quartic or trigonometric terms (see potentials.cpp).
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "erkn/system.hpp"
+
+namespace erkn::python {
+
+/// A System's U with its gradient and Hessian for dimension d (M is set by the caller).
+System builtin_potential(const std::string& name, const std::map<std::string, double>& params,
+                         Eigen::Index d);
+
+/// The names, each with its parameters and their defaults, for messages and documentation.
+std::map<std::string, std::map<std::string, double>> builtin_potentials();
+
+}  // namespace erkn::python

@@ -1,0 +1,184 @@
+// Stiffness factories and System assembly. Python callables are called with read-only NumPy
+// views of erkn's vectors (no copy; valid only during the call) and either return the result
+// or, with `writes=True`, write it into the writable view passed as the second argument.
+#include "system.hpp"
+
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "erkn/error.hpp"
+#include "erkn/stiffness.hpp"
+#include "potentials.hpp"
+
+namespace erkn::python {
+namespace {
+
+// A NumPy array viewing x's memory (no copy), read-only unless `writable`.
+template <class Matrix>
+py::array view(Matrix& x, bool writable) {
+  std::vector<py::ssize_t> shape{x.rows()}, strides{py::ssize_t(sizeof(double))};
+  if constexpr (Matrix::ColsAtCompileTime != 1) {
+    shape.push_back(x.cols());
+    strides = {py::ssize_t(sizeof(double)), py::ssize_t(sizeof(double)) * x.rows()};
+  }
+  py::array a(py::dtype::of<double>(), shape, strides, const_cast<double*>(x.data()), py::none());
+  if (!writable)
+    py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return a;
+}
+
+// Copies a returned array of the expected shape into out (column-major for a matrix).
+template <class Matrix>
+void copy_result(const char* what, const py::object& r, Matrix& out) {
+  auto a = py::array_t<double, py::array::f_style | py::array::forcecast>::ensure(r);
+  const bool vector = Matrix::ColsAtCompileTime == 1;
+  if (!a || a.ndim() != (vector ? 1 : 2) || a.shape(0) != out.rows() ||
+      (!vector && a.shape(1) != out.cols()))
+    throw Error(std::string(what) + " must return a float array of shape (" +
+                std::to_string(out.rows()) +
+                (vector ? ",)" : ", " + std::to_string(out.cols()) + ")") + "; got " +
+                std::string(py::str(r.get_type().attr("__name__"))) +
+                (a ? " of shape " + std::string(py::str(py::cast(a.request().shape))) : ""));
+  std::copy(a.data(), a.data() + out.size(), out.data());
+}
+
+System python_callbacks(const py::object& grad, bool grad_writes, const py::object& potential,
+                        const py::object& hessian, bool hessian_writes) {
+  System s;
+  s.gradient = [grad, grad_writes](const Eigen::VectorXd& q, Eigen::VectorXd& g) {
+    if (grad_writes) {
+      grad(view(q, false), view(g, true));
+      return;
+    }
+    copy_result("grad(q)", grad(view(q, false)), g);
+  };
+  if (!potential.is_none())
+    s.potential = [potential](const Eigen::VectorXd& q) {
+      return py::cast<double>(potential(view(q, false)));
+    };
+  if (!hessian.is_none())
+    s.hessian = [hessian, hessian_writes](const Eigen::VectorXd& q, Eigen::MatrixXd& H) {
+      if (hessian_writes) {
+        hessian(view(q, false), view(H, true));
+        return;
+      }
+      copy_result("hessian(q)", hessian(view(q, false)), H);
+    };
+  return s;
+}
+
+GridAxis::Boundary boundary(const std::string& name) {
+  if (name == "periodic") return GridAxis::Boundary::periodic;
+  if (name == "dirichlet") return GridAxis::Boundary::dirichlet;
+  if (name == "neumann") return GridAxis::Boundary::neumann;
+  throw Error("unknown boundary '" + name + "'; known: periodic, dirichlet, neumann");
+}
+
+std::string structure_name(Stiffness::Structure s) {
+  switch (s) {
+    case Stiffness::Structure::scalar:
+      return "scalar";
+    case Stiffness::Structure::diagonal:
+      return "diagonal";
+    case Stiffness::Structure::circulant:
+      return "circulant";
+    case Stiffness::Structure::dense:
+      return "dense";
+    case Stiffness::Structure::grid:
+      return "grid";
+  }
+  return "?";
+}
+
+}  // namespace
+
+void bind_system(py::module_& m) {
+  py::class_<Stiffness>(m, "Stiffness", "The matrix M in the cheapest form that is exact.")
+      .def_property_readonly("structure",
+                             [](const Stiffness& M) { return structure_name(M.structure()); })
+      .def_property_readonly("dim", &Stiffness::dim, "d (0 for scalar: fits any dimension)")
+      .def_property_readonly("eigenvalues",
+                             [](const Stiffness& M) { return Eigen::VectorXd(M.eigenvalues()); })
+      .def("to_dense", &Stiffness::to_dense, py::arg("d"))
+      .def("__repr__", [](const Stiffness& M) {
+        return "erkn.Stiffness(" + structure_name(M.structure()) +
+               ", d=" + std::to_string(M.dim()) + ")";
+      });
+  m.def("scalar", &Stiffness::scalar, py::arg("omega2"), "M = omega2 I");
+  m.def(
+      "diagonal", [](const Eigen::Ref<const Eigen::VectorXd>& d) { return Stiffness::diagonal(d); },
+      py::arg("m"), "M = diag(m)");
+  m.def(
+      "circulant",
+      [](const Eigen::Ref<const Eigen::VectorXd>& c) { return Stiffness::circulant(c); },
+      py::arg("col"), "circulant M from its first column (symmetric: col[j] = col[N-j])");
+  m.def(
+      "dense", [](const Eigen::Ref<const Eigen::MatrixXd>& a) { return Stiffness::dense(a); },
+      py::arg("m"), "dense symmetric positive semi-definite M");
+  m.def(
+      "grid",
+      [](const std::vector<std::tuple<Eigen::Index, double, std::string>>& axes, double shift) {
+        std::vector<GridAxis> a;
+        for (const auto& [n, spacing, b] : axes) a.push_back({n, spacing, boundary(b)});
+        return Stiffness::grid(std::move(a), shift);
+      },
+      py::arg("axes"), py::arg("shift") = 0.0,
+      "M = shift I - sum_a D2_a on a tensor grid; axes: [(n, spacing, 'periodic'|'dirichlet'|"
+      "'neumann'), ...], unknowns in C order");
+
+  py::class_<PySystem>(m, "System")
+      .def_readonly("dim", &PySystem::d)
+      .def_readonly("description", &PySystem::description)
+      .def_property_readonly("has_potential",
+                             [](const PySystem& s) { return bool(s.system.potential); })
+      .def(
+          "gradient",
+          [](const PySystem& s, const Eigen::VectorXd& q) {
+            Eigen::VectorXd g(q.size());
+            s.system.gradient(q, g);
+            return g;
+          },
+          py::arg("q"), "grad U(q)")
+      .def(
+          "potential",
+          [](const PySystem& s, const Eigen::VectorXd& q) {
+            if (!s.system.potential) throw Error("this system has no potential");
+            return s.system.potential(q);
+          },
+          py::arg("q"), "U(q)")
+      .def(
+          "hessian",
+          [](const PySystem& s, const Eigen::VectorXd& q) {
+            if (!s.system.hessian) throw Error("this system has no Hessian");
+            Eigen::MatrixXd H(q.size(), q.size());
+            s.system.hessian(q, H);
+            return H;
+          },
+          py::arg("q"), "the Hessian of U at q");
+  m.def(
+      "_builtin_system",
+      [](const Stiffness& M, const std::string& name, const std::map<std::string, double>& params,
+         Eigen::Index d) {
+        PySystem s{builtin_potential(name, params, d), d, false, "built-in " + name};
+        s.system.M = M;
+        return s;
+      },
+      py::arg("M"), py::arg("name"), py::arg("params"), py::arg("d"));
+  m.def(
+      "_python_system",
+      [](const Stiffness& M, const py::object& grad, bool grad_writes, const py::object& potential,
+         const py::object& hessian, bool hessian_writes, Eigen::Index d) {
+        PySystem s{python_callbacks(grad, grad_writes, potential, hessian, hessian_writes), d, true,
+                   "Python callbacks"};
+        s.system.M = M;
+        return s;
+      },
+      py::arg("M"), py::arg("grad"), py::arg("grad_writes"), py::arg("potential"),
+      py::arg("hessian"), py::arg("hessian_writes"), py::arg("d"));
+  m.def("builtin_potentials", &builtin_potentials,
+        "the built-in potentials: {name: {parameter: default}}");
+}
+
+}  // namespace erkn::python

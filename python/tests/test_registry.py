@@ -1,0 +1,51 @@
+# The registry, tables and stability matrix, checked by properties over every method.
+import numpy as np
+import pytest
+
+import erkn
+
+
+def test_methods_lists_the_registry_with_unique_names():
+    ms = erkn.methods()
+    assert len(ms) >= 2
+    names = [m["name"] for m in ms]
+    assert len(set(names)) == len(names)
+    for m in ms:
+        assert m["kind"] in ("ERKN", "RKN")
+        assert 1 <= m["stages"] and 2 <= m["order"]
+        assert m["kind"] == "ERKN" or m["poles"] == []
+
+
+@pytest.mark.parametrize("m", erkn.methods(), ids=lambda m: m["name"])
+def test_tableau_at_zero_meets_the_first_order_conditions(m):
+    t = erkn.tableau(m["name"], 0.0)
+    assert t["abar"].shape == (m["stages"], m["stages"])
+    assert np.allclose(np.triu(t["abar"], 1), 0)
+    assert t["b"].sum() == pytest.approx(1.0, abs=1e-13)      # b^T e = phi1(0)
+    assert t["bbar"].sum() == pytest.approx(0.5, abs=1e-13)   # bbar^T e = phi2(0)
+    assert t["b"] @ t["c"] == pytest.approx(0.5, abs=1e-13)   # b^T c = phi2(0)
+
+
+def test_tableau_refuses_a_pole_and_a_negative_v():
+    m = next(m for m in erkn.methods() if m["poles"])
+    with pytest.raises(erkn.Error, match="pole"):
+        erkn.tableau(m["name"], m["poles"][0])
+    with pytest.raises(erkn.Error, match="negative"):
+        erkn.tableau(m["name"], -1.0)
+    with pytest.raises(erkn.Error, match="unknown method"):
+        erkn.tableau("NoSuchMethod", 0.0)
+
+
+@pytest.mark.parametrize("m", erkn.methods(), ids=lambda m: m["name"])
+def test_stability_matrix_is_symplectic_and_classified(m):
+    V, z = np.meshgrid(np.linspace(0, 2, 9), np.linspace(-0.2, 0.5, 5))
+    st = erkn.stability(m["name"], V, z)
+    assert st["S"].shape == V.shape + (2, 2)
+    ok = np.isfinite(st["det"])
+    assert np.abs(st["det"][ok] - 1).max() < 1e-10
+    periodic = st["class"] == "periodic"
+    assert periodic.any()
+    assert np.all(np.abs(st["trace"][periodic]) < 2)
+    assert np.all(st["rho"][periodic] == pytest.approx(1.0, abs=1e-6))
+    # Negative control: V + z < 0 (the exact solution grows), at small h, is unstable.
+    assert erkn.stability(m["name"], 0.1, -0.15)["class"] == "unstable"

@@ -1,0 +1,162 @@
+# erkn.solve and erkn.Integrator: every form of M, every form of grad, output at any time,
+# errors as erkn.Error with erkn's message.
+import numpy as np
+import pytest
+
+import erkn
+
+N = 16
+DX = 2.0 / N
+
+
+def sine_gordon_column():
+    col = np.zeros(N)
+    col[0], col[1], col[-1] = 2 / DX**2, -1 / DX**2, -1 / DX**2
+    return col
+
+
+def sine_gordon_initial():
+    i = np.arange(1, N + 1)
+    return np.full(N, np.pi), np.sqrt(N) * (0.01 + np.sin(2 * np.pi * i / N))
+
+
+def test_every_form_of_the_same_M_gives_the_same_solution():
+    col = sine_gordon_column()
+    dense = np.array([np.roll(col, k) for k in range(N)])
+    q0, p0 = sine_gordon_initial()
+    forms = [erkn.circulant(col), dense, erkn.grid([(N, DX, "periodic")])]
+    sols = [erkn.solve(M, "sine", q0=q0, p0=p0, t_span=(0, 1), h=0.05) for M in forms]
+    for s in sols[1:]:
+        assert np.abs(s.q - sols[0].q).max() < 1e-10
+    # scalar and diagonal, against each other
+    a = erkn.solve(4.0, "phi4", q0=[0.5, -0.3], p0=[0.1, 0.2], t_span=(0, 3), h=0.1)
+    b = erkn.solve(np.array([4.0, 4.0]), "phi4", q0=[0.5, -0.3], p0=[0.1, 0.2], t_span=(0, 3), h=0.1)
+    assert np.abs(a.q - b.q).max() < 1e-14
+    assert a.q.shape == (31, 2) and a.t[0] == 0 and a.t[-1] == 3
+
+
+def test_builtin_and_python_gradients_agree_in_both_calling_conventions(chain):
+    M, q0, p0 = chain
+    seen = []
+
+    def grad(q):
+        seen.append(q)
+        assert not q.flags.writeable  # a read-only view of erkn's memory
+        return np.sin(q)
+
+    def grad_into(q, out):
+        out[:] = np.sin(q)
+
+    kw = dict(q0=q0, p0=p0, t_span=(0, 2), h=0.05, method="SERKN3s4(1)")
+    a = erkn.solve(M, "sine", **kw)
+    b = erkn.solve(M, grad, potential=lambda q: -np.cos(q).sum(), **kw)
+    c = erkn.solve(M, grad_into, **kw)
+    assert np.abs(a.q - b.q).max() < 1e-13
+    assert np.array_equal(b.q, c.q)
+    assert np.abs(a.energy - b.energy).max() < 1e-12
+    assert c.energy is None  # no potential given
+    assert seen and a.stats["gradient_evaluations"] == b.stats["gradient_evaluations"]
+
+
+@pytest.mark.parametrize("name,d,params", [("sine", 3, {}), ("duffing", 3, {"k": 0.3}),
+                                           ("phi4", 3, {"beta": 2.0}), ("fpu", 6, {})])
+def test_builtin_gradient_and_hessian_are_derivatives_of_the_potential(name, d, params):
+    s = erkn.system(0.0, erkn.potential(name, **params), d)
+    q = np.linspace(-0.7, 0.9, d)
+    eps = 1e-6
+    fd = np.array([(s.potential(q + eps * e) - s.potential(q - eps * e)) / (2 * eps)
+                   for e in np.eye(d)])
+    assert np.abs(s.gradient(q) - fd).max() < 1e-8
+    fdH = np.array([(s.gradient(q + eps * e) - s.gradient(q - eps * e)) / (2 * eps)
+                    for e in np.eye(d)])
+    assert np.abs(s.hessian(q) - fdH).max() < 1e-7
+    # Negative control: a wrong gradient fails the same check.
+    assert np.abs(2 * s.gradient(q) - fd).max() > 1e-3
+
+
+def test_fpu_with_stiff_springs_conserves_energy():
+    m, omega = 3, 50.0
+    M = np.r_[np.zeros(m), np.full(m, omega**2)]
+    q0 = np.r_[1.0, 0, 0, 1 / omega, 0, 0]
+    p0 = np.r_[1.0, 0, 0, 1.0, 0, 0]
+    sol = erkn.solve(M, "fpu", q0=q0, p0=p0, t_span=(0, 20), h=0.03)  # h omega = 1.5
+    assert np.abs(sol.energy - sol.energy[0]).max() < 1e-3 * sol.energy[0]
+
+
+def test_output_at_any_time_keeps_the_trajectory_and_has_the_method_order(chain):
+    M, q0, p0 = chain
+    t_eval = np.array([0.0, 0.123, 0.5, 1.0, 1.377])
+    kw = dict(q0=q0, p0=p0, t_span=(0, 1.4), method="SERKN2s4")
+    a = erkn.solve(M, "sine", h=0.1, t_eval=t_eval, **kw)
+    b = erkn.solve(M, "sine", h=0.1, **kw)
+    assert np.array_equal(a.t, t_eval)
+    assert np.abs(a.q[3] - b.q[10]).max() < 1e-14  # t = 1.0 is grid point 10
+    ref = erkn.solve(M, "sine", h=0.1 / 64, t_eval=t_eval, **kw).q
+    errs = [np.abs(erkn.solve(M, "sine", h=0.1 / k, t_eval=t_eval, **kw).q - ref).max()
+            for k in (1, 2, 4)]
+    orders = np.log2(np.array(errs[:-1]) / np.array(errs[1:]))
+    assert np.all(np.abs(orders - 4) < 0.3), orders
+
+
+def test_end_off_the_grid_and_every_k_steps(chain):
+    M, q0, p0 = chain
+    sol = erkn.solve(M, "sine", q0=q0, p0=p0, t_span=(0.5, 1.55), h=0.1, every=3)
+    assert sol.t == pytest.approx([0.5, 0.8, 1.1, 1.4, 1.55])
+    assert sol.t[-1] == 1.55
+    assert sol.stats["steps"] == 11
+
+
+def test_integrator_drives_the_loop(chain):
+    M, q0, p0 = chain
+    run = erkn.Integrator(M, "sine", q0=q0, p0=p0, h=0.1, method="SERKN2s4")
+    run.step(3)
+    assert run.t == pytest.approx(0.3)
+    q, p = run.state_at(0.35)
+    assert run.t == pytest.approx(0.3)
+    times = []
+    run.integrate(0.35, observer=lambda t, q, p: times.append(t))
+    assert times == [0.35] and np.abs(run.q - q).max() < 1e-14
+    st = run.statistics
+    assert st["steps"] == 4 and st["gradient_evaluations"] > 0
+    q_before = run.q
+    q_before[:] = 7  # a copy: the integrator is not affected
+    assert not np.any(run.q == 7)
+
+
+def test_errors_carry_erkns_message(chain):
+    M, q0, p0 = chain
+    kw = dict(q0=q0, p0=p0, t_span=(0, 1))
+    with pytest.raises(erkn.Error, match="step size h must be finite and > 0"):
+        erkn.solve(M, "sine", h=-0.1, **kw)
+    with pytest.raises(ValueError, match="unknown method"):
+        erkn.solve(M, "sine", h=0.1, method="nope", **kw)
+    with pytest.raises(erkn.Error, match="not symmetric|symmetric"):
+        erkn.solve(M + np.triu(np.ones((4, 4)), 1), "sine", h=0.1, **kw)
+    with pytest.raises(erkn.Error, match=r"grad\(q\) must return a float array of shape \(4,\)"):
+        erkn.solve(M, lambda q: np.zeros(3), h=0.1, **kw)
+    with pytest.raises(erkn.Error, match="unknown built-in potential"):
+        erkn.solve(M, "cosh", h=0.1, **kw)
+    with pytest.raises(erkn.Error, match="step-count limit"):
+        erkn.solve(M, "sine", h=0.1, q0=q0, p0=p0, t_span=(0, 1e30))
+    with pytest.raises(erkn.Error, match="not ascending"):
+        erkn.solve(M, "sine", h=0.1, t_eval=[0.5, 0.2], **kw)
+
+
+def test_a_python_exception_in_grad_propagates_and_leaves_the_state(chain):
+    M, q0, p0 = chain
+    calls = []
+
+    def grad(q):
+        calls.append(1)
+        if len(calls) > 20:
+            raise ZeroDivisionError("from grad")
+        return np.sin(q)
+
+    run = erkn.Integrator(M, grad, q0=q0, p0=p0, h=0.1)
+    with pytest.raises(ZeroDivisionError, match="from grad"):
+        run.integrate(10.0)
+    t, q = run.t, run.q
+    assert 0 < t < 10
+    calls.clear()
+    run.step()
+    assert run.t == pytest.approx(t + 0.1) and not np.array_equal(run.q, q)
