@@ -6,6 +6,7 @@
 #include <set>
 
 #include "charts.hpp"
+#include "raw_results.hpp"
 #include "options.hpp"
 #include "report.hpp"
 
@@ -73,6 +74,7 @@ int run(const Options& o, const std::string& command) {
   progress.finish();
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_raw_results(charts, results, scaled);
   write_report(o.out / "results.md", {command, o.mode, wall, o.config.sweep.timing.repeats},
                results, scaled);
   std::printf("%s\nwrote %s and %s/ in %.0f s\n", targets_markdown(results, scaled).c_str(),
