@@ -90,8 +90,9 @@ void model_table(std::ostream& md, const Row& base) {
         "messages grows like P, so latency dominates once d/P is small. Slabs need P <= the "
         "smaller of the first two axes; beyond that a pencil decomposition (not FFTW-MPI) is "
         "needed.\n\n"
-        "| grid | d | P | predicted time per step | all-to-all share | parallel efficiency |\n"
-        "|---|---|---|---|---|---|\n";
+        "| grid | d | P | all-to-all per step, all ranks [MB] | per rank [MB] | messages per rank "
+        "| predicted time per step | all-to-all share | parallel efficiency |\n"
+        "|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& [grid, side, dims] :
        {std::tuple{"1024^2", 1024.0, 2}, std::tuple{"4096^2", 4096.0, 2},
         std::tuple{"256^3", 256.0, 3}, std::tuple{"1024^3", 1024.0, 3}}) {
@@ -100,12 +101,15 @@ void model_table(std::ostream& md, const Row& base) {
     for (int P : {1, 16, 64, 256, 1024, 4096}) {
       if (P > side) {
         md << "| " << grid << " | " << format("%.3g", d) << " | " << P
-           << " | beyond the slab limit (P > " << side << ") | | |\n";
+           << " | | | | beyond the slab limit (P > " << side << ") | | |\n";
         continue;
       }
       const double comm = nT * ((P - 1) * alpha + 8 * d * (P - 1) / (double(P) * P * beta));
       const double T = T1 / P + comm;
+      const double volume = alltoall_bytes(d, P, nT);
       md << "| " << grid << " | " << format("%.3g", d) << " | " << P << " | "
+         << format("%.4g", volume / 1e6) << " | " << format("%.4g", volume / P / 1e6) << " | "
+         << format("%.0f", nT * (P - 1)) << " | "
          << format(T < 1 ? "%.3g ms" : "%.3g s", T < 1 ? 1e3 * T : T) << " | "
          << format("%.0f %%", 100 * comm / T) << " | " << format("%.0f %%", 100 * T1 / (P * T))
          << " |\n";

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "erkn/error.hpp"
+#include "grid_backend.hpp"  // (runtime/src: axis_weights)
 
 namespace erkn::mpi::detail {
 namespace {
@@ -15,6 +16,7 @@ struct AxisKind {
   double logical_size;  // FFTW's N: inverse(forward(x)) = N x
 };
 
+// The kinds of runtime/src/fftw_backend.cpp (the single-process grid transform).
 AxisKind kind_of(const GridAxis& a) {
   const double n = double(a.n);
   switch (a.boundary) {
@@ -26,27 +28,6 @@ AxisKind kind_of(const GridAxis& a) {
       return {FFTW_REDFT10, FFTW_REDFT01, 2 * n};
   }
   throw Error("unknown grid boundary");
-}
-
-// |x|^2 = sum_k w_k y_k^2 for the unnormalised forward transform y of one axis.
-Eigen::ArrayXd axis_weights(const GridAxis& a) {
-  const Eigen::Index n = a.n;
-  Eigen::ArrayXd w(n);
-  switch (a.boundary) {
-    case Boundary::periodic:  // halfcomplex: k and n-k are the cosine and sine of one frequency
-      w.setConstant(2.0 / double(n));
-      w[0] = 1.0 / double(n);
-      if (n % 2 == 0) w[n / 2] = 1.0 / double(n);
-      break;
-    case Boundary::dirichlet:
-      w.setConstant(1.0 / (2.0 * double(n + 1)));
-      break;
-    case Boundary::neumann:
-      w.setConstant(1.0 / (2.0 * double(n)));
-      w[0] = 1.0 / (4.0 * double(n));
-      break;
-  }
-  return w;
 }
 
 // The outer sum (eigenvalues) or product (weights) of per-axis factors, row-major.
@@ -104,7 +85,7 @@ SlabTransform::SlabTransform(MPI_Comm comm, const Stiffness& M) {
   std::vector<Eigen::ArrayXd> mu, w;
   const auto add = [&](const GridAxis& a, Eigen::Index first, Eigen::Index count) {
     mu.push_back(a.eigenvalues().array().segment(first, count));
-    w.push_back(axis_weights(a).segment(first, count));
+    w.push_back(erkn::detail::axis_weights(a).segment(first, count));
   };
   add(axes[1], first1, rows1);
   add(axes[0], 0, axes[0].n);
