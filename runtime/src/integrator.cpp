@@ -96,8 +96,7 @@ Integrator::Integrator(const Method& method, System system, double h, const Eige
   stepper_ = make_stepper(method, std::move(system), h, options, q0.size());
   q_ = q0;
   p_ = p0;
-  q_error_.setZero(q0.size());
-  p_error_.setZero(q0.size());
+  stepper_->set_state(q_, p_);
 }
 
 Integrator::~Integrator() = default;
@@ -107,25 +106,31 @@ Integrator& Integrator::operator=(Integrator&&) noexcept = default;
 const System& Integrator::system() const { return stepper_->system(); }
 
 void Integrator::step() {
-  stepper_->step({q_, p_, q_error_, p_error_, statistics_.steps + 1, t()}, statistics_);
+  stepper_->step(statistics_.steps + 1, t(), statistics_);
+  stale_ = true;
   ++steps_since_base_;
+}
+
+void Integrator::load_state() const {
+  stepper_->get_state(q_, p_);
+  stale_ = false;
 }
 
 void Integrator::set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p, double t) {
   require_state(system(), q, p);
   if (!std::isfinite(t)) throw Error("t = " + format(t) + " is not finite");
+  stepper_->set_state(q, p);
   q_ = q;
   p_ = p;
-  q_error_.setZero();
-  p_error_.setZero();
+  stale_ = false;
   t_base_ = t;
   steps_since_base_ = 0;
-  stepper_->forget_history();
 }
 
 void Integrator::set_step_size(double h) {
   require_step_size(h);
   auto fresh = make_stepper(method_, system(), h, options_, q_.size());
+  fresh->set_state(q(), p());  // (the summation errors are dropped)
   t_base_ = t();
   steps_since_base_ = 0;
   h_ = h;
@@ -180,16 +185,17 @@ detail::StepperBase& Integrator::stepper_of_size(double h) {
     }
     short_h_ = h;
   }
-  short_stepper_->forget_history();  // (its last use started from another state)
+  short_stepper_->set_state(q(), p());  // (its last use started from another state)
   return *short_stepper_;
 }
 
 void Integrator::step_to(double t_end) {
   detail::StepperBase& s = stepper_of_size(t_end - t());
-  s.step({q_, p_, q_error_, p_error_, statistics_.steps + 1, t()}, statistics_);
+  s.step(statistics_.steps + 1, t(), statistics_);
+  s.get_state(q_, p_);
+  stepper_->set_state(q_, p_);  // (the next step of h does not follow a step of h)
   t_base_ = t_end;
   steps_since_base_ = 0;
-  stepper_->forget_history();  // (the next step of h does not follow a step of h)
 }
 
 void Integrator::state_at(double t_out, Eigen::VectorXd& q, Eigen::VectorXd& p) {
@@ -197,13 +203,13 @@ void Integrator::state_at(double t_out, Eigen::VectorXd& q, Eigen::VectorXd& p) 
   if (!(t_out >= t0 - tol && t_out <= t0 + h_ + tol))
     throw Error("state_at(" + format(t_out, 17) + "): the time must lie within one step of t = " +
                 format(t0, 17) + " (in [t, t + h], h = " + format(h_, 17) + ")");
-  q = q_;
-  p = p_;
+  q = this->q();
+  p = this->p();
   if (std::abs(t_out - t0) <= tol) return;
   detail::StepperBase& s = stepper_of_size(t_out - t0);
-  Eigen::VectorXd q_error = q_error_, p_error = p_error_;
   const long steps = statistics_.steps;
-  s.step({q, p, q_error, p_error, steps + 1, t0}, statistics_);
+  s.step(steps + 1, t0, statistics_);
+  s.get_state(q, p);
   statistics_.steps = steps;  // (not a step of the trajectory)
 }
 
@@ -218,7 +224,7 @@ void Integrator::require_output_times(double t_end,
   }
 }
 
-double Integrator::energy() const { return energy(q_, p_); }
+double Integrator::energy() const { return energy(q(), p()); }
 
 double Integrator::energy(const Eigen::VectorXd& q, const Eigen::VectorXd& p) const {
   const System& s = system();

@@ -22,11 +22,68 @@ Eigen::Index aligned_stride(Eigen::Index m) {
   return (m + unit - 1) / unit * unit;
 }
 
+/// Coefficient slots evaluated at every eigen coordinate: Coef double holds one value per slot
+/// (one eigenvalue: scalar M, RKN methods), Eigen::ArrayXd an array per slot, all in one
+/// allocation; at() returns the value or a read-only map.
 template <class Coef>
-class StepCoefficients {
+class CoefficientSlots {
+ public:
   static constexpr bool kScalar = std::is_same_v<Coef, double>;
   using Value =
       std::conditional_t<kScalar, double, Eigen::Map<const Eigen::ArrayXd, Eigen::AlignedMax>>;
+
+  CoefficientSlots(int slots, Eigen::Index m)
+      : m_(m), stride_(kScalar ? 1 : aligned_stride<double>(m)), values_(slots * stride_) {}
+  void set(int slot, Eigen::Index e, double x) { values_[slot * stride_ + e] = x; }
+  Value at(int slot) const {
+    if constexpr (kScalar)
+      return values_[slot];
+    else
+      return Value(values_.data() + slot * stride_, m_);
+  }
+
+ private:
+  Eigen::Index m_, stride_;
+  Eigen::ArrayXd values_;
+};
+
+/// The exact flow of q'' + M q = 0 over tau_k = h (c_k - c_{k-1}), k = 0..s (c_{-1} = 0,
+/// c_s = 1): an explicit method (abar_ii = 0) is this flow alternated with kicks
+/// p -= h d_k grad U(Q_k) (DESIGN.md section 1, the explicit family).
+template <class Coef>
+class FlowCoefficients {
+ public:
+  using Value = typename CoefficientSlots<Coef>::Value;
+
+  FlowCoefficients(const Method& method, double h, const Eigen::VectorXd& lambda)
+      : s_(method.stages()), slots_(3 * (s_ + 1), lambda.size()) {
+    const double* c = method.table().c;
+    for (int k = 0; k <= s_; ++k) {
+      const double tau = h * ((k < s_ ? c[k] : 1.0) - (k > 0 ? c[k - 1] : 0.0));
+      moves_[k] = tau != 0;
+      for (Eigen::Index e = 0; e < lambda.size(); ++e) {
+        const double v = tau * tau * lambda[e], sinc = tau * phi1(v);
+        slots_.set(3 * k, e, phi0_minus_1(v));
+        slots_.set(3 * k + 1, e, sinc);
+        slots_.set(3 * k + 2, e, -lambda[e] * sinc);
+      }
+    }
+  }
+
+  bool moves(int k) const { return moves_[k]; }              ///< tau_k != 0
+  Value cm1(int k) const { return slots_.at(3 * k); }        ///< phi0(tau_k^2 M) - 1
+  Value sinc(int k) const { return slots_.at(3 * k + 1); }   ///< tau_k phi1(tau_k^2 M)
+  Value msinc(int k) const { return slots_.at(3 * k + 2); }  ///< -M tau_k phi1(tau_k^2 M)
+
+ private:
+  int s_;
+  std::array<bool, kMaxStages + 1> moves_{};
+  CoefficientSlots<Coef> slots_;
+};
+
+template <class Coef>
+class StepCoefficients {
+  using Value = typename CoefficientSlots<Coef>::Value;
   // Slots of the flat layout, per stage i (and j <= i).
   static constexpr int kPhi0c = 0, kHcphi1c = kMaxStages, kH2bbar = 2 * kMaxStages,
                        kHb = 3 * kMaxStages, kH2abar = 4 * kMaxStages,
@@ -38,13 +95,12 @@ class StepCoefficients {
   /// every v against the method's poles (check_step_size), so the table is evaluated directly.
   /// Only the s stages' coefficients are set.
   StepCoefficients(const Method& method, double h, const Eigen::VectorXd& lambda)
-      : m_(lambda.size()), stride_(kScalar ? 1 : aligned_stride<double>(m_)) {
-    if constexpr (!kScalar) values_.resize(kSlots * stride_);
+      : slots_(kSlots, lambda.size()) {
     const int s = method.stages();
     const generated::Table& table = method.table();
     Coefficients co;
-    for (Eigen::Index e = 0; e < m_; ++e) {
-      const auto set = [&](int slot, double x) { values_[slot * stride_ + e] = x; };
+    for (Eigen::Index e = 0; e < lambda.size(); ++e) {
+      const auto set = [&](int slot, double x) { slots_.set(slot, e, x); };
       const double v = h * h * lambda[e];
       table.coefficients(v, co.b.data(), co.bbar.data(), co.abar_packed.data());
       for (int i = 0; i < s; ++i) {
@@ -71,15 +127,9 @@ class StepCoefficients {
   Value mhMphi1() const { return at(kMhMphi1); }  ///< -h M phi1(V) = -(V/h) phi1(V)
 
  private:
-  Value at(int slot) const {
-    if constexpr (kScalar)
-      return values_[slot];
-    else
-      return Value(values_.data() + slot * stride_, m_);
-  }
+  Value at(int slot) const { return slots_.at(slot); }
 
-  Eigen::Index m_, stride_;
-  std::conditional_t<kScalar, std::array<double, kSlots>, Eigen::ArrayXd> values_;
+  CoefficientSlots<Coef> slots_;
 };
 
 }  // namespace erkn::detail

@@ -8,7 +8,10 @@
 #include <array>
 #include <cmath>
 #include <new>
+#include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 
 #include "erkn/error.hpp"
 #include "erkn/integrator.hpp"
@@ -18,22 +21,29 @@
 
 namespace erkn::detail {
 
-/// The integrator's state, which a step changes only once it has succeeded.
-struct StepState {
-  Eigen::VectorXd& q;
-  Eigen::VectorXd& p;
-  Eigen::VectorXd& q_error;  ///< compensated-summation error of q
-  Eigen::VectorXd& p_error;
-  long step_number;  ///< of the step being taken (1-based), for messages
-  double t;          ///< at its start, for messages
-};
+/// True when every diagonal coefficient abar_ii is identically zero (the generator's closed form
+/// is "0"): the stages are explicit and the method is a splitting of the exact linear flow and
+/// kicks (DESIGN.md section 1).
+inline bool explicit_stages(const Method& method) {
+  const int s = method.stages();
+  for (int i = 0; i < s; ++i)
+    if (std::string_view(method.table().closed_forms[2 * s + i * (i + 1) / 2 + i]) != "0")
+      return false;
+  return true;
+}
 
+/// Advances (q, p), held in M's eigen coordinates between steps (with their compensated-summation
+/// errors); physical coordinates only where grad U is evaluated and when asked for.
 class StepperBase {
  public:
   virtual ~StepperBase() = default;
-  virtual void step(StepState state, Statistics& stats) = 0;
-  /// Drops the previous step's stage gradients (after a change of state or h).
-  virtual void forget_history() = 0;
+  /// Replaces the state; forgets the stage history and the summation errors.
+  virtual void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p) = 0;
+  /// Writes the state in physical coordinates.
+  virtual void get_state(Eigen::VectorXd& q, Eigen::VectorXd& p) = 0;
+  /// One step (step_number 1-based and t at its start, for messages); on error the state is
+  /// unchanged.
+  virtual void step(long step_number, double t, Statistics& stats) = 0;
   virtual void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) = 0;
   virtual System& system() = 0;
 };
@@ -43,7 +53,6 @@ class Stepper final : public StepperBase {
   using Spectral = typename Transform::Spectral;
   using Scalar = typename Spectral::Scalar;
   using SpectralMap = Eigen::Map<Spectral, Eigen::AlignedMax>;
-  using VectorMap = Eigen::Map<Eigen::VectorXd, Eigen::AlignedMax>;
 
  public:
   /// lambda: M's eigenvalues ({0} for RKN methods, whose force then includes -M q).
@@ -53,29 +62,38 @@ class Stepper final : public StepperBase {
         system_(std::move(system)),
         options_(options),
         rkn_(method.kind() == Kind::rkn),
+        explicit_(explicit_stages(method)),
+        fsal_(explicit_ && method.stages() > 1 && method.table().c[0] == 0 &&
+              method.table().c[method.stages() - 1] == 1),
+        h_(h),
         d_(d),
         s_(method.stages()),
-        k_(method, h, lambda),
         transform_(std::move(transform)),
         M_(system_.M, d),
         m_(transform_.spectral_size(d)),
         stride_(aligned_stride<Scalar>(m_)),
-        spectral_(Spectral::Zero((8 + 2 * s_) * stride_)),
+        spectral_(Spectral::Zero((kSlots + 2 * s_) * stride_)),
         q_hat_(slot(0), m_),
         p_hat_(slot(1), m_),
-        r_hat_(slot(2), m_),
-        Q_hat_(slot(3), m_),
-        Q_hat_new_(slot(4), m_),
-        guess_hat_(slot(5), m_),
-        dq_hat_(slot(6), m_),
-        dp_hat_(slot(7), m_),
-        G_(slot(8)),
-        G_old_(slot(8 + s_)),
-        physical_(Eigen::VectorXd::Zero(2 * aligned_stride<double>(d))),
-        dq_(physical_.data(), d),
-        dp_(physical_.data() + aligned_stride<double>(d), d) {
-    for (Eigen::VectorXd* x : {&Q_, &Q_new_, &g_}) x->setZero(d);
+        eq_hat_(slot(2), m_),
+        ep_hat_(slot(3), m_),
+        qw_hat_(slot(4), m_),
+        pw_hat_(slot(5), m_),
+        eqw_hat_(slot(6), m_),
+        epw_hat_(slot(7), m_),
+        r_hat_(slot(8), m_),
+        Q_hat_(slot(9), m_),
+        Q_hat_new_(slot(10), m_),
+        guess_hat_(slot(11), m_),
+        G_(slot(kSlots)),
+        G_old_(slot(kSlots + s_)) {
+    for (Eigen::VectorXd* x : {&Q_, &g_}) x->setZero(d);
     if (rkn_) Mq_.setZero(d);
+    if (explicit_) {
+      flows_.emplace(method, h, lambda);
+      return;
+    }
+    k_.emplace(method, h, lambda);
     // Lagrange weights extrapolating the previous step's nodes c_j to 1 + c_i.
     const double* c = method.table().c;
     for (int i = 0; i < s_; ++i)
@@ -90,39 +108,105 @@ class Stepper final : public StepperBase {
   Stepper(const Stepper&) = delete;  // (the maps view its own buffers)
   Stepper& operator=(const Stepper&) = delete;
 
-  void step(StepState state, Statistics& stats) override {
-    state_ = &state;
-    transform_.forward(state.q, q_hat_);
-    transform_.forward(state.p, p_hat_);
-    for (int i = 0; i < s_; ++i) {
-      start_stage(i);
-      if (!fixed_point(i, stats)) newton(i, stats);
-    }
-    dq_hat_ = k_.phi0m1() * q_hat_ + k_.hphi1() * p_hat_;
-    dp_hat_ = k_.mhMphi1() * q_hat_ + k_.phi0m1() * p_hat_;
-    for (int i = 0; i < s_; ++i) {
-      dq_hat_ -= k_.h2bbar(i) * G(i);
-      dp_hat_ -= k_.hb(i) * G(i);
-    }
-    transform_.inverse(dq_hat_, dq_);
-    transform_.inverse(dp_hat_, dp_);
-    add(state.q, state.q_error, dq_);
-    add(state.p, state.p_error, dp_);
+  void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p) override {
+    transform_.forward(q, q_hat_);
+    transform_.forward(p, p_hat_);
+    eq_hat_.setZero();
+    ep_hat_.setZero();
+    have_history_ = false;
+  }
+
+  void get_state(Eigen::VectorXd& q, Eigen::VectorXd& p) override {
+    transform_.inverse(q_hat_, q);
+    transform_.inverse(p_hat_, p);
+  }
+
+  void step(long step_number, double t, Statistics& stats) override {
+    step_number_ = step_number;
+    t_ = t;
+    if (explicit_)
+      explicit_step(stats);
+    else
+      implicit_step(stats);
     std::swap(G_, G_old_);  // (the pointers)
     have_history_ = true;
     ++stats.steps;
   }
 
-  void forget_history() override { have_history_ = false; }
   void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) override { M_.apply(x, y); }
   System& system() override { return system_; }
 
  private:
+  // Slots of spectral_ before the stage gradients.
+  static constexpr int kSlots = 12;
+
+  // Eq. (d): the stages one by one, then the update, added to the state only at the end.
+  void implicit_step(Statistics& stats) {
+    const StepCoefficients<Coef>& k = *k_;
+    for (int i = 0; i < s_; ++i) {
+      start_stage(i);
+      if (!fixed_point(i, stats)) newton(i, stats);
+    }
+    SpectralMap &dq = qw_hat_, &dp = pw_hat_;
+    dq = k.phi0m1() * q_hat_ + k.hphi1() * p_hat_;
+    dp = k.mhMphi1() * q_hat_ + k.phi0m1() * p_hat_;
+    for (int i = 0; i < s_; ++i) {
+      dq -= k.h2bbar(i) * G(i);
+      dp -= k.hb(i) * G(i);
+    }
+    add(q_hat_, eq_hat_, dq);
+    add(p_hat_, ep_hat_, dp);
+  }
+
+  // An explicit method as the flows over tau_k and the kicks p -= h d_k g_k it is, on a copy
+  // of the state that replaces it once every gradient has been evaluated. With c_1 = 0 and
+  // c_s = 1 the first kick reuses the last gradient of the previous step (FSAL).
+  void explicit_step(Statistics& stats) {
+    const double* d = method_.table().d;
+    qw_hat_ = q_hat_;
+    pw_hat_ = p_hat_;
+    if (options_.compensated_summation) eqw_hat_ = eq_hat_, epw_hat_ = ep_hat_;
+    for (int i = 0; i < s_; ++i) {
+      flow(i);
+      if (i == 0 && fsal_ && have_history_) {
+        kick(h_ * d[0], G_old(s_ - 1));
+        continue;
+      }
+      transform_.inverse(qw_hat_, Q_);
+      force(Q_, i, stats);
+      transform_.forward(g_, G(i));
+      ++stats.stage_iterations;
+      kick(h_ * d[i], G(i));
+    }
+    flow(s_);
+    for (auto [a, b] : {std::pair{&q_hat_, &qw_hat_},
+                        {&p_hat_, &pw_hat_},
+                        {&eq_hat_, &eqw_hat_},
+                        {&ep_hat_, &epw_hat_}})
+      swap_views(*a, *b);
+  }
+
+  // (q, p) <- exact flow over tau_k, as increments (compensated when enabled).
+  void flow(int k) {
+    const FlowCoefficients<Coef>& f = *flows_;
+    if (!f.moves(k)) return;
+    Q_hat_ = f.cm1(k) * qw_hat_ + f.sinc(k) * pw_hat_;
+    Q_hat_new_ = f.msinc(k) * qw_hat_ + f.cm1(k) * pw_hat_;
+    add(qw_hat_, eqw_hat_, Q_hat_);
+    add(pw_hat_, epw_hat_, Q_hat_new_);
+  }
+
+  void kick(double hd, const SpectralMap& g) {
+    Q_hat_ = -hd * g;
+    add(pw_hat_, epw_hat_, Q_hat_);
+  }
+
   // r_i = phi0(c_i^2 V) q + h c_i phi1(c_i^2 V) p - h^2 sum_{j<i} abar_ij g_j, and the starting
   // guess Q = r_i - h^2 abar_ii g_pred with g_pred extrapolated from the previous step.
   void start_stage(int i) {
-    r_hat_ = k_.phi0c(i) * q_hat_ + k_.hcphi1c(i) * p_hat_;
-    for (int j = 0; j < i; ++j) r_hat_ -= k_.abar(i, j) * G(j);
+    const StepCoefficients<Coef>& k = *k_;
+    r_hat_ = k.phi0c(i) * q_hat_ + k.hcphi1c(i) * p_hat_;
+    for (int j = 0; j < i; ++j) r_hat_ -= k.abar(i, j) * G(j);
     if (have_history_) {
       guess_hat_ = extrapolation_[i][0] * G_old(0);
       for (int j = 1; j < s_; ++j) guess_hat_ += extrapolation_[i][j] * G_old(j);
@@ -131,7 +215,7 @@ class Stepper final : public StepperBase {
     } else {
       guess_hat_.setZero();
     }
-    Q_hat_ = r_hat_ - k_.abar(i, i) * guess_hat_;
+    Q_hat_ = r_hat_ - k.abar(i, i) * guess_hat_;
     transform_.inverse(Q_hat_, Q_);
   }
 
@@ -144,7 +228,7 @@ class Stepper final : public StepperBase {
       if (it > 1) transform_.inverse(Q_hat_, Q_);  // (start_stage did it for the guess)
       force(Q_, i, stats);
       transform_.forward(g_, G(i));
-      Q_hat_new_ = r_hat_ - k_.abar(i, i) * G(i);
+      Q_hat_new_ = r_hat_ - k_->abar(i, i) * G(i);
       ++stats.stage_iterations;
       // |dQ| / max(|Q_new|, |Q_old|) in eigen coordinates, so a converged stage needs no inverse
       // transform. Both iterates: an iterate at 0 (a 2-cycle r -> 0 -> r) must not make delta
@@ -180,13 +264,13 @@ class Stepper final : public StepperBase {
     if (J_.rows() != d_) {
       J_.resize(d_, d_);
       H_.resize(d_, d_);
-      for (Eigen::VectorXd* x : {&r_, &F_, &gU_, &col_}) x->resize(d_);
+      for (Eigen::VectorXd* x : {&r_, &F_, &gU_, &col_, &Q_new_}) x->resize(d_);
       col_hat_.resize(Q_hat_.size());
       lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(d_);
       if (rkn_) M_dense_ = system_.M.to_dense(d_);
     }
     transform_.inverse(r_hat_, r_);
-    Q_hat_ = r_hat_ - k_.abar(i, i) * guess_hat_;
+    Q_hat_ = r_hat_ - k_->abar(i, i) * guess_hat_;
     transform_.inverse(Q_hat_, Q_);
     double delta_old = 0, residual = 0;
     int it = 1;
@@ -195,7 +279,7 @@ class Stepper final : public StepperBase {
       g_ = gU_;
       add_MQ(Q_);
       transform_.forward(g_, G(i));
-      Q_hat_ = k_.abar(i, i) * G(i);
+      Q_hat_ = k_->abar(i, i) * G(i);
       transform_.inverse(Q_hat_, F_);
       F_ += Q_ - r_;
       residual = F_.norm() / std::max(Q_.norm(), 1e-300);
@@ -217,8 +301,8 @@ class Stepper final : public StepperBase {
       delta_old = delta;
     }
     throw Error(
-        "step " + std::to_string(state_->step_number) + " at t = " + format(state_->t) +
-        ": stage " + std::to_string(i + 1) + " of " + std::string(method_.name()) +
+        "step " + std::to_string(step_number_) + " at t = " + format(t_) + ": stage " +
+        std::to_string(i + 1) + " of " + std::string(method_.name()) +
         " did not converge (fixed-point iteration failed; Newton left a relative residual " +
         format(residual, 3) + " after " +
         std::to_string(std::min(it, options_.max_newton_iterations)) +
@@ -233,7 +317,7 @@ class Stepper final : public StepperBase {
       if (H_.rows() != d_ || H_.cols() != d_ || !H_.allFinite())
         throw Error("the Hessian callback returned a non-finite value or a size other than " +
                     std::to_string(d_) + "x" + std::to_string(d_) + " at step " +
-                    std::to_string(state_->step_number));
+                    std::to_string(step_number_));
     } else {
       for (Eigen::Index j = 0; j < d_; ++j) {
         const double saved = Q_[j], step = 1e-7 * std::max(1.0, std::abs(saved));
@@ -247,7 +331,7 @@ class Stepper final : public StepperBase {
     for (Eigen::Index j = 0; j < d_; ++j) {
       col_ = H_.col(j);
       transform_.forward(col_, col_hat_);
-      col_hat_ *= k_.abar(i, i);
+      col_hat_ *= k_->abar(i, i);
       transform_.inverse(col_hat_, col_);
       J_.col(j) = col_;
     }
@@ -274,25 +358,26 @@ class Stepper final : public StepperBase {
       g.resize(d_);
       throw Error("the gradient callback returned a vector of size " + std::to_string(got) +
                   " for q of size " + std::to_string(d_) + " (step " +
-                  std::to_string(state_->step_number) + ", stage " + std::to_string(i + 1) +
+                  std::to_string(step_number_) + ", stage " + std::to_string(i + 1) +
                   "); the state is unchanged");
     }
     if (!g.allFinite())
       throw Error("the gradient callback returned a non-finite value at step " +
-                  std::to_string(state_->step_number) + " (t = " + format(state_->t) + "), stage " +
+                  std::to_string(step_number_) + " (t = " + format(t_) + "), stage " +
                   std::to_string(i + 1) + "; the state is unchanged");
   }
 
-  // x += dx, Kahan-compensated when enabled (error carries the lost low-order bits).
-  void add(Eigen::VectorXd& x, Eigen::VectorXd& error, VectorMap& dx) {
+  // x += dx in eigen coordinates, Kahan-compensated when enabled (error carries the lost
+  // low-order bits of x; dx is clobbered).
+  void add(SpectralMap& x, SpectralMap& error, SpectralMap& dx) {
     if (!options_.compensated_summation) {
       x += dx;
       return;
     }
     dx += error;
-    Q_new_ = x + dx;
-    error = (x - Q_new_) + dx;
-    x.swap(Q_new_);
+    error = x;
+    x += dx;
+    error = (error - x) + dx;
   }
 
   Scalar* slot(int k) { return spectral_.data() + k * stride_; }
@@ -309,28 +394,31 @@ class Stepper final : public StepperBase {
   Method method_;
   System system_;
   Options options_;
-  bool rkn_;
+  bool rkn_, explicit_, fsal_;
+  double h_;
   Eigen::Index d_;
   int s_;
-  StepCoefficients<Coef> k_;
+  std::optional<StepCoefficients<Coef>> k_;      // implicit methods
+  std::optional<FlowCoefficients<Coef>> flows_;  // explicit methods
   Transform transform_;
   MOperator M_;
-  StepState* state_ = nullptr;
+  long step_number_ = 0;  // of the step being taken, and its t, for messages
+  double t_ = 0;
   std::array<std::array<double, kMaxStages>, kMaxStages> extrapolation_{};
   bool have_history_ = false;
   // The arrays in eigen coordinates, m_ entries each and stride_ apart in spectral_ (one
-  // allocation): the eight below, then the s stage gradients of this step (G_) and of the last
-  // (G_old_).
+  // allocation): the state (q, p) and its summation errors, a working copy of them (the explicit
+  // step; the implicit one keeps its increments dq, dp there), four stage arrays, then the s
+  // stage gradients of this step (G_) and of the last (G_old_).
   Eigen::Index m_, stride_;
   Spectral spectral_;
-  SpectralMap q_hat_, p_hat_, r_hat_, Q_hat_, Q_hat_new_, guess_hat_, dq_hat_, dp_hat_;
+  SpectralMap q_hat_, p_hat_, eq_hat_, ep_hat_, qw_hat_, pw_hat_, eqw_hat_, epw_hat_;
+  SpectralMap r_hat_, Q_hat_, Q_hat_new_, guess_hat_;
   Scalar *G_, *G_old_;
-  Eigen::VectorXd Q_, Q_new_, g_, Mq_;  // (Q_, g_ go to the callbacks; Q_new_ swaps with q, p)
-  Eigen::VectorXd physical_;            // dq_ and dp_, one allocation
-  VectorMap dq_, dp_;
+  Eigen::VectorXd Q_, g_, Mq_;  // (Q_, g_ go to the callbacks)
   // Newton workspace, allocated at the first fallback.
   Eigen::MatrixXd J_, H_, M_dense_;
-  Eigen::VectorXd r_, F_, gU_, col_;
+  Eigen::VectorXd r_, F_, gU_, col_, Q_new_;
   Spectral col_hat_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
 };

@@ -124,8 +124,16 @@ class Integrator {
   /// Changes h (validated and tables recomputed first; on error nothing changes).
   void set_step_size(double h);
 
-  const Eigen::VectorXd& q() const { return q_; }
-  const Eigen::VectorXd& p() const { return p_; }
+  /// The state in physical coordinates (the stepper keeps it in M's eigen coordinates; it is
+  /// transformed back on the first call after a step).
+  const Eigen::VectorXd& q() const {
+    if (stale_) load_state();
+    return q_;
+  }
+  const Eigen::VectorXd& p() const {
+    if (stale_) load_state();
+    return p_;
+  }
   double t() const { return t_base_ + double(steps_since_base_) * h_; }
   double h() const { return h_; }
   const Method& method() const { return method_; }
@@ -145,7 +153,8 @@ class Integrator {
   Method method_;
   Options options_;
   double h_;
-  Eigen::VectorXd q_, p_, q_error_, p_error_;  // state and its compensated-summation errors
+  mutable Eigen::VectorXd q_, p_;  // the state in physical coordinates, current unless stale_
+  mutable bool stale_ = false;
   double t_base_ = 0;
   long steps_since_base_ = 0;
   Statistics statistics_;
@@ -160,6 +169,7 @@ class Integrator {
     bool shorter = false;  // then one shorter step to t_end
   };
   EndPlan plan_to(double t_end) const;
+  void load_state() const;
   EndPlan prepare_end(double t_end, long every);
   void require_output_times(double t_end, const Eigen::Ref<const Eigen::VectorXd>& times) const;
   detail::StepperBase& stepper_of_size(double h);
