@@ -105,6 +105,27 @@ TEST(GridMpi, AgreesWithTheSingleProcessIntegratorForEveryMethodAndBoundary) {
     }
 }
 
+TEST(GridMpi, AnOffGridEndTakesTheSameShorterLastStepAsTheSingleProcessIntegrator) {
+  const Grid g = grids()[1];
+  const Stiffness M = Stiffness::grid(g.axes, g.shift);
+  Eigen::VectorXd q0, p0;
+  initial(M.dim(), q0, p0);
+  const mpi::Slab slab = mpi::slab(MPI_COMM_WORLD, M);
+  const Eigen::Index offset = slab.size == 0 ? 0 : slab.first * (M.dim() / g.axes[0].n);
+  const Method& method = Method::by_name("SERKN3s4(1)");
+  mpi::GridIntegrator distributed(MPI_COMM_WORLD, method, sine_gordon(M), 0.1,
+                                  q0.segment(offset, slab.size), p0.segment(offset, slab.size));
+  Integrator serial(method, sine_gordon(M), 0.1, q0, p0);
+  for (double t_end : {0.55, 0.75, 1.0}) {  // off the grid, off the new grid, on it
+    distributed.integrate(t_end);
+    serial.integrate(t_end);
+    EXPECT_EQ(distributed.t(), t_end);
+    EXPECT_LE(max_difference(distributed.gather(distributed.q()), serial.q()), 1e-13) << t_end;
+  }
+  EXPECT_EQ(distributed.statistics().steps, serial.statistics().steps);
+  EXPECT_THROW(distributed.integrate(0.5), Error);  // before t()
+}
+
 TEST(GridMpi, TheComparisonDetectsADifferentStepSize) {  // negative control
   const Grid g = grids()[1];
   const Runs a = run_both(Method::by_name("SERKN2s4"), g, 0.1, 12);

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -32,9 +33,10 @@ class GridStepper {
         rkn_(method.kind() == Kind::rkn),
         s_(method.stages()),
         T_(comm_, system_.M),
-        k_(method, h,
-           rkn_ ? Eigen::VectorXd::Zero(T_.spectral_size()).eval()
-                : Eigen::VectorXd(T_.eigenvalues().matrix())) {
+        // (RKN methods: V = 0, their force includes M Q)
+        lambda_(rkn_ ? Eigen::VectorXd::Zero(T_.spectral_size()).eval()
+                     : Eigen::VectorXd(T_.eigenvalues().matrix())),
+        k_h_(method, h, lambda_) {
     slab_ = {T_.first_row(), T_.rows(), T_.physical_size()};
     q_ = q0, p_ = p0;
     q_error_.setZero(slab_.size), p_error_.setZero(slab_.size);
@@ -63,28 +65,43 @@ class GridStepper {
     return copy;
   }
 
-  void step() {
+  /// One step of size h, or with short_step = true of the size given to prepare_short (the
+  /// caller then restarts the time grid at its end; the stage history is not used across it).
+  void step(bool short_step = false) {
+    k_ = short_step ? &*k_short_ : &k_h_;
+    if (short_step) have_history_ = false;
     T_.forward(q_, q_hat_);
     T_.forward(p_, p_hat_);
     for (int i = 0; i < s_; ++i) {
       start_stage(i);
       fixed_point(i);
     }
-    dq_hat_ = k_.phi0m1() * q_hat_ + k_.hphi1() * p_hat_;
-    dp_hat_ = k_.mhMphi1() * q_hat_ + k_.phi0m1() * p_hat_;
+    dq_hat_ = k_->phi0m1() * q_hat_ + k_->hphi1() * p_hat_;
+    dp_hat_ = k_->mhMphi1() * q_hat_ + k_->phi0m1() * p_hat_;
     for (int i = 0; i < s_; ++i) {
-      dq_hat_ -= k_.h2bbar(i) * G_[i];
-      dp_hat_ -= k_.hb(i) * G_[i];
+      dq_hat_ -= k_->h2bbar(i) * G_[i];
+      dp_hat_ -= k_->hb(i) * G_[i];
     }
     T_.inverse(dq_hat_, dq_);
     T_.inverse(dp_hat_, dp_);
     add(q_, q_error_, dq_);
     add(p_, p_error_, dp_);
     std::swap(G_, G_old_);
-    have_history_ = true;
+    have_history_ = !short_step;
     ++statistics_.steps;
-    ++steps_since_start_;
+    ++steps_since_base_;
   }
+
+  /// The coefficients of a shorter step (checked against the poles; the same on every rank).
+  void prepare_short(double h_short) {
+    if (k_short_ && short_h_ == h_short) return;
+    erkn::detail::check_step_size(method_, h_short, system_.M.eigenvalues(),
+                                  options_.pole_tolerance);
+    k_short_.emplace(method_, h_short, lambda_);
+    short_h_ = h_short;
+  }
+
+  double t() const { return t_base_ + double(steps_since_base_) * h_; }
 
   double energy() {
     if (!system_.potential) throw Error("energy() needs System::potential");
@@ -109,16 +126,21 @@ class GridStepper {
   bool rkn_;
   int s_;
   detail::SlabTransform T_;
-  StepCoefficients<Eigen::ArrayXd> k_;
+  Eigen::VectorXd lambda_;  // where the coefficients are evaluated
+  StepCoefficients<Eigen::ArrayXd> k_h_;
+  std::optional<StepCoefficients<Eigen::ArrayXd>> k_short_;  // of the last shorter step
+  double short_h_ = 0;
+  const StepCoefficients<Eigen::ArrayXd>* k_ = &k_h_;  // of the step being taken
   Slab slab_;
   Statistics statistics_;
-  long steps_since_start_ = 0;
+  double t_base_ = 0;  // the time grid is t_base_ + n h
+  long steps_since_base_ = 0;
   Eigen::VectorXd q_, p_, q_error_, p_error_;
 
  private:
   void start_stage(int i) {
-    r_hat_ = k_.phi0c(i) * q_hat_ + k_.hcphi1c(i) * p_hat_;
-    for (int j = 0; j < i; ++j) r_hat_ -= k_.abar(i, j) * G_[j];
+    r_hat_ = k_->phi0c(i) * q_hat_ + k_->hcphi1c(i) * p_hat_;
+    for (int j = 0; j < i; ++j) r_hat_ -= k_->abar(i, j) * G_[j];
     if (have_history_) {
       guess_hat_ = extrapolation_[i][0] * G_old_[0];
       for (int j = 1; j < s_; ++j) guess_hat_ += extrapolation_[i][j] * G_old_[j];
@@ -127,7 +149,7 @@ class GridStepper {
     } else {
       guess_hat_.setZero();
     }
-    Q_hat_ = r_hat_ - k_.abar(i, i) * guess_hat_;
+    Q_hat_ = r_hat_ - k_->abar(i, i) * guess_hat_;
   }
 
   // Q <- r_i - h^2 abar_ii(V) g(Q) until theta/(1-theta)|dQ| <= tolerance (Stepper::fixed_point;
@@ -139,7 +161,7 @@ class GridStepper {
       const double bad = gradient();
       T_.forward(g_, G_[i]);
       if (rkn_) G_[i] += T_.eigenvalues() * Q_hat_;  // the RKN force includes M Q
-      Q_new_hat_ = r_hat_ - k_.abar(i, i) * G_[i];
+      Q_new_hat_ = r_hat_ - k_->abar(i, i) * G_[i];
       ++statistics_.stage_iterations;
       // One allreduce: |dQ|^2, |Q_new|^2, |Q|^2 (first iteration) and the gradient check.
       std::array<double, 4> sums{T_.local_squared_norm(Q_new_hat_ - Q_hat_),
@@ -274,18 +296,34 @@ void GridIntegrator::step() {
 }
 
 void GridIntegrator::integrate(double t_end) {
-  const double h = stepper_->h_, span = t_end - t();
-  const double n = std::round(span / h);
-  if (!std::isfinite(span) || span < 0 ||
-      std::abs(n * h - span) > 1e-9 * std::max(h, std::abs(t_end)))
-    throw Error("t_end = " + std::to_string(t_end) + " is not a whole number of steps h = " +
-                std::to_string(h) + " ahead of t = " + std::to_string(t()));
-  for (long k = long(n); k > 0; --k) step();
+  // Integrator's time semantics: whole steps of h to the last grid point t_n before t_end (a time
+  // within 4 eps of a grid point is that point), then one shorter step t_end - t_n.
+  detail::GridStepper& s = *stepper_;
+  const double t0 = t(), h = s.h_;
+  if (!std::isfinite(t_end) || t_end < t0)
+    throw Error("t_end = " + std::to_string(t_end) +
+                " is not finite or lies before t = " + std::to_string(t0));
+  const double tolerance =
+      4 * std::numeric_limits<double>::epsilon() * std::max({std::abs(t0), std::abs(t_end), h});
+  const double whole = std::floor((t_end - t0) / h + 1e-9);
+  if (whole > Integrator::kMaxSteps)
+    throw Error("t_end = " + std::to_string(t_end) + " needs more than 2^53 steps");
+  const auto grid = [&](double n) { return s.t_base_ + (double(s.steps_since_base_) + n) * h; };
+  long n = long(whole);
+  if (n > 0 && grid(double(n)) > t_end + tolerance) --n;  // (the 1e-9 overshot)
+  const double rest = t_end - grid(double(n));
+  const bool shorter = rest > tolerance;
+  if (shorter) detail::collectively(s.comm_, [&] { s.prepare_short(rest); });
+  for (long k = 0; k < n; ++k) s.step();
+  if (shorter) {
+    s.step(true);
+    s.t_base_ = t_end, s.steps_since_base_ = 0;  // (t() == t_end exactly)
+  }
 }
 
 const Eigen::VectorXd& GridIntegrator::q() const { return stepper_->q_; }
 const Eigen::VectorXd& GridIntegrator::p() const { return stepper_->p_; }
-double GridIntegrator::t() const { return double(stepper_->steps_since_start_) * stepper_->h_; }
+double GridIntegrator::t() const { return stepper_->t(); }
 double GridIntegrator::h() const { return stepper_->h_; }
 const Slab& GridIntegrator::slab() const { return stepper_->slab_; }
 const Statistics& GridIntegrator::statistics() const { return stepper_->statistics_; }

@@ -88,7 +88,8 @@ class GridIntegrator {
   GridIntegrator& operator=(GridIntegrator&&) noexcept;
 
   void step();
-  /// Steps to t_end (a whole number of steps ahead, else erkn::Error and nothing done).
+  /// Steps to t_end as Integrator::integrate does: whole steps of h to the last grid point before
+  /// t_end, then (off the grid) one shorter step with the method's coefficients at its size.
   void integrate(double t_end);
 
   /// This rank's slab of the state.
