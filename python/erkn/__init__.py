@@ -137,13 +137,19 @@ def solve(M, grad, *, q0, p0, t_span, h, method="SERKN2s4", t_eval=None, every=1
     Output at t_eval (any ascending times in t_span), else at t0, every `every`-th step and
     t1. The energy H = p.p/2 + q.M q/2 + U(q) is reported when U is known (a built-in, or the
     `potential` callable); `hessian(q)` (or hessian(q, out)) helps the stage solver's Newton
-    fallback. Raises erkn.Error with erkn's message on any bad input or failed step."""
+    fallback. Raises erkn.Error with erkn's message on any bad input or failed step; an error
+    (or an exception from a callback) during the run carries the output up to the last completed
+    step as its `solution` attribute."""
     t0, t1 = (float(x) for x in t_span)
     run = Integrator(M, grad, q0=q0, p0=p0, h=h, method=method, t0=t0, potential=potential,
                      hessian=hessian)
     if t_eval is not None:
         t_eval = np.ascontiguousarray(t_eval, dtype=float)
-    t, q, p, energy = run.run(t1, t_eval, every)
+    try:
+        t, q, p, energy = run.run(t1, t_eval, every)
+    except Exception as e:  # keep the output up to the last completed step
+        e.solution = Solution(*run._partial, run.statistics, run.method)
+        raise
     return Solution(t, q, p, energy, run.statistics, run.method)
 
 

@@ -72,14 +72,19 @@ class PyIntegrator {
     const Times times = t_eval.is_none() ? Times() : Times::ensure(t_eval);
     if (!t_eval.is_none() && (!times || times.ndim() != 1))
       throw Error("t_eval must be a 1-D array of times");
-    stepping([&] {
-      if (!t_eval.is_none()) {
-        run_.integrate(t_end, Eigen::Map<const Eigen::VectorXd>(times.data(), times.size()), add);
-      } else {
-        add(run_.t(), run_.q(), run_.p());
-        run_.integrate(t_end, add, every);
-      }
-    });
+    try {
+      stepping([&] {
+        if (!t_eval.is_none()) {
+          run_.integrate(t_end, Eigen::Map<const Eigen::VectorXd>(times.data(), times.size()), add);
+        } else {
+          add(run_.t(), run_.q(), run_.p());
+          run_.integrate(t_end, add, every);
+        }
+      });
+    } catch (...) {  // (a failed run keeps what it computed: erkn.solve attaches it)
+      partial_ = out.to_python();
+      throw;
+    }
     return out.to_python();
   }
 
@@ -114,6 +119,8 @@ class PyIntegrator {
   }
 
   Integrator& get() { return run_; }
+  /// The output of the last run() that failed, up to its last completed step.
+  py::object partial() const { return partial_; }
 
  private:
   void step_to(double t_end, long every) {
@@ -138,6 +145,7 @@ class PyIntegrator {
 
   bool calls_python_;
   Integrator run_;
+  py::object partial_ = py::none();
   double wall_time_ = 0;
 };
 
@@ -179,7 +187,8 @@ void bind_integrator(py::module_& m) {
       .def_property_readonly("h", [](PyIntegrator& r) { return r.get().h(); })
       .def_property_readonly("method",
                              [](PyIntegrator& r) { return std::string(r.get().method().name()); })
-      .def_property_readonly("statistics", &PyIntegrator::statistics);
+      .def_property_readonly("statistics", &PyIntegrator::statistics)
+      .def_property_readonly("_partial", &PyIntegrator::partial);
 }
 
 }  // namespace erkn::python

@@ -160,3 +160,23 @@ def test_a_python_exception_in_grad_propagates_and_leaves_the_state(chain):
     calls.clear()
     run.step()
     assert run.t == pytest.approx(t + 0.1) and not np.array_equal(run.q, q)
+
+
+def test_a_failed_solve_keeps_the_output_before_the_failure(chain):
+    M, q0, p0 = chain
+    calls = []
+
+    def grad(q):
+        calls.append(1)
+        if len(calls) > 200:
+            raise ArithmeticError("gave up")
+        return np.sin(q)
+
+    with pytest.raises(ArithmeticError, match="gave up") as failure:
+        erkn.solve(M, grad, q0=q0, p0=p0, t_span=(0, 100), h=0.1)
+    sol = failure.value.solution
+    full = erkn.solve(M, "sine", q0=q0, p0=p0, t_span=(0, 100), h=0.1)
+    n = sol.t.size
+    assert 2 < n < full.t.size and sol.q.shape == (n, 4)
+    assert np.array_equal(sol.t, full.t[:n])
+    assert np.abs(sol.q - full.q[:n]).max() < 1e-12
