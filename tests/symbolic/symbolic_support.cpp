@@ -1,5 +1,6 @@
 #include "symbolic_support.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <sstream>
 #include <stdexcept>
@@ -263,24 +264,28 @@ int Method::index(const std::string& coefficient) const {
 }
 
 GiNaC::numeric Method::tolerance() const {
-  return digits == 0 ? numeric(0) : numeric(1) / GiNaC::pow(numeric(10), numeric(digits - 3));
+  if (digits == 0) return numeric(0);
+  // The generator certifies a condition when |residual| <= 1e-45 (60-digit arithmetic): more
+  // digits than 48 do not make the numbers meet their conditions more closely than that.
+  return numeric(1) / GiNaC::pow(numeric(10), numeric(std::min(digits, kCertifiedDigits) - 3));
 }
 
 bool Method::negligible(const Qs& r) const {
   if (digits == 0) return r.is_zero();
-  return abs(r.to_float(40)) <= tolerance();
+  return abs(r.to_float(100)) <= tolerance();
 }
 
 namespace {
-// The fewest significant digits of a decimal literal in the text, 0 if there is none.
+// The most significant digits of a decimal literal in the text (the precision the table is
+// written in; a short literal such as 0.5 is exact), 0 if there is none.
 int decimal_digits(const std::string& text) {
-  int fewest = 0;
+  int most = 0;
   for (const Decimal& d : decimals(text)) {
     size_t first = d.digits.find_first_not_of('0');
     int n = first == std::string::npos ? 1 : int(d.digits.size() - first);
-    fewest = fewest == 0 ? n : std::min(fewest, n);
+    most = std::max(most, n);
   }
-  return fewest;
+  return most;
 }
 
 // The name of the ERKN method an RKN table is the V -> 0 limit of, from its reference
@@ -609,18 +614,24 @@ std::vector<Failure> series_failures(const std::vector<Condition>& conditions, c
 }
 
 std::vector<Failure> exact_failures(const std::vector<Condition>& conditions, const Method& m) {
+  if (m.digits > 0) {
+    // Decimal coefficients meet an identity only to their digits, and their frequencies
+    // (1 - c_i)^2 are no squares of rationals, outside the trigonometric normal form: checked as
+    // GiNaC series of the closed forms through V^7.
+    std::vector<Condition> truncated = conditions;
+    for (Condition& c : truncated) c.terms = std::min(c.terms, kDecimalIdentityTerms);
+    return series_failures(truncated, m, emitted_series(m, kDecimalIdentityTerms));
+  }
   std::vector<Failure> out;
   for (const Condition& c : conditions) {
     gen::Rational r = exact(c.residual, m);
-    if (c.terms == kIdentity && m.digits == 0) {
+    if (c.terms == kIdentity) {
       if (!r.num.is_zero()) out.push_back({c.name, -1, "not identically zero"});
       continue;
     }
-    // Decimal coefficients meet an identity only to their digits: checked through V^7.
-    const int terms = c.terms == kIdentity ? kDecimalIdentityTerms : c.terms;
-    Series t = gen::taylor(r, terms);
-    for (int k = 0; k < terms; ++k)
-      if (!m.negligible(t[k])) {
+    Series t = gen::taylor(r, c.terms);
+    for (int k = 0; k < c.terms; ++k)
+      if (!t[k].is_zero()) {
         out.push_back({c.name, k, t[k].to_string()});
         break;
       }

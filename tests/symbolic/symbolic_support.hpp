@@ -51,6 +51,9 @@ Series normal_form_taylor(const GiNaC::ex& e, int n);
 /// phi_j(w V) as a series: (-w)^k / (2k+j)!.
 Series phi_series(int j, const Qs& w, int n);
 
+/// Digits beyond which decimals gain nothing: the generator certifies |residual| <= 1e-45.
+inline constexpr int kCertifiedDigits = 48;
+
 /// One method read back from generated/ (its emitted closed forms, nodes and weights).
 struct Method {
   std::string name;
@@ -60,12 +63,12 @@ struct Method {
   std::vector<Qs> c, d;
   std::vector<std::string> names;   ///< b1..bs, bbar1..bbars, abar11, abar21, abar22, ...
   std::vector<std::string> closed;  ///< emitted closed forms (GiNaC syntax), same order
-  /// 0: every number is exact (rationals and square roots). Otherwise the fewest significant
-  /// digits of a decimal literal in the table: such a method meets its conditions to within
-  /// tolerance() only.
+  /// 0: every number is exact (rationals and square roots). Otherwise the most significant digits
+  /// of a decimal literal in the table (its precision): such a method meets its conditions to
+  /// within tolerance() only.
   int digits = 0;
   int index(const std::string& coefficient) const;  ///< throws if unknown
-  /// 0 for exact methods, 10^(3 - digits) for decimal ones.
+  /// 0 for exact methods, 10^(3 - min(digits, kCertifiedDigits)) for decimal ones.
   GiNaC::numeric tolerance() const;
   /// |r| <= tolerance() (r == 0 for exact methods).
   bool negligible(const Qs& r) const;
@@ -142,8 +145,8 @@ std::vector<Failure> edge_failures(const Method& m, const std::vector<Series>& c
 /// is checked at V^0..V^(min(terms, n)-1)).
 std::vector<Failure> series_failures(const std::vector<Condition>& conditions, const Method& m,
                                      const std::vector<Series>& coefficients);
-/// Checks each condition exactly: every coefficient is to_rational(parse(closed form)); an
-/// identity of a method with decimal coefficients through V^7, to within its tolerance.
+/// Checks each condition exactly: every coefficient is to_rational(parse(closed form)). A method
+/// with decimal coefficients: as series of the closed forms through V^7, to within its tolerance.
 std::vector<Failure> exact_failures(const std::vector<Condition>& conditions, const Method& m);
 
 /// The trigonometric normal form of an expression in the method's symbols (coefficients from

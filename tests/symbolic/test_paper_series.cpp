@@ -81,10 +81,11 @@ TEST(PaperSeries, PrintedSeriesSatisfyEveryConditionThroughV3) {
 }
 
 // GiNaC's series() of the emitted form and the generator's own path (to_rational -> taylor)
-// agree exactly, beyond the printed V^3, for every method of the tables.
+// agree exactly, beyond the printed V^3, for every method of the tables with exact coefficients.
 TEST(PaperSeries, GinacSeriesAgreeWithGeneratorNormalForm) {
   const int n = 8;
   for (const Method& m : erkn_methods()) {
+    if (m.digits > 0) continue;  // decimal frequencies are outside the trigonometric normal form
     std::vector<Series> derived = emitted_series(m, n);
     for (size_t k = 0; k < m.closed.size(); ++k) {
       Series t = normal_form_taylor(parse(m.closed[k]), n);
