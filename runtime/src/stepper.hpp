@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <new>
 #include <optional>
 #include <string>
@@ -94,15 +95,29 @@ class Stepper final : public StepperBase {
       return;
     }
     k_.emplace(method, h, lambda);
-    // Lagrange weights extrapolating the previous step's nodes c_j to 1 + c_i.
+    for (int i = 0; i < s_; ++i) {
+      const auto ratio = [&](const auto& num) {
+        return (as_array(num).abs() / as_array(k_->abar(i, i)).abs()).maxCoeff();
+      };
+      weight_[i] = std::max({1.0, ratio(k_->h2bbar(i)), ratio(k_->hb(i) * h)});
+    }
+    // Lagrange weights at c_i on the nodes c_j - 1 (the previous step's stages) and c_j, j < i
+    // (this step's stages solved before stage i; they replace an old node at the same time).
     const double* c = method.table().c;
-    for (int i = 0; i < s_; ++i)
-      for (int j = 0; j < s_; ++j) {
-        double w = 1;
-        for (int l = 0; l < s_; ++l)
-          if (l != j) w *= (1 + c[i] - c[l]) / (c[j] - c[l]);
-        extrapolation_[i][j] = w;
+    for (int i = 0; i < s_; ++i) {
+      double x[2 * kMaxStages];
+      bool used[2 * kMaxStages];
+      for (int j = 0; j < s_ + i; ++j) {
+        x[j] = j < s_ ? c[j] - 1 : c[j - s_];
+        used[j] = j >= s_ || std::find(c, c + i, x[j]) == c + i;
       }
+      for (int j = 0; j < s_ + i; ++j) {
+        double w = 1;
+        for (int l = 0; l < s_ + i; ++l)
+          if (l != j && used[l]) w *= (c[i] - x[l]) / (x[j] - x[l]);
+        extrapolation_[i][j] = used[j] ? w : 0.0;
+      }
+    }
   }
 
   Stepper(const Stepper&) = delete;  // (the maps view its own buffers)
@@ -210,6 +225,7 @@ class Stepper final : public StepperBase {
     if (have_history_) {
       guess_hat_ = extrapolation_[i][0] * G_old(0);
       for (int j = 1; j < s_; ++j) guess_hat_ += extrapolation_[i][j] * G_old(j);
+      for (int j = 0; j < i; ++j) guess_hat_ += extrapolation_[i][s_ + j] * G(j);
     } else if (i > 0) {
       guess_hat_ = G(i - 1);
     } else {
@@ -241,8 +257,10 @@ class Stepper final : public StepperBase {
       norm_Q = norm_new;
       swap_views(Q_hat_, Q_hat_new_);
       if (delta == 0) return true;
+      if (it == 1 && contraction_proves(i, delta)) return true;
       if (it > 1) {
         const double theta = delta / delta_old;
+        if (it == 2) record_contraction(i, theta, delta_old);
         if (theta < 1 && theta / (1 - theta) * delta <= options_.tolerance) return true;
         if (theta >= options_.max_theta)
           return delta <= options_.roundoff_level;  // stagnation at round-off, else diverging
@@ -255,6 +273,32 @@ class Stepper final : public StepperBase {
       delta_old = delta;
     }
     return delta <= options_.roundoff_level;  // out of iterations: accept only round-off noise
+  }
+
+  // The contraction theta of stage i's iteration is a property of h, M and U near the solution:
+  // measured at a second iteration, it lets a later first iteration stop once
+  // theta/(1-theta) |dQ| weight_i <= tolerance with theta = kThetaSafety times the measurement
+  // (no second evaluation to measure it again). Measured afresh every kThetaRefresh steps of
+  // that stage. The step then uses g(Q_0), whose error reaches (q, p) through bbar_i and b_i
+  // rather than abar_ii: weight_i = max(1, |bbar_i| / |abar_ii|, |b_i| / (h |abar_ii|)).
+  static constexpr double kThetaSafety = 4;
+  static constexpr int kThetaRefresh = 8;
+
+  bool contraction_proves(int i, double delta) {
+    if (theta_[i] < 0 || ++theta_age_[i] >= kThetaRefresh) return false;
+    const double theta = kThetaSafety * theta_[i];
+    return theta < 0.5 && theta / (1 - theta) * delta * weight_[i] <= options_.tolerance;
+  }
+
+  // A ratio of updates below ~1e3 round-offs measures noise, not theta: then it only confirms
+  // the old measurement (renews it) when it does not exceed what that one allowed.
+  void record_contraction(int i, double theta, double delta_first) {
+    if (delta_first < 1e3 * std::numeric_limits<double>::epsilon()) {
+      if (theta_[i] >= 0 && theta <= kThetaSafety * theta_[i]) theta_age_[i] = 0;
+      return;
+    }
+    theta_[i] = theta;
+    theta_age_[i] = 0;
   }
 
   // Newton on F(Q) = Q - r_i + h^2 abar_ii(V) g(Q) from the starting guess, Jacobian
@@ -380,6 +424,19 @@ class Stepper final : public StepperBase {
     error = (error - x) + dx;
   }
 
+  static Eigen::ArrayXd as_array(double x) { return Eigen::ArrayXd::Constant(1, x); }
+  template <class A>
+  static Eigen::ArrayXd as_array(const A& a) {
+    return a;
+  }
+
+  template <size_t n>
+  static std::array<double, n> filled(double x) {
+    std::array<double, n> a;
+    a.fill(x);
+    return a;
+  }
+
   Scalar* slot(int k) { return spectral_.data() + k * stride_; }
   SpectralMap G(int i) { return {G_ + i * stride_, m_}; }
   SpectralMap G_old(int i) { return {G_old_ + i * stride_, m_}; }
@@ -404,8 +461,11 @@ class Stepper final : public StepperBase {
   MOperator M_;
   long step_number_ = 0;  // of the step being taken, and its t, for messages
   double t_ = 0;
-  std::array<std::array<double, kMaxStages>, kMaxStages> extrapolation_{};
+  std::array<std::array<double, 2 * kMaxStages>, kMaxStages> extrapolation_{};
   bool have_history_ = false;
+  std::array<double, kMaxStages> theta_ = filled<kMaxStages>(-1.0);  // measured; < 0: none
+  std::array<int, kMaxStages> theta_age_{};  // stage solves since the measurement
+  std::array<double, kMaxStages> weight_{};
   // The arrays in eigen coordinates, m_ entries each and stride_ apart in spectral_ (one
   // allocation): the state (q, p) and its summation errors, a working copy of them (the explicit
   // step; the implicit one keeps its increments dq, dp there), four stage arrays, then the s
