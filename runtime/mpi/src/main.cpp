@@ -4,6 +4,7 @@
 //   mpirun -np N erkn-mpi scaling --table FILE   appends this rank count's strong- and
 //                                                weak-scaling rows to FILE (tab-separated)
 //   erkn-mpi report --table FILE --out FILE.md   the scaling tables and the model beyond them
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -28,14 +29,35 @@ std::map<std::string, std::string> options(int argc, char** argv, int first) {
   return o;
 }
 
+const std::string& required(const std::map<std::string, std::string>& o, const std::string& key) {
+  const auto it = o.find(key);
+  if (it == o.end()) throw erkn::Error("option " + key + " is required");
+  return it->second;
+}
+
+// The whole of o[key] as a number, else erkn::Error naming the option.
+double number(const std::map<std::string, std::string>& o, const std::string& key) {
+  const std::string& text = required(o, key);
+  std::size_t used = 0;
+  double x = 0;
+  try {
+    x = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(x))
+    throw erkn::Error("option " + key + ": '" + text + "' is not a finite number");
+  return x;
+}
+
 scene::Settings settings(std::map<std::string, std::string>& o) {
   scene::Settings s;
   s.axes = scene::parse_axes(o["--grid"], o["--boundary"]);
-  s.shift = std::stod(o["--shift"]);
+  s.shift = number(o, "--shift");
   s.method = o["--method"];
-  s.h = std::stod(o["--h"]);
-  s.steps = std::stoi(o["--steps"]);
-  s.repeats = std::stoi(o["--repeats"]);
+  s.h = number(o, "--h");
+  s.steps = int(number(o, "--steps"));
+  s.repeats = int(number(o, "--repeats"));
   if (s.steps < 1 || s.repeats < 1) throw erkn::Error("--steps and --repeats must be >= 1");
   return s;
 }
@@ -53,16 +75,17 @@ void print(const std::string& kind, const scene::Settings& s, const scene::Timin
 
 int scaling(std::map<std::string, std::string>& o, int rank, int ranks) {
   scene::Settings strong = settings(o), weak = strong;
-  weak.axes[0].n = std::stol(o["--weak-rows"]) * ranks;  // fixed rows per rank along axis 0
+  weak.axes[0].n =
+      Eigen::Index(number(o, "--weak-rows")) * ranks;  // fixed rows per rank along axis 0
   weak.axes[0].spacing = strong.axes[0].spacing * double(strong.axes[0].n) / double(weak.axes[0].n);
   const scene::Timing ts = scene::run(MPI_COMM_WORLD, strong),
                       tw = scene::run(MPI_COMM_WORLD, weak);
   if (rank == 0) {
     print("strong", strong, ts), print("weak", weak, tw);
-    std::ofstream table(o.at("--table"), std::ios::app);
+    std::ofstream table(required(o, "--table"), std::ios::app);
     report::append(table, "strong", scene::describe(strong.axes), strong.method, ts);
     report::append(table, "weak", scene::describe(weak.axes), weak.method, tw);
-    if (!table) throw erkn::Error("cannot write " + o.at("--table"));
+    if (!table) throw erkn::Error("cannot write " + required(o, "--table"));
   }
   return 0;
 }
@@ -78,10 +101,16 @@ int dispatch(int argc, char** argv, int rank, int ranks) {
   }
   if (command == "scaling") return scaling(o, rank, ranks);
   if (command == "report") {
-    if (rank == 0) report::write(o.at("--table"), o.at("--out"));
+    if (rank == 0) report::write(required(o, "--table"), required(o, "--out"));
     return 0;
   }
-  throw erkn::Error("usage: erkn-mpi run|scaling|report [options] (see the header of main.cpp)");
+  throw erkn::Error(
+      "usage:\n"
+      "  mpirun -np N erkn-mpi run [--grid 256x256] [--boundary periodic|dirichlet|neumann[,...]]\n"
+      "                            [--shift 0] [--method SERKN2s4] [--h 1e-3] [--steps 20]\n"
+      "                            [--repeats 3]\n"
+      "  mpirun -np N erkn-mpi scaling --table FILE [the options of run] [--weak-rows 64]\n"
+      "  erkn-mpi report --table FILE --out FILE.md");
 }
 
 }  // namespace
@@ -94,7 +123,7 @@ int main(int argc, char** argv) {
   try {
     status = dispatch(argc, argv, rank, ranks);
   } catch (const std::exception& e) {  // (erkn::Errors are thrown on every rank alike)
-    if (rank == 0) std::fprintf(stderr, "erkn-mpi: %s\n", e.what());
+    if (rank == 0) std::fprintf(stderr, "%s\n", e.what());
     status = 2;
   }
   MPI_Finalize();

@@ -48,8 +48,15 @@ std::vector<GridAxis> parse_axes(const std::string& grid, const std::string& bou
     throw Error("--boundary needs one name or one per axis");
   std::vector<GridAxis> axes;
   for (std::size_t a = 0; a < n.size(); ++a) {
-    const long size = std::stol(n[a]);
-    if (size < 2) throw Error("every axis needs at least 2 points");
+    std::size_t used = 0;
+    long size = 0;
+    try {
+      size = std::stol(n[a], &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != n[a].size() || size < 2)
+      throw Error("--grid " + grid + ": every axis needs a whole number of points >= 2");
     const Boundary kind = boundary_of(b.size() == 1 ? b[0] : b[a]);
     const double spacing = 2.0 / double(kind == Boundary::dirichlet ? size + 1 : size);
     axes.push_back({Eigen::Index(size), spacing, kind});
