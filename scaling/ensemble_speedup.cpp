@@ -22,11 +22,11 @@ namespace {
 namespace fs = std::filesystem;
 using erkn::scaling::Chart;
 
-// The 1-minute load average (Linux), or "unknown".
-std::string load_average() {
-  std::ifstream f("/proc/loadavg");
-  std::string one;
-  return f >> one ? one : "unknown";
+// The first word of a /proc file (Linux), or "unknown".
+std::string first_word(const char* path) {
+  std::ifstream f(path);
+  std::string word;
+  return f >> word ? word : "unknown";
 }
 
 struct Settings {
@@ -35,7 +35,8 @@ struct Settings {
   int repeats = 3, trajectories = 24, N = 128;
   double h = 0.01, t_end = 10.0;
   std::string method = "SERKN2s4";
-  std::string load = load_average();
+  std::string load = first_word("/proc/loadavg");  // 1-minute load average
+  std::string autogroup = first_word("/proc/sys/kernel/sched_autogroup_enabled");
 };
 
 Settings parse(int argc, char** argv) {
@@ -145,7 +146,14 @@ void write_report(const Settings& s, const std::vector<Row>& rows) {
      << s.t_end << "; wall time of `Ensemble::integrate`, best and median of " << s.repeats
      << " repeats. This machine reports " << hw
      << " hardware threads and is shared with other jobs (load average at the start of this run: "
-     << s.load << "), so more threads than that cannot speed up and the times are noisy.\n\n"
+     << s.load << "), so more threads than that cannot speed up and the times are noisy."
+     << (s.autogroup == "1"
+             ? " The kernel's autogroup scheduling is on (/proc/sys/kernel/sched_autogroup_enabled "
+               "= 1): CPU time is shared equally between sessions, not threads, so while other "
+               "sessions keep the cores busy, more threads do not give this process more CPU "
+               "time (the CPU time / wall time column) and cannot speed it up."
+             : "")
+     << "\n\n"
      << "| threads | best wall time [s] | median [s] | speedup (best) | efficiency | "
         "CPU time / wall time | bit-identical to 1 thread |\n|---|---|---|---|---|---|---|\n";
   char line[200];

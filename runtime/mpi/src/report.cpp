@@ -139,7 +139,15 @@ void write(const std::string& table, const std::string& markdown) {
         "oversubscribed (`--oversubscribe`), so the 4-rank rows show the cost of the exchange "
         "rather than a speedup. CPU time / wall time is the share of a core the busiest rank got: "
         "well below 1, the run waited for the machine (in a collective call a rank waits for the "
-        "slowest), not for its own work.\n\n## Strong scaling (fixed grid)\n\n";
+        "slowest), not for its own work.";
+  std::ifstream autogroup("/proc/sys/kernel/sched_autogroup_enabled");
+  int enabled = 0;
+  if (autogroup >> enabled && enabled == 1)
+    md << " The kernel's autogroup scheduling is on (/proc/sys/kernel/sched_autogroup_enabled = "
+          "1): CPU time is shared equally between sessions, and the ranks of one mpirun are one "
+          "session, so while other sessions keep the cores busy more ranks share the same CPU "
+          "time and every all-to-all waits for descheduled ranks.";
+  md << "\n\n## Strong scaling (fixed grid)\n\n";
   measured_table(md, rows, "strong");
   md << "\n## Weak scaling (fixed rows per rank)\n\n";
   measured_table(md, rows, "weak");
