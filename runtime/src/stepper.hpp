@@ -17,6 +17,7 @@
 #include "erkn/error.hpp"
 #include "erkn/integrator.hpp"
 #include "format.hpp"
+#include "gmres.hpp"
 #include "m_operator.hpp"
 #include "step_coefficients.hpp"
 
@@ -160,7 +161,12 @@ class Stepper final : public StepperBase {
     const StepCoefficients<Coef>& k = *k_;
     for (int i = 0; i < s_; ++i) {
       start_stage(i);
-      if (!fixed_point(i, stats)) newton(i, stats);
+      if (fixed_point(i, stats)) continue;
+      ++stats.newton_fallbacks;
+      if (d_ <= kDenseNewtonMaxD)
+        newton(i, stats);
+      else
+        newton_krylov(i, stats);
     }
     SpectralMap &dq = qw_hat_, &dp = pw_hat_;
     dq = k.phi0m1() * q_hat_ + k.hphi1() * p_hat_;
@@ -282,6 +288,10 @@ class Stepper final : public StepperBase {
   // that stage. The step then uses g(Q_0), whose error reaches (q, p) through bbar_i and b_i
   // rather than abar_ii: weight_i = max(1, |bbar_i| / |abar_ii|, |b_i| / (h |abar_ii|)).
   static constexpr double kThetaSafety = 4;
+  // Newton with a dense LU up to this d, Newton-Krylov (GMRES) beyond it.
+  static constexpr Eigen::Index kDenseNewtonMaxD = 256;
+  static constexpr int kKrylovRestart = 30, kKrylovMaxIterations = 200;
+  static constexpr double kKrylovTolerance = 1e-10;
   static constexpr int kThetaRefresh = 8;
 
   bool contraction_proves(int i, double delta) {
@@ -304,7 +314,6 @@ class Stepper final : public StepperBase {
   // Newton on F(Q) = Q - r_i + h^2 abar_ii(V) g(Q) from the starting guess, Jacobian
   // I + h^2 abar_ii(V) (Hessian [+ M for RKN]).
   void newton(int i, Statistics& stats) {
-    ++stats.newton_fallbacks;
     if (J_.rows() != d_) {
       J_.resize(d_, d_);
       H_.resize(d_, d_);
@@ -344,13 +353,102 @@ class Stepper final : public StepperBase {
       }
       delta_old = delta;
     }
+    not_converged(i, residual, it);
+  }
+
+  [[noreturn]] void not_converged(int i, double residual, int iterations) const {
     throw Error(
         "step " + std::to_string(step_number_) + " at t = " + format(t_) + ": stage " +
         std::to_string(i + 1) + " of " + std::string(method_.name()) +
         " did not converge (fixed-point iteration failed; Newton left a relative residual " +
         format(residual, 3) + " after " +
-        std::to_string(std::min(it, options_.max_newton_iterations)) +
+        std::to_string(std::min(iterations, options_.max_newton_iterations)) +
         " iterations); the state is unchanged");
+  }
+
+  // Newton on the same F for d > kDenseNewtonMaxD without any d x d matrix: each linear system
+  // J dQ = F is solved by GMRES with J v = v + h^2 abar_ii(V) K v, K v a directional difference
+  // of grad U (+ M v), right-preconditioned in M's eigenbasis by 1 + h^2 abar_ii(v_k) sigma,
+  // sigma = w^T K w the Hessian's Rayleigh quotient along the first residual w.
+  void newton_krylov(int i, Statistics& stats) {
+    if (!gmres_) {
+      for (Eigen::VectorXd* x : {&r_, &F_, &gU_, &col_, &Q_new_, &Qe_, &ge_}) x->resize(d_);
+      col_hat_.resize(Q_hat_.size());
+      gmres_.emplace(d_, kKrylovRestart);
+    }
+    transform_.inverse(r_hat_, r_);
+    Q_hat_ = r_hat_ - k_->abar(i, i) * guess_hat_;
+    transform_.inverse(Q_hat_, Q_);
+    double delta_old = 0, residual = 0;
+    int it = 1;
+    for (; it <= options_.max_newton_iterations; ++it) {
+      force(Q_, i, stats);
+      gU_ = g_;
+      apply_abar(i, g_, F_);
+      F_ += Q_ - r_;
+      residual = F_.norm() / std::max(Q_.norm(), 1e-300);
+      if (it == 1) set_preconditioner(i, stats);
+      const auto apply = [&](const auto& v, Eigen::VectorXd& Jv) {
+        jacobian_times(i, v, Jv, stats);
+      };
+      const auto precondition = [&](const auto& v, auto&& z) {
+        col_ = v;
+        transform_.forward(col_, col_hat_);
+        col_hat_ /= precond_;
+        transform_.inverse(col_hat_, col_);
+        z = col_;
+      };
+      gmres_->solve(apply, precondition, F_, Q_new_, kKrylovTolerance, kKrylovMaxIterations);
+      Q_ -= Q_new_;
+      ++stats.newton_iterations, ++stats.stage_iterations;
+      const double delta = Q_new_.norm() / std::max(Q_.norm(), 1e-300);
+      if (!std::isfinite(delta)) break;
+      const double theta = it > 1 ? delta / delta_old : 1;
+      if (delta == 0 || (theta < 1 && theta / (1 - theta) * delta <= options_.tolerance) ||
+          (it > 1 && theta >= 1 && delta <= options_.roundoff_level)) {
+        force(Q_, i, stats);
+        transform_.forward(g_, G(i));
+        return;
+      }
+      delta_old = delta;
+    }
+    not_converged(i, residual, it);
+  }
+
+  // out = h^2 abar_ii(V) x, through the eigenbasis.
+  void apply_abar(int i, const Eigen::VectorXd& x, Eigen::VectorXd& out) {
+    transform_.forward(x, col_hat_);
+    col_hat_ *= k_->abar(i, i);
+    transform_.inverse(col_hat_, out);
+  }
+
+  // Jv = v + h^2 abar_ii(V) (g(Q + e v) - g(Q)) / e, with g_ = grad U (+ M Q) at Q_ in gU_.
+  template <class V>
+  void jacobian_times(int i, const V& v, Eigen::VectorXd& Jv, Statistics& stats) {
+    const double norm_v = v.norm();
+    if (norm_v == 0) {
+      Jv.setZero(d_);
+      return;
+    }
+    const double e = std::sqrt(std::numeric_limits<double>::epsilon()) * (1 + Q_.norm()) / norm_v;
+    Qe_ = Q_ + e * v;
+    force(Qe_, i, stats);
+    ge_ = (g_ - gU_) / e;
+    apply_abar(i, ge_, Jv);
+    Jv += v;
+  }
+
+  // precond_ = 1 + h^2 abar_ii(v_k) sigma (entries near 0 replaced by 1: no division by ~0).
+  void set_preconditioner(int i, Statistics& stats) {
+    const double norm_F = F_.norm();
+    double sigma = 0;
+    if (norm_F > 0) {
+      Qe_ = Q_ + std::sqrt(std::numeric_limits<double>::epsilon()) * (1 + Q_.norm()) / norm_F * F_;
+      force(Qe_, i, stats);
+      sigma = (g_ - gU_).dot(F_) / (Qe_ - Q_).dot(F_);
+    }
+    precond_ = (Eigen::ArrayXd::Zero(m_) + k_->abar(i, i)) * sigma + 1.0;
+    precond_ = (precond_.abs() < 1e-2).select(1.0, precond_);
   }
 
   // J = I + h^2 abar_ii(V) K with K the Hessian of U (user's or finite differences) [+ M].
@@ -481,6 +579,10 @@ class Stepper final : public StepperBase {
   Eigen::VectorXd r_, F_, gU_, col_, Q_new_;
   Spectral col_hat_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  // Newton-Krylov workspace (d > kDenseNewtonMaxD), allocated at the first fallback.
+  Eigen::VectorXd Qe_, ge_;
+  Eigen::ArrayXd precond_;
+  std::optional<Gmres> gmres_;
 };
 
 }  // namespace erkn::detail
