@@ -12,7 +12,7 @@ cmake --build "$build" -j 2
 "$build"/runtime/cli/erkn list
 "$build"/runtime/cli/erkn run --out docs "$@"
 "$build"/runtime/cli/erkn stability all --out docs/charts
-"$build"/tests/stability/erkn_stability_hmax docs/stability.md
+"$build"/experiments/erkn_stability_hmax docs/stability.md
 "$build"/scaling/erkn-ensemble-speedup --out docs
 if [ -x "$build"/runtime/mpi/erkn-mpi ]; then  # MPI scaling on 1, 2 and 4 ranks (erkn::mpi built)
   [ "$(id -u)" -ne 0 ] || export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1

@@ -6,7 +6,7 @@
 #include <complex>
 #include <unsupported/Eigen/FFT>
 
-#include "linear_part.hpp"
+#include "problem.hpp"
 
 namespace ex {
 

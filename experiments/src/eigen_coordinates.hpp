@@ -9,7 +9,7 @@
 #include <complex>
 #include <unsupported/Eigen/FFT>
 
-#include "linear_part.hpp"
+#include "problem.hpp"
 
 namespace ex {
 

@@ -7,18 +7,6 @@
 namespace ex {
 namespace {
 
-erkn::Stiffness stiffness(const LinearPart& m) {
-  switch (m.kind) {
-    case LinearPart::Kind::scalar:
-      return erkn::Stiffness::scalar(m.omega2);
-    case LinearPart::Kind::diagonal:
-      return erkn::Stiffness::diagonal(m.diag);
-    case LinearPart::Kind::circulant:
-      return erkn::Stiffness::circulant(m.column);
-  }
-  throw std::logic_error("unknown LinearPart kind");
-}
-
 class ErknSolver : public Solver {
  public:
   explicit ErknSolver(const erkn::Method& method) : method_(method) {}
@@ -32,12 +20,7 @@ class ErknSolver : public Solver {
   bool exact_for_linear_part() const override { return method_.kind() != erkn::Kind::rkn; }
 
   RunResult run(const Problem& pr, double h, long steps, const Observer* obs) const override {
-    erkn::System system;
-    system.M = stiffness(pr.M);
-    system.gradient = pr.grad_u;
-    system.potential = pr.potential;
-    system.hessian = [&pr](const Vec& q, Eigen::MatrixXd& hess) { hess = pr.hessian_u(q); };
-    erkn::Integrator integrator(method_, std::move(system), h, pr.q0, pr.p0);
+    erkn::Integrator integrator(method_, erkn::problems::system(pr), h, pr.q0, pr.p0);
     for (long n = 0; n < steps; ++n) {
       integrator.step();
       if (obs) (*obs)(integrator.t(), integrator.q(), integrator.p());

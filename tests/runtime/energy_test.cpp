@@ -8,19 +8,9 @@
 namespace erkn::test {
 namespace {
 
-constexpr double kEps = 1e-3;
 constexpr long kSteps = 1000000;
 
-System stellar() {
-  System s;
-  s.M = Stiffness::diagonal(Eigen::Vector2d(4, 1));
-  s.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) {
-    g[0] = -kEps * q[1] * q[1];
-    g[1] = -2 * kEps * q[0] * q[1];
-  };
-  s.potential = [](const Eigen::VectorXd& q) { return -kEps * q[0] * q[1] * q[1]; };
-  return s;
-}
+System stellar() { return problems::system(problems::stellar_orbits(1e-3)); }
 
 struct Drift {
   double first, last;  // max |H - H0| over the first and the last tenth of the run

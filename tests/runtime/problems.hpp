@@ -5,8 +5,8 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <erkn/erkn.hpp>
+#include <erkn/problems.hpp>
 #include <functional>
-#include <numbers>
 #include <string>
 #include <vector>
 
@@ -67,31 +67,21 @@ inline void rk4(const System& s, const Eigen::MatrixXd& M, double T, long n, Eig
   }
 }
 
-/// Sine-Gordon, problem 1 (DESIGN.md section 4): M = circulant(2, -1, 0.., -1)/dx^2, dx = 2/N.
-inline Eigen::VectorXd sine_gordon_column(int N) {
-  const double dx = 2.0 / N;
-  Eigen::VectorXd col = Eigen::VectorXd::Zero(N);
-  col[0] = 2 / (dx * dx);
-  col[1] = col[N - 1] = -1 / (dx * dx);
-  return col;
-}
+/// Sine-Gordon, problem 1, from the problems library: its circulant M's first column, the system
+/// with another M (a dense copy, a scaled stencil), and the initial values.
+inline Eigen::VectorXd sine_gordon_column(int N) { return problems::sine_gordon(N).M.column; }
 
 inline System sine_gordon(const Stiffness& M) {
-  System s;
+  // grad U, U and its Hessian act pointwise: any N serves (a scalar M has dim() == 0).
+  System s = problems::system(problems::sine_gordon(2));
   s.M = M;
-  s.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = q.array().sin(); };
-  s.potential = [](const Eigen::VectorXd& q) { return -q.array().cos().sum(); };
-  s.hessian = [](const Eigen::VectorXd& q, Eigen::MatrixXd& H) {
-    H = q.array().cos().matrix().asDiagonal();
-  };
   return s;
 }
 
 inline void sine_gordon_initial(int N, Eigen::VectorXd& q, Eigen::VectorXd& p) {
-  const double pi = std::numbers::pi;
-  q = Eigen::VectorXd::Constant(N, pi);
-  p.resize(N);
-  for (int i = 0; i < N; ++i) p[i] = std::sqrt(double(N)) * (0.01 + std::sin(2 * pi * (i + 1) / N));
+  const problems::Problem pr = problems::sine_gordon(N);
+  q = pr.q0;
+  p = pr.p0;
 }
 
 /// A copy of a method with one coefficient nudged: bbar_1 *= 1 + kNudge (breaks symplecticity).

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <erkn/problems.hpp>
 #include <string>
 
 #include "support.hpp"
@@ -47,12 +48,7 @@ TEST(Poles, StepSizeOnAPoleIsRefusedWithAClearError) {
 // chosen so that h^2 lambda_max is the first pole of SERKN3s4(1). RKN limits have no poles.
 TEST(Poles, OneEigenvalueOfACirculantMOnAPoleIsEnough) {
   const int N = 32;
-  const double dx = 2.0 / N;
-  Eigen::VectorXd col = Eigen::VectorXd::Zero(N);
-  col[0] = 2 / (dx * dx), col[1] = col[N - 1] = -1 / (dx * dx);
-  System sys;
-  sys.M = Stiffness::circulant(col);
-  sys.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = q.array().sin(); };
+  const System sys = problems::system(problems::sine_gordon(N));
   const double lambda_max = sys.M.eigenvalues().maxCoeff();
   const Method& m = Method::by_name("SERKN3s4(1)");
   ASSERT_FALSE(m.poles().empty());
@@ -88,14 +84,9 @@ TEST(Poles, StabilityMatrixIsContinuousThroughAPole) {
 }
 
 TEST(Poles, NearAPoleFixedPointFailsAndNewtonRunsEveryStep) {
-  const int N = 32;
-  const double dx = 2.0 / N, pi = 3.141592653589793;
-  Eigen::VectorXd col = Eigen::VectorXd::Zero(N), q0 = Eigen::VectorXd::Constant(N, pi), p0(N);
-  col[0] = 2 / (dx * dx), col[1] = col[N - 1] = -1 / (dx * dx);
-  for (int i = 0; i < N; ++i) p0[i] = std::sqrt(N) * (0.01 + std::sin(2 * pi * (i + 1) / N));
-  System sys;
-  sys.M = Stiffness::circulant(col);
-  sys.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = q.array().sin(); };
+  const problems::Problem sg = problems::sine_gordon(32);
+  const Eigen::VectorXd &q0 = sg.q0, &p0 = sg.p0;
+  const System sys = problems::system(sg);
   const double lambda_max = sys.M.eigenvalues().maxCoeff();
   const Method& m = Method::by_name("SERKN3s4(1)");
   const double pole = m.poles()[0];

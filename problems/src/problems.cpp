@@ -1,11 +1,22 @@
+#include "erkn/problems.hpp"
+
 #include <boost/math/special_functions/jacobi_elliptic.hpp>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <stdexcept>
 
-#include "problem.hpp"
+namespace erkn::problems {
+namespace {
 
-namespace ex {
+/// Shortest decimal form of a parameter for titles ("0.03", "1e-03" -> "0.001", "1000").
+std::string format_number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
+}  // namespace
 
 double Problem::energy(const Vec& q, const Vec& p) const {
   Vec mq;
@@ -20,11 +31,12 @@ void Problem::force(const Vec& q, Vec& f) const {
   f = -f - g;
 }
 
-Problem sine_gordon(int n) {
+Problem sine_gordon(int n, double kappa) {
   const double dx = 2.0 / n;
   Problem p;
   p.key = "P1";
   p.title = "sine-Gordon, N = " + std::to_string(n);
+  if (kappa != 1) p.title += ", kappa = " + format_number(kappa);
   Vec col = Vec::Zero(n);
   col[0] = 2 / (dx * dx);
   col[1] = col[n - 1] = -1 / (dx * dx);
@@ -35,67 +47,72 @@ Problem sine_gordon(int n) {
     p.p0[i - 1] = std::sqrt(double(n)) * (0.01 + std::sin(2 * std::numbers::pi * i / n));
   p.h_energy = 1.0 / 40;
   p.paper_steps = {400, 800, 1600, 3200, 2000, 4000, 8000, 16000};
-  p.grad_u = [](const Vec& q, Vec& g) { g = q.array().sin(); };
-  p.potential = [](const Vec& q) { return -q.array().cos().sum(); };
-  p.hessian_u = [](const Vec& q) { return Eigen::MatrixXd(q.array().cos().matrix().asDiagonal()); };
-  p.force_ld = [n, dx](const VecLD& q, VecLD& f) {
+  if (kappa == 1) {  // the paper's problem: no multiplication in grad U
+    p.grad_u = [](const Vec& q, Vec& g) { g = q.array().sin(); };
+  } else {
+    p.grad_u = [kappa](const Vec& q, Vec& g) { g = kappa * q.array().sin(); };
+  }
+  p.potential = [kappa](const Vec& q) { return -kappa * q.array().cos().sum(); };
+  p.hessian_u = [kappa](const Vec& q) {
+    return Eigen::MatrixXd((kappa * q.array().cos()).matrix().asDiagonal());
+  };
+  p.force_ld = [n, dx, kappa](const VecLD& q, VecLD& f) {
     const long double s = 1.0L / ((long double)dx * dx);
     for (int i = 0; i < n; ++i) {
       const long double lap = q[(i + n - 1) % n] - 2 * q[i] + q[(i + 1) % n];
-      f[i] = s * lap - std::sin(q[i]);
+      f[i] = s * lap - (long double)kappa * std::sin(q[i]);
     }
   };
   return p;
 }
 
-Problem duffing() {
-  constexpr double k = 0.03, k2 = k * k;
+Problem duffing(double k) {
+  const double k2 = k * k;
   Problem p;
   p.key = "P2";
-  p.title = "Duffing, k = 0.03";
+  p.title = "Duffing, k = " + format_number(k);
   p.M = LinearPart::scalar(100);
   p.q0 = Vec::Zero(1);
   p.p0 = Vec::Constant(1, 10);
   p.h_energy = 1.0 / 50;
   p.paper_steps = {2000, 4000, 6000, 8000, 400, 800, 1200, 1600};
   // q'' + 100q = k^2 (2q^3 - q)  <=>  U(q) = -k^2 (q^4 - q^2) / 2.
-  p.grad_u = [](const Vec& q, Vec& g) { g = -k2 * (2 * q.array().cube() - q.array()); };
-  p.potential = [](const Vec& q) {
+  p.grad_u = [k2](const Vec& q, Vec& g) { g = -k2 * (2 * q.array().cube() - q.array()); };
+  p.potential = [k2](const Vec& q) {
     return -0.5 * k2 * (q.array().pow(4) - q.array().square()).sum();
   };
-  p.hessian_u = [](const Vec& q) {
+  p.hessian_u = [k2](const Vec& q) {
     return Eigen::MatrixXd::Constant(1, 1, -k2 * (6 * q[0] * q[0] - 1));
   };
-  p.force_ld = [](const VecLD& q, VecLD& f) {
+  p.force_ld = [k2](const VecLD& q, VecLD& f) {
     f[0] = -100 * q[0] + (long double)k2 * (2 * q[0] * q[0] * q[0] - q[0]);
   };
-  p.exact = [](double t) { return Vec::Constant(1, boost::math::jacobi_sn(k / 10, 10 * t)); };
+  p.exact = [k](double t) { return Vec::Constant(1, boost::math::jacobi_sn(k / 10, 10 * t)); };
   return p;
 }
 
-Problem stellar_orbits() {
-  constexpr double eps = 1e-3;
+Problem stellar_orbits(double eps) {
   Problem p;
   p.key = "P3";
-  p.title = "stellar orbits, epsilon = 1e-3";
+  p.title = "stellar orbits, epsilon = " + format_number(eps);
   p.M = LinearPart::diagonal(Eigen::Vector2d(4, 1));
   p.q0 = Eigen::Vector2d(1, 1);
   p.p0 = Eigen::Vector2d(0, 0);
   p.h_energy = 1.0 / 10;
   p.paper_steps = {80, 160, 240, 320, 400, 800, 1200, 1600};
   // U(q) = -eps q1 q2^2.
-  p.grad_u = [](const Vec& q, Vec& g) {
+  p.grad_u = [eps](const Vec& q, Vec& g) {
     g.resize(2);
     g[0] = -eps * q[1] * q[1];
     g[1] = -2 * eps * q[0] * q[1];
   };
-  p.potential = [](const Vec& q) { return -eps * q[0] * q[1] * q[1]; };
-  p.hessian_u = [](const Vec& q) {
+  p.potential = [eps](const Vec& q) { return -eps * q[0] * q[1] * q[1]; };
+  p.hessian_u = [eps](const Vec& q) {
     Eigen::MatrixXd h(2, 2);
     h << 0, -2 * eps * q[1], -2 * eps * q[1], -2 * eps * q[0];
     return h;
   };
-  p.force_ld = [](const VecLD& q, VecLD& f) {
+  p.force_ld = [eps](const VecLD& q, VecLD& f) {
     const long double e = eps;
     f[0] = -4 * q[0] + e * q[1] * q[1];
     f[1] = -q[1] + 2 * e * q[0] * q[1];
@@ -110,4 +127,29 @@ Problem problem_by_key(const std::string& key) {
   throw std::invalid_argument("unknown problem '" + key + "' (known: P1, P2, P3)");
 }
 
-}  // namespace ex
+}  // namespace erkn::problems
+
+namespace erkn::problems {
+
+Stiffness stiffness(const LinearPart& m) {
+  switch (m.kind) {
+    case LinearPart::Kind::scalar:
+      return Stiffness::scalar(m.omega2);
+    case LinearPart::Kind::diagonal:
+      return Stiffness::diagonal(m.diag);
+    case LinearPart::Kind::circulant:
+      return Stiffness::circulant(m.column);
+  }
+  throw std::logic_error("unknown LinearPart kind");
+}
+
+System system(const Problem& p) {
+  System s;
+  s.M = stiffness(p.M);
+  s.gradient = p.grad_u;
+  s.potential = p.potential;
+  s.hessian = [h = p.hessian_u](const Vec& q, Eigen::MatrixXd& hess) { hess = h(q); };
+  return s;
+}
+
+}  // namespace erkn::problems

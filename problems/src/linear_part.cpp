@@ -1,9 +1,9 @@
-#include "linear_part.hpp"
+#include "erkn/problems/linear_part.hpp"
 
 #include <cmath>
 #include <numbers>
 
-namespace ex {
+namespace erkn::problems {
 
 void LinearPart::apply(const Vec& q, Vec& out) const {
   switch (kind) {
@@ -56,4 +56,4 @@ Eigen::MatrixXd LinearPart::dense(int dim) const {
   return m;
 }
 
-}  // namespace ex
+}  // namespace erkn::problems

@@ -1,9 +1,11 @@
 // M of q'' + Mq = -grad U(q) in its cheapest exact form: scalar, diagonal or symmetric circulant.
+// Plain data with its own eigenvalues, so that code independent of the runtime (the experiments'
+// peers) can use it; erkn::problems::stiffness() converts it for the runtime.
 #pragma once
 
 #include <Eigen/Core>
 
-namespace ex {
+namespace erkn::problems {
 
 using Vec = Eigen::VectorXd;
 
@@ -26,4 +28,4 @@ struct LinearPart {
   Eigen::MatrixXd dense(int dim) const;
 };
 
-}  // namespace ex
+}  // namespace erkn::problems

@@ -1,0 +1,45 @@
+#include "stiff_scene.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+namespace ex {
+
+Problem stiff_sine_gordon(double kappa, double t_end) {
+  constexpr int kN = 32;
+  Problem p = sine_gordon(kN, kappa);
+  char key[32];
+  std::snprintf(key, sizeof key, "stiff_k%g", kappa);
+  p.key = key;
+  for (int i = 0; i < kN; ++i) p.q0[i] = std::sin(2 * std::numbers::pi * (i + 1) / kN);
+  p.p0.setZero();
+  p.t_error = t_end;
+  // Seeds of the sweep on [0, t_end]: from h = 1/8 (h^2 kappa = 156 at kappa = 1e4) down.
+  p.paper_steps.clear();
+  for (int n = 8; n <= 2048; n *= 4) p.paper_steps.push_back(int(std::lround(n * t_end)));
+  return p;
+}
+
+std::vector<ProblemResult> run_stiff(const SolverList& solvers, const StiffConfig& stiff,
+                                     const RunConfig& config, Progress& progress) {
+  std::vector<ProblemResult> out;
+  for (double kappa : stiff.kappas) {
+    const Problem problem = stiff_sine_gordon(kappa, stiff.t_end);
+    ProblemResult r{problem.key, problem.title, problem.t_error, {}, {}};
+    progress.label(problem.key + " reference");
+    r.reference = reference_solution(problem, problem.t_error, config.reference_tolerance);
+    for (const auto& solver : solvers) {
+      progress.label(problem.key + " " + solver->name());
+      MethodResult m{solver->name(), solver->family(), solver->from_paper(), solver->order(),
+                     {}, {}};
+      m.sweep = sweep(*solver, problem, problem.t_error, r.reference.q, config.sweep, {});
+      r.methods.push_back(std::move(m));
+      progress.advance(problem.key + " " + solver->name());
+    }
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+}  // namespace ex

@@ -1,0 +1,64 @@
+// The problems library shared by tests, benchmarks and experiments: oscillatory Hamiltonian
+// systems q'' + Mq = -grad U(q), H = p'p/2 + q'Mq/2 + U(q), each defined once with its gradient,
+// potential, Hessian, a long-double force for reference solutions, and its exact solution where
+// known. The paper's test problems (section 4.2, DESIGN.md section 4) are the defaults.
+//
+//   const erkn::problems::Problem p = erkn::problems::sine_gordon(32);
+//   erkn::Integrator run(erkn::Method::by_name("SERKN2s4"), erkn::problems::system(p), 1.0 / 40,
+//                        p.q0, p.p0);
+#pragma once
+
+#include <Eigen/Core>
+#include <erkn/system.hpp>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "erkn/problems/linear_part.hpp"
+
+namespace erkn::problems {
+
+using VecLD = std::vector<long double>;
+
+struct Problem {
+  std::string key;    ///< "P1", "P2", "P3", or a scene's own key
+  std::string title;  ///< e.g. "sine-Gordon, N = 32"
+  LinearPart M;
+  Vec q0, p0;
+  double t_error = 10;           ///< error is measured at this time
+  double h_energy = 0;           ///< the paper's fixed step for the energy chart
+  std::vector<int> paper_steps;  ///< the paper's step counts on [0, t_error] (both sweeps)
+
+  std::function<void(const Vec& q, Vec& grad)> grad_u;
+  std::function<double(const Vec& q)> potential;
+  std::function<Eigen::MatrixXd(const Vec& q)> hessian_u;
+  /// Full force -Mq - grad U(q) in long double, for the reference solution.
+  std::function<void(const VecLD& q, VecLD& force)> force_ld;
+  /// Exact q(t), where known.
+  std::optional<std::function<Vec(double t)>> exact;
+
+  int dim() const { return int(q0.size()); }
+  double energy(const Vec& q, const Vec& p) const;
+  /// force = -Mq - grad U(q).
+  void force(const Vec& q, Vec& force) const;
+};
+
+/// P1: sine-Gordon on [-1, 1], periodic, N points, dx = 2/N, M = circulant(-1, 2, -1)/dx^2,
+/// U = -kappa sum cos u_i (the paper: N = 32, kappa = 1; a large kappa makes the nonlinear part
+/// stiff), u(0) = pi, u'(0) = sqrt(N) (0.01 + sin(2 pi i / N)).
+Problem sine_gordon(int n, double kappa = 1);
+/// P2: Duffing q'' + 100 q = k^2 (2 q^3 - q), q(0) = 0, q'(0) = 10; exact q = sn(10 t, k/10).
+Problem duffing(double k = 0.03);
+/// P3: stellar orbits q1'' + 4 q1 = eps q2^2, q2'' + q2 = 2 eps q1 q2, q(0) = (1, 1), q'(0) = 0.
+Problem stellar_orbits(double eps = 1e-3);
+
+/// "P1", "P2", "P3" -> the paper's problem; throws std::invalid_argument otherwise.
+Problem problem_by_key(const std::string& key);
+
+/// M in the runtime's form (scalar, diagonal, circulant).
+Stiffness stiffness(const LinearPart& m);
+/// The problem as the runtime's System: M, gradient, potential and Hessian.
+System system(const Problem& p);
+
+}  // namespace erkn::problems
