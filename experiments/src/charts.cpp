@@ -165,4 +165,42 @@ void chart_scaling(const ScalingResult& r, const fs::path& charts_dir) {
   run_gnuplot(charts_dir, "data/scaling.gp");
 }
 
+void chart_stiff(const ProblemResult& r, const fs::path& charts_dir) {
+  fs::create_directories(charts_dir / "data");
+  const std::string key = slug(r.key);
+  Styles style;
+  std::string cpu_plot = "plot ", h_plot = "plot ";
+  for (const MethodResult& m : r.methods) {
+    const std::string stem = "data/" + key + "_" + slug(m.name);
+    std::ofstream ok = open(charts_dir / (stem + ".dat"));
+    std::ofstream failed = open(charts_dir / (stem + "_failed.dat"));
+    ok << "# steps h error grad_evals cpu_seconds\n";
+    failed << "# steps h failure\n";
+    for (const Measurement& x : m.sweep) {
+      if (x.ok() && x.error > 0)
+        ok << x.steps << ' ' << x.h << ' ' << x.error << ' ' << x.stats.grad_evals << ' ' << x.cpu
+           << '\n';
+      else if (!x.ok())
+        failed << x.steps << ' ' << x.h << " # " << x.failure << '\n';
+    }
+    const std::string s = style(m.name, m.family);
+    const std::string sep = &m == &r.methods.front() ? "" : ", \\\n  ";
+    cpu_plot += sep + quoted(stem + ".dat") + " u 5:3 w lp " + s + " t " + quoted(m.name);
+    const std::string color = s.substr(0, s.find('\'', s.find('\'') + 1) + 1);  // "lc rgb '#..'"
+    h_plot += sep + quoted(stem + ".dat") + " u 2:3 w lp " + s + " t " + quoted(m.name) + ", " +
+              quoted(stem + "_failed.dat") + " u 2:(1) w p " + color + " pt 2 ps 2 lw 2 notitle";
+  }
+  std::ofstream gp = open(charts_dir / "data" / (key + ".gp"));
+  std::ostringstream err;
+  err << "max-norm error of q at t = " << r.t_error;
+  write_header(gp, r.title + " — error vs CPU time", "CPU time (s)", err.str());
+  write_outputs(gp, key + "_cpu", cpu_plot);
+  write_header(gp, r.title + " — error vs step size (x at the top: the run failed)", "step size h",
+               err.str());
+  gp << "set yrange [:3]\n";
+  write_outputs(gp, key + "_h", h_plot);
+  gp.close();
+  run_gnuplot(charts_dir, "data/" + key + ".gp");
+}
+
 }  // namespace ex

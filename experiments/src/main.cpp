@@ -6,8 +6,8 @@
 #include <set>
 
 #include "charts.hpp"
-#include "raw_results.hpp"
 #include "options.hpp"
+#include "raw_results.hpp"
 #include "report.hpp"
 
 namespace {
@@ -35,7 +35,8 @@ SolverList select(const std::vector<std::string>& wanted) {
 }
 
 void list() {
-  std::printf("problems: P1 (sine-Gordon, N = 32), P2 (Duffing), P3 (stellar orbits), scaling\n");
+  std::printf(
+      "problems: P1 (sine-Gordon, N = 32), P2 (Duffing), P3 (stellar orbits), scaling, stiff\n");
   std::printf("methods:\n");
   for (const auto& s : all_solvers())
     std::printf("  %s  (order %d)\n", s->name().c_str(), s->order());
@@ -54,12 +55,20 @@ int run(const Options& o, const std::string& command) {
   for (auto& s : select(o.methods))
     if (s->family() != Family::rkn) scaling_solvers.push_back(std::move(s));
   std::vector<std::string> keys;
-  bool scaling = false;
-  for (const std::string& p : o.problems)
-    (p == "scaling" ? scaling = true : (keys.push_back(p), true));
+  bool scaling = false, stiff = false;
+  for (const std::string& p : o.problems) {
+    if (p == "scaling")
+      scaling = true;
+    else if (p == "stiff")
+      stiff = true;
+    else
+      keys.push_back(p);
+  }
+  const StiffConfig stiff_config;
 
   Progress progress(long(keys.size() * solvers.size() +
-                         (scaling ? o.config.scaling_sizes.size() * scaling_solvers.size() : 0)));
+                         (scaling ? o.config.scaling_sizes.size() * scaling_solvers.size() : 0) +
+                         (stiff ? stiff_config.kappas.size() * solvers.size() : 0)));
   const std::filesystem::path charts = o.out / "charts";
   std::vector<ProblemResult> results;
   for (const std::string& key : keys) {
@@ -71,12 +80,17 @@ int run(const Options& o, const std::string& command) {
     scaled = run_scaling(scaling_solvers, o.config, progress);
     chart_scaling(*scaled, charts);
   }
+  std::vector<StiffResult> stiff_results;
+  if (stiff) stiff_results = run_stiff(solvers, stiff_config, o.config, progress);
+  for (const StiffResult& s : stiff_results) chart_stiff(s.result, charts);
   progress.finish();
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_raw_results(charts, results, scaled);
+  std::vector<ProblemResult> raw = results;  // the raw files list the stiff scene's sweeps too
+  for (const StiffResult& s : stiff_results) raw.push_back(s.result);
+  write_raw_results(charts, raw, scaled);
   write_report(o.out / "results.md", {command, o.mode, wall, o.config.sweep.timing.repeats},
-               results, scaled);
+               results, scaled, stiff_results);
   std::printf("%s\nwrote %s and %s/ in %.0f s\n", targets_markdown(results, scaled).c_str(),
               (o.out / "results.md").c_str(), charts.c_str(), wall);
   return 0;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "experiment.hpp"
+#include "stiff_scene.hpp"
 
 namespace ex {
 
@@ -21,8 +22,10 @@ struct RunInfo {
 std::string targets_markdown(const std::vector<ProblemResult>& problems,
                              const std::optional<ScalingResult>& scaling);
 
+/// `stiff`: the stiff scene, one result per kappa (may be empty).
 void write_report(const std::filesystem::path& file, const RunInfo& info,
                   const std::vector<ProblemResult>& problems,
-                  const std::optional<ScalingResult>& scaling);
+                  const std::optional<ScalingResult>& scaling,
+                  const std::vector<StiffResult>& stiff);
 
 }  // namespace ex

@@ -19,8 +19,12 @@ struct StiffConfig {
 /// linear), u'(0) = 0, t in [0, 1].
 Problem stiff_sine_gordon(double kappa, double t_end);
 
-/// One ProblemResult per kappa (sweeps only, no energy runs).
-std::vector<ProblemResult> run_stiff(const SolverList& solvers, const StiffConfig& stiff,
-                                     const RunConfig& config, Progress& progress);
+struct StiffResult {
+  double kappa;
+  ProblemResult result;  ///< sweeps only, no energy runs
+};
+
+std::vector<StiffResult> run_stiff(const SolverList& solvers, const StiffConfig& stiff,
+                                   const RunConfig& config, Progress& progress);
 
 }  // namespace ex
