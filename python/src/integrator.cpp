@@ -89,14 +89,21 @@ class PyIntegrator {
   }
 
   // Python observer(t, q, p) with copies of the state (the loop holds the GIL).
-  void integrate(double t_end, const py::object& observer, long every) {
-    if (observer.is_none()) return step_to(t_end, every);
-    run_.integrate(
-        t_end,
-        [&](double t, const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
-          observer(t, Eigen::VectorXd(q), Eigen::VectorXd(p));
-        },
-        every);
+  // Python observer(t, q, p) with copies of the state (the loop holds the GIL), after every
+  // `every`-th step and at t_end, or at `times` (between grid points: state_at).
+  void integrate(double t_end, const py::object& observer, long every, const py::object& times) {
+    if (observer.is_none()) {
+      if (!times.is_none()) throw Error("integrate: times need an observer");
+      return step_to(t_end, every);
+    }
+    const auto call = [&](double t, const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
+      observer(t, Eigen::VectorXd(q), Eigen::VectorXd(p));
+    };
+    if (times.is_none()) return run_.integrate(t_end, call, every);
+    using Times = py::array_t<double, py::array::c_style | py::array::forcecast>;
+    const Times at = Times::ensure(times);
+    if (!at || at.ndim() != 1) throw Error("times must be a 1-D array of times");
+    run_.integrate(t_end, Eigen::Map<const Eigen::VectorXd>(at.data(), at.size()), call);
   }
 
   py::tuple state_at(double t) {
@@ -159,9 +166,10 @@ void bind_integrator(py::module_& m) {
            py::arg("t0") = 0.0)
       .def("step", &PyIntegrator::step, py::arg("n") = 1, "n steps of size h")
       .def("integrate", &PyIntegrator::integrate, py::arg("t_end"),
-           py::arg("observer") = py::none(), py::arg("every") = 1,
+           py::arg("observer") = py::none(), py::arg("every") = 1, py::arg("times") = py::none(),
            "steps to t_end (off the grid: a last shorter step); observer(t, q, p) after every "
-           "`every`-th step and at t_end")
+           "`every`-th step and at t_end, or at `times` (ascending, in [t, t_end]; between grid "
+           "points by state_at, which leaves the trajectory unchanged)")
       .def("_run", &PyIntegrator::run, py::arg("t_end"), py::arg("t_eval"), py::arg("every"),
            py::arg("energy"))
       .def("state_at", &PyIntegrator::state_at, py::arg("t"),

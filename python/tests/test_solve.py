@@ -118,6 +118,9 @@ def test_integrator_drives_the_loop(chain):
     assert times == [0.35] and np.abs(run.q - q).max() < 1e-14
     st = run.statistics
     assert st["steps"] == 4 and st["gradient_evaluations"] > 0
+    seen = {}
+    run.integrate(1.0, observer=lambda t, q, p: seen.setdefault(t, q), times=[0.5, 0.777, 1.0])
+    assert sorted(seen) == [0.5, 0.777, 1.0] and np.array_equal(seen[1.0], run.q)
     q_before = run.q
     q_before[:] = 7  # a copy: the integrator is not affected
     assert not np.any(run.q == 7)
