@@ -7,6 +7,7 @@
 
 #include <erkn/mpi.hpp>
 #include <limits>
+#include <stdexcept>
 
 namespace erkn::test {
 namespace {
@@ -173,6 +174,29 @@ TEST(GridMpi, ANonFiniteGradientOnOneRankIsAnErrorOnEveryRankAndTheStateIsUnchan
     EXPECT_NE(message.find("rank " + std::to_string(ranks() - 1)), std::string::npos) << message;
   EXPECT_EQ(run.q(), before);
   EXPECT_GT(run.statistics().steps, 0);
+}
+
+TEST(GridMpi, AGradientThatThrowsOnOneRankIsAnErrorOnEveryRank) {
+  const Grid g = grids()[0];
+  const Stiffness M = Stiffness::grid(g.axes, g.shift);
+  System sys = sine_gordon(M);
+  const bool culprit = rank() == 0;
+  sys.gradient = [culprit, calls = 0](const Eigen::VectorXd& q, Eigen::VectorXd& g) mutable {
+    if (culprit && ++calls == 9) throw std::runtime_error("table lookup out of range");
+    g = q.array().sin();
+  };
+  const mpi::Slab slab = mpi::slab(MPI_COMM_WORLD, M);
+  mpi::GridIntegrator run(MPI_COMM_WORLD, Method::by_name("SERKN2s4"), sys, 0.1,
+                          Eigen::VectorXd::Constant(slab.size, 0.3),
+                          Eigen::VectorXd::Constant(slab.size, 0.1));
+  std::string message;
+  try {
+    run.integrate(1.0);
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("threw: table lookup out of range"), std::string::npos) << message;
+  run.integrate(run.t() + 0.1);  // (the callback works again: every rank is still in step)
 }
 
 TEST(GridMpi, BadInputIsRefusedOnEveryRank) {

@@ -195,15 +195,23 @@ class GridStepper {
 
   // g_ = grad U(Q_) on this slab; returns 1 if it is not finite or has the wrong size (then g_
   // is zeroed so the transform stays defined), else 0.
+  // (A callback that throws on one rank must not leave the others in the next collective call:
+  // its exception becomes this rank's error, reported on every rank by gradient_failed.)
   double gradient() {
-    system_.gradient(Q_, g_);
     ++statistics_.gradient_evaluations;
-    if (g_.size() == slab_.size && g_.allFinite()) return 0;
-    local_gradient_error_ = g_.size() != slab_.size
-                                ? "the gradient callback returned a vector of size " +
-                                      std::to_string(g_.size()) + " for a slab of size " +
-                                      std::to_string(slab_.size)
-                                : "the gradient callback returned a non-finite value";
+    try {
+      system_.gradient(Q_, g_);
+      if (g_.size() == slab_.size && g_.allFinite()) return 0;
+      local_gradient_error_ = g_.size() != slab_.size
+                                  ? "the gradient callback returned a vector of size " +
+                                        std::to_string(g_.size()) + " for a slab of size " +
+                                        std::to_string(slab_.size)
+                                  : "the gradient callback returned a non-finite value";
+    } catch (const std::exception& e) {
+      local_gradient_error_ = std::string("the gradient callback threw: ") + e.what();
+    } catch (...) {
+      local_gradient_error_ = "the gradient callback threw an exception of unknown type";
+    }
     g_.setZero(slab_.size);
     return 1;
   }
