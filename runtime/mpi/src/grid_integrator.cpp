@@ -272,8 +272,8 @@ std::string check_input(const System& system, double h, const Eigen::VectorXd& q
 }  // namespace
 
 Slab slab(MPI_Comm comm, const Stiffness& M) {
-  const detail::SlabTransform T(comm, M);
-  return {T.first_row(), T.rows(), T.physical_size()};
+  const detail::SlabLayout l = detail::slab_layout(comm, M);
+  return {l.first0, l.rows0, l.physical_size};
 }
 
 GridIntegrator::GridIntegrator(MPI_Comm comm, const Method& method, System system, double h,

@@ -49,36 +49,43 @@ void init_fftw_mpi() {
 
 }  // namespace
 
-SlabTransform::SlabTransform(MPI_Comm comm, const Stiffness& M) {
+SlabLayout slab_layout(MPI_Comm comm, const Stiffness& M) {
   if (M.structure() != Stiffness::Structure::grid || M.axes().size() < 2)
     throw Error(
         "the distributed integrator needs M = Stiffness::grid with at least two axes (FFTW-MPI "
         "distributes slabs of axis 0); use erkn::Integrator for other forms of M");
   init_fftw_mpi();
-  const std::vector<GridAxis>& axes = M.axes();
-  const int rank = int(axes.size());
-  std::vector<ptrdiff_t> n(axes.size());
-  std::vector<fftw_r2r_kind> forward_kinds(axes.size()), inverse_kinds(axes.size());
+  SlabLayout l;
   ptrdiff_t rest = 1;  // prod of n_2.. n_{K-1}
-  for (std::size_t a = 0; a < axes.size(); ++a) {
-    const AxisKind k = kind_of(axes[a]);
-    n[a] = ptrdiff_t(axes[a].n);
-    forward_kinds[a] = k.forward, inverse_kinds[a] = k.inverse;
-    scale_ /= k.logical_size;
-    if (a >= 2) rest *= n[a];
+  for (std::size_t a = 0; a < M.axes().size(); ++a) {
+    l.n.push_back(ptrdiff_t(M.axes()[a].n));
+    if (a >= 2) rest *= l.n[a];
   }
-  ptrdiff_t rows0, first0, rows1, first1;
-  const ptrdiff_t local = fftw_mpi_local_size_many_transposed(
-      rank, n.data(), 1, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, comm, &rows0, &first0,
-      &rows1, &first1);
-  first0_ = first0, rows0_ = rows0;
-  physical_size_ = rows0 * n[1] * rest;
-  spectral_size_ = rows1 * n[0] * rest;
-  in_ = fftw_alloc_real(std::max<ptrdiff_t>(local, 1));
-  out_ = fftw_alloc_real(std::max<ptrdiff_t>(local, 1));
-  forward_ = fftw_mpi_plan_r2r(rank, n.data(), in_, out_, comm, forward_kinds.data(),
+  l.buffer = fftw_mpi_local_size_many_transposed(int(l.n.size()), l.n.data(), 1,
+                                                 FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK,
+                                                 comm, &l.rows0, &l.first0, &l.rows1, &l.first1);
+  l.physical_size = l.rows0 * l.n[1] * rest;
+  l.spectral_size = l.rows1 * l.n[0] * rest;
+  return l;
+}
+
+SlabTransform::SlabTransform(MPI_Comm comm, const Stiffness& M) {
+  SlabLayout l = slab_layout(comm, M);
+  const std::vector<GridAxis>& axes = M.axes();
+  std::vector<fftw_r2r_kind> forward_kinds, inverse_kinds;
+  for (const GridAxis& axis : axes) {
+    const AxisKind k = kind_of(axis);
+    forward_kinds.push_back(k.forward), inverse_kinds.push_back(k.inverse);
+    scale_ /= k.logical_size;
+  }
+  first0_ = l.first0, rows0_ = l.rows0;
+  physical_size_ = l.physical_size, spectral_size_ = l.spectral_size;
+  in_ = fftw_alloc_real(std::max<ptrdiff_t>(l.buffer, 1));
+  out_ = fftw_alloc_real(std::max<ptrdiff_t>(l.buffer, 1));
+  const int rank = int(axes.size());
+  forward_ = fftw_mpi_plan_r2r(rank, l.n.data(), in_, out_, comm, forward_kinds.data(),
                                FFTW_ESTIMATE | FFTW_MPI_TRANSPOSED_OUT);
-  inverse_ = fftw_mpi_plan_r2r(rank, n.data(), in_, out_, comm, inverse_kinds.data(),
+  inverse_ = fftw_mpi_plan_r2r(rank, l.n.data(), in_, out_, comm, inverse_kinds.data(),
                                FFTW_ESTIMATE | FFTW_MPI_TRANSPOSED_IN);
   if (!forward_ || !inverse_) throw Error("FFTW-MPI could not plan the grid transforms");
   // Spectral layout: (k1 local, k0, k2, ...).
@@ -87,7 +94,7 @@ SlabTransform::SlabTransform(MPI_Comm comm, const Stiffness& M) {
     mu.push_back(a.eigenvalues().array().segment(first, count));
     w.push_back(erkn::detail::axis_weights(a).segment(first, count));
   };
-  add(axes[1], first1, rows1);
+  add(axes[1], l.first1, l.rows1);
   add(axes[0], 0, axes[0].n);
   for (std::size_t a = 2; a < axes.size(); ++a) add(axes[a], 0, axes[a].n);
   lambda_ = (outer(mu, false) + M.shift()).max(0.0);  // (round-off negatives, as M.eigenvalues())

@@ -20,6 +20,18 @@
 
 namespace erkn::mpi::detail {
 
+/// FFTW-MPI's distribution of a grid: physical rows first0.. of axis 0, spectral rows first1.. of
+/// axis 1, and the local buffer size including room for the transposes.
+struct SlabLayout {
+  std::vector<ptrdiff_t> n;  // the axes' sizes
+  ptrdiff_t rows0 = 0, first0 = 0, rows1 = 0, first1 = 0, buffer = 0;
+  Eigen::Index physical_size = 0, spectral_size = 0;
+};
+
+/// The layout of M over comm (collective; erkn::Error on every rank unless M is a grid with at
+/// least two axes).
+SlabLayout slab_layout(MPI_Comm comm, const Stiffness& M);
+
 class SlabTransform {
  public:
   /// M must be a grid with at least two axes (collective over comm; throws erkn::Error on every
