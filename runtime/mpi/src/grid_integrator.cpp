@@ -1,7 +1,8 @@
-// GridIntegrator: erkn::Integrator's step (runtime/src/stepper.hpp) on a slab-distributed grid.
-// The stage iteration is the same fixed-point iteration with the same starting guess and stopping
-// test; its norms are one MPI_Allreduce per iteration, which also carries the check that every
-// rank's gradient was finite, so all ranks take every decision together.
+// GridIntegrator: the step of eq. (d), as erkn::Integrator takes it, on a slab-distributed grid.
+// The stages are solved by fixed-point iteration from the previous step's stages extrapolated,
+// stopping when theta/(1-theta)|dQ| <= tolerance; its norms are one MPI_Allreduce per iteration,
+// which also carries the check that every rank's gradient was finite, so all ranks take every
+// decision together.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -21,11 +22,22 @@ namespace detail {
 
 using erkn::detail::StepCoefficients;
 
+/// A duplicate of the user's communicator (our collectives never meet the user's messages),
+/// freed last, after the transforms planned on it.
+struct Communicator {
+  explicit Communicator(MPI_Comm comm) { MPI_Comm_dup(comm, &handle); }
+  ~Communicator() { MPI_Comm_free(&handle); }
+  Communicator(const Communicator&) = delete;
+  Communicator& operator=(const Communicator&) = delete;
+  MPI_Comm handle;
+};
+
 class GridStepper {
  public:
   GridStepper(MPI_Comm comm, const Method& method, System system, double h,
               const Eigen::VectorXd& q0, const Eigen::VectorXd& p0, const Options& options)
-      : comm_(duplicate(comm)),
+      : communicator_(comm),
+        comm_(communicator_.handle),
         method_(method),
         system_(std::move(system)),
         options_(options),
@@ -55,14 +67,6 @@ class GridStepper {
           if (l != j) w *= (1 + c[i] - c[l]) / (c[j] - c[l]);
         extrapolation_[i][j] = w;
       }
-  }
-
-  ~GridStepper() { MPI_Comm_free(&comm_); }
-
-  static MPI_Comm duplicate(MPI_Comm comm) {
-    MPI_Comm copy;
-    MPI_Comm_dup(comm, &copy);
-    return copy;
   }
 
   /// One step of size h, or with short_step = true of the size given to prepare_short (the
@@ -118,6 +122,7 @@ class GridStepper {
     return Eigen::Map<const Eigen::VectorXd>(all.data(), Eigen::Index(all.size()));
   }
 
+  Communicator communicator_;
   MPI_Comm comm_;
   Method method_;
   System system_;
