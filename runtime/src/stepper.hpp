@@ -163,10 +163,12 @@ class Stepper final : public StepperBase {
       start_stage(i);
       if (fixed_point(i, stats)) continue;
       ++stats.newton_fallbacks;
+      const long before = stats.gradient_evaluations;
       if (d_ <= kDenseNewtonMaxD)
         newton(i, stats);
       else
         newton_krylov(i, stats);
+      newton_cost_[i] = double(stats.gradient_evaluations - before);
     }
     SpectralMap &dq = qw_hat_, &dp = pw_hat_;
     dq = k.phi0m1() * q_hat_ + k.hphi1() * p_hat_;
@@ -273,7 +275,10 @@ class Stepper final : public StepperBase {
         // Too slow: theta^n/(1-theta) * delta would need more iterations than are left.
         const double needed =
             std::log(options_.tolerance * (1 - theta) / (theta * delta)) / std::log(theta);
-        if (it + needed > options_.max_fixed_point_iterations && delta > options_.roundoff_level)
+        // Also when Newton's last solve of this stage cost fewer evaluations than are needed.
+        const bool newton_cheaper = newton_cost_[i] > 0 && needed > newton_cost_[i];
+        if ((it + needed > options_.max_fixed_point_iterations || newton_cheaper) &&
+            delta > options_.roundoff_level)
           return false;
       }
       delta_old = delta;
@@ -291,7 +296,7 @@ class Stepper final : public StepperBase {
   // Newton with a dense LU up to this d, Newton-Krylov (GMRES) beyond it.
   static constexpr Eigen::Index kDenseNewtonMaxD = 256;
   static constexpr int kKrylovRestart = 30, kKrylovMaxIterations = 200;
-  static constexpr double kKrylovTolerance = 1e-10;
+  static constexpr double kKrylovTolerance = 1e-6;
   static constexpr int kThetaRefresh = 8;
 
   bool contraction_proves(int i, double delta) {
@@ -564,6 +569,7 @@ class Stepper final : public StepperBase {
   std::array<double, kMaxStages> theta_ = filled<kMaxStages>(-1.0);  // measured; < 0: none
   std::array<int, kMaxStages> theta_age_{};  // stage solves since the measurement
   std::array<double, kMaxStages> weight_{};
+  std::array<double, kMaxStages> newton_cost_{};  // evaluations of its last Newton solve; 0: none
   // The arrays in eigen coordinates, m_ entries each and stride_ apart in spectral_ (one
   // allocation): the state (q, p) and its summation errors, a working copy of them (the explicit
   // step; the implicit one keeps its increments dq, dp there), four stage arrays, then the s
