@@ -209,19 +209,39 @@ class Stepper final : public StepperBase {
       swap_views(*a, *b);
   }
 
-  // (q, p) <- exact flow over tau_k, as increments (compensated when enabled).
+  // (q, p) <- exact flow over tau_k, as increments (compensated when enabled): one pass.
   void flow(int k) {
     const FlowCoefficients<Coef>& f = *flows_;
     if (!f.moves(k)) return;
-    Q_hat_ = f.cm1(k) * qw_hat_ + f.sinc(k) * pw_hat_;
-    Q_hat_new_ = f.msinc(k) * qw_hat_ + f.cm1(k) * pw_hat_;
-    add(qw_hat_, eqw_hat_, Q_hat_);
-    add(pw_hat_, epw_hat_, Q_hat_new_);
+    const auto cm1 = f.cm1(k), sinc = f.sinc(k), msinc = f.msinc(k);
+    const bool kahan = options_.compensated_summation;
+    for (Eigen::Index e = 0; e < m_; ++e) {
+      const Scalar q = qw_hat_[e], p = pw_hat_[e];
+      const double c = at(cm1, e);
+      add(qw_hat_[e], eqw_hat_[e], c * q + at(sinc, e) * p, kahan);
+      add(pw_hat_[e], epw_hat_[e], at(msinc, e) * q + c * p, kahan);
+    }
   }
 
   void kick(double hd, const SpectralMap& g) {
-    Q_hat_ = -hd * g;
-    add(pw_hat_, epw_hat_, Q_hat_);
+    const bool kahan = options_.compensated_summation;
+    for (Eigen::Index e = 0; e < m_; ++e) add(pw_hat_[e], epw_hat_[e], -hd * g[e], kahan);
+  }
+
+  // x += dx for one entry, Kahan-compensated when kahan (error: the low-order bits lost).
+  static void add(Scalar& x, Scalar& error, Scalar dx, bool kahan) {
+    if (!kahan) {
+      x += dx;
+      return;
+    }
+    const Scalar y = dx + error, t = x + y;
+    error = (x - t) + y;
+    x = t;
+  }
+  static double at(double value, Eigen::Index) { return value; }
+  template <class Map>
+  static double at(const Map& values, Eigen::Index e) {
+    return values[e];
   }
 
   // r_i = phi0(c_i^2 V) q + h c_i phi1(c_i^2 V) p - h^2 sum_{j<i} abar_ij g_j, and the starting
