@@ -3,23 +3,19 @@
 // Closed forms are phi-functions of scalar multiples of v: phi0(w^2 v) = cos(w x),
 // phi1(w^2 v) = sin(w x)/(w x), x = sqrt(v). A coefficient whose closed form is 0/0 at v = 0
 // switches to its Taylor series below a threshold chosen by the generator (numerics.hpp).
-// clang-format off
 #include "erkn/generated/tables.hpp"
 
 #include <cmath>
 #include <iterator>
 
+#include "erkn/table_support.hpp"
+
 namespace erkn::generated {
 namespace {
 
-[[maybe_unused]] double sinc(double t) { return t == 0.0 ? 1.0 : std::sin(t) / t; }
-[[maybe_unused]] long double sincl(long double t) { return t == 0.0L ? 1.0L : std::sin(t) / t; }
-
-[[maybe_unused]] double horner(const double* a, double v) {
-  double sum = 0.0;
-  for (int k = kSeriesTerms - 1; k >= 0; --k) sum = sum * v + a[k];
-  return sum;
-}
+using support::horner;
+using support::sinc;
+using support::sincl;
 
 // SERKN1s2(1): Sec. 3.1, case one.
 namespace SERKN1s2_1 {
@@ -64,6 +60,8 @@ constexpr double series[] = {
     1.2256174391283858e-48, -7.117406731291439e-52, 3.7618428812322616e-55, -1.817315401561479e-58,
     8.0554760707512364e-62,
 };
+
+constexpr int generalized_order[] = {2, 2, 4, 6, 8};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -121,6 +119,8 @@ constexpr double series[] = {
     1.3593811796192334e-62, -1.8817568931606219e-66, 2.3759556731826036e-70, -2.7474048024775712e-74,
     2.9202857169191871e-78,
 };
+
+constexpr int generalized_order[] = {2, 2, 4, 6, 8};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -226,6 +226,8 @@ constexpr double poles[] = {
     4163.2485305534901, 5905.6810667469981, 6681.7847228530836, 6851.5299019592248,
     7953.1669390088264, 8547.4995674701786, 9062.8350127108606,
 };
+
+constexpr int generalized_order[] = {3, 3, 4, 6, 8};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -350,6 +352,8 @@ constexpr double poles[] = {
     5003.8894313523051, 5803.3273878405425, 6661.9829707353174, 7579.8561800366278,
     8556.9470157444739, 9593.2554778588565,
 };
+
+constexpr int generalized_order[] = {4, 4, 4, 6, 8};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -526,6 +530,8 @@ constexpr double poles[] = {
     5684.8921350274704, 6579.7362673929056, 6671.8525751364068, 7737.7698504540567,
     7961.480883545416, 8882.643960980422, 9474.8202250457834,
 };
+
+constexpr int generalized_order[] = {6, 4, 5, 6, 8};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -712,6 +718,8 @@ constexpr double poles[] = {
     5684.8921350274704, 6579.7362673929056, 6671.8525751364068, 7737.7698504540567,
     7961.480883545416, 8882.643960980422, 9474.8202250457834,
 };
+
+constexpr int generalized_order[] = {6, 4, 5, 6, 8};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -1356,52 +1364,64 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
 }  // namespace
 
 const Table kTables[] = {
-    {"SERKN1s2(1)", "SERKN1s2_1", 1, 2, false,
+    {"SERKN1s2(1)", "SERKN1s2_1", 1, 2, false, false,
      "Sec. 3.1, case one",
+     SERKN1s2_1::generalized_order, std::size(SERKN1s2_1::generalized_order),
      SERKN1s2_1::c, SERKN1s2_1::d, SERKN1s2_1::c_exact, SERKN1s2_1::d_exact, SERKN1s2_1::coefficients, SERKN1s2_1::series,
      SERKN1s2_1::closed_forms, nullptr, 0},
-    {"SERKN1s2(2)", "SERKN1s2_2", 1, 2, false,
+    {"SERKN1s2(2)", "SERKN1s2_2", 1, 2, false, false,
      "Sec. 3.1, case two",
+     SERKN1s2_2::generalized_order, std::size(SERKN1s2_2::generalized_order),
      SERKN1s2_2::c, SERKN1s2_2::d, SERKN1s2_2::c_exact, SERKN1s2_2::d_exact, SERKN1s2_2::coefficients, SERKN1s2_2::series,
      SERKN1s2_2::closed_forms, nullptr, 0},
-    {"SERKN2s3", "SERKN2s3", 2, 3, false,
+    {"SERKN2s3", "SERKN2s3", 2, 3, false, false,
      "Sec. 3.2, case one: c1 = 1/5, abar22 = abar11 and the last condition of (r)",
+     SERKN2s3::generalized_order, std::size(SERKN2s3::generalized_order),
      SERKN2s3::c, SERKN2s3::d, SERKN2s3::c_exact, SERKN2s3::d_exact, SERKN2s3::coefficients, SERKN2s3::series,
      SERKN2s3::closed_forms, SERKN2s3::poles, std::size(SERKN2s3::poles)},
-    {"SERKN2s4", "SERKN2s4", 2, 4, false,
+    {"SERKN2s4", "SERKN2s4", 2, 4, false, false,
      "Sec. 3.2, case two: abar11, abar22 from the 8th (corrected) and 9th conditions of (s)",
+     SERKN2s4::generalized_order, std::size(SERKN2s4::generalized_order),
      SERKN2s4::c, SERKN2s4::d, SERKN2s4::c_exact, SERKN2s4::d_exact, SERKN2s4::coefficients, SERKN2s4::series,
      SERKN2s4::closed_forms, SERKN2s4::poles, std::size(SERKN2s4::poles)},
-    {"SERKN3s4(1)", "SERKN3s4_1", 3, 4, false,
+    {"SERKN3s4(1)", "SERKN3s4_1", 3, 4, false, false,
      "Sec. 3.3, case one, eq. (ekrnD); abar_ii from (Schems100) 8-10",
+     SERKN3s4_1::generalized_order, std::size(SERKN3s4_1::generalized_order),
      SERKN3s4_1::c, SERKN3s4_1::d, SERKN3s4_1::c_exact, SERKN3s4_1::d_exact, SERKN3s4_1::coefficients, SERKN3s4_1::series,
      SERKN3s4_1::closed_forms, SERKN3s4_1::poles, std::size(SERKN3s4_1::poles)},
-    {"SERKN3s4(2)", "SERKN3s4_2", 3, 4, false,
+    {"SERKN3s4(2)", "SERKN3s4_2", 3, 4, false, false,
      "Sec. 3.3, case two, eq. (ekrnE); abar_ii from (Schems100) 8-10",
+     SERKN3s4_2::generalized_order, std::size(SERKN3s4_2::generalized_order),
      SERKN3s4_2::c, SERKN3s4_2::d, SERKN3s4_2::c_exact, SERKN3s4_2::d_exact, SERKN3s4_2::coefficients, SERKN3s4_2::series,
      SERKN3s4_2::closed_forms, SERKN3s4_2::poles, std::size(SERKN3s4_2::poles)},
-    {"RKN1s2(1)", "RKN1s2_1", 1, 2, true,
+    {"RKN1s2(1)", "RKN1s2_1", 1, 2, true, false,
      "V -> 0 limit of SERKN1s2(1) (Sec. 3.1, case one)",
+     nullptr, 0,
      RKN1s2_1::c, RKN1s2_1::d, RKN1s2_1::c_exact, RKN1s2_1::d_exact, RKN1s2_1::coefficients, RKN1s2_1::series,
      RKN1s2_1::closed_forms, nullptr, 0},
-    {"RKN1s2(2)", "RKN1s2_2", 1, 2, true,
+    {"RKN1s2(2)", "RKN1s2_2", 1, 2, true, false,
      "V -> 0 limit of SERKN1s2(2) (Sec. 3.1, case two)",
+     nullptr, 0,
      RKN1s2_2::c, RKN1s2_2::d, RKN1s2_2::c_exact, RKN1s2_2::d_exact, RKN1s2_2::coefficients, RKN1s2_2::series,
      RKN1s2_2::closed_forms, nullptr, 0},
-    {"RKN2s3", "RKN2s3", 2, 3, true,
+    {"RKN2s3", "RKN2s3", 2, 3, true, false,
      "V -> 0 limit of SERKN2s3 (Sec. 3.2, case one: c1 = 1/5, abar22 = abar11 and the last condition of (r))",
+     nullptr, 0,
      RKN2s3::c, RKN2s3::d, RKN2s3::c_exact, RKN2s3::d_exact, RKN2s3::coefficients, RKN2s3::series,
      RKN2s3::closed_forms, nullptr, 0},
-    {"RKN2s4", "RKN2s4", 2, 4, true,
+    {"RKN2s4", "RKN2s4", 2, 4, true, false,
      "V -> 0 limit of SERKN2s4 (Sec. 3.2, case two: abar11, abar22 from the 8th (corrected) and 9th conditions of (s))",
+     nullptr, 0,
      RKN2s4::c, RKN2s4::d, RKN2s4::c_exact, RKN2s4::d_exact, RKN2s4::coefficients, RKN2s4::series,
      RKN2s4::closed_forms, nullptr, 0},
-    {"RKN3s4(1)", "RKN3s4_1", 3, 4, true,
+    {"RKN3s4(1)", "RKN3s4_1", 3, 4, true, false,
      "V -> 0 limit of SERKN3s4(1) (Sec. 3.3, case one, eq. (ekrnD); abar_ii from (Schems100) 8-10)",
+     nullptr, 0,
      RKN3s4_1::c, RKN3s4_1::d, RKN3s4_1::c_exact, RKN3s4_1::d_exact, RKN3s4_1::coefficients, RKN3s4_1::series,
      RKN3s4_1::closed_forms, nullptr, 0},
-    {"RKN3s4(2)", "RKN3s4_2", 3, 4, true,
+    {"RKN3s4(2)", "RKN3s4_2", 3, 4, true, false,
      "V -> 0 limit of SERKN3s4(2) (Sec. 3.3, case two, eq. (ekrnE); abar_ii from (Schems100) 8-10)",
+     nullptr, 0,
      RKN3s4_2::c, RKN3s4_2::d, RKN3s4_2::c_exact, RKN3s4_2::d_exact, RKN3s4_2::coefficients, RKN3s4_2::series,
      RKN3s4_2::closed_forms, nullptr, 0},
 };

@@ -1,6 +1,8 @@
 #include "derive.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <functional>
 #include <sstream>
 #include <stdexcept>
 
@@ -93,15 +95,143 @@ Rational convert(const ex& e, const TrigEnv& env, const symbol& v) {
   throw std::runtime_error("cannot bring to trigonometric normal form: " + str(e));
 }
 
-/// Exact value of a constant expression in Q(sqrt(s)) (numbers, sqrt(n), + * / and powers).
+/// Value of a constant expression: exact in Q(sqrt(s)) (numbers, sqrt(n), + * / and integer
+/// powers), else approximate (Qs::approximate).
 Qs value(const ex& e) {
-  Rational r = convert(e, {}, symbol("unused"));
-  TrigPoly p = r.as_poly();
-  if (!p.is_constant()) throw std::runtime_error("not a constant: " + str(e));
-  return p.is_zero() ? Qs(0) : p.terms().begin()->second;
+  try {
+    Rational r = convert(e, {}, symbol("unused"));
+    TrigPoly p = r.as_poly();
+    if (!p.is_constant()) throw std::runtime_error("not a constant: " + str(e));
+    return p.is_zero() ? Qs(0) : p.terms().begin()->second;
+  } catch (const std::exception&) {
+    return Qs::from_ex(e);
+  }
 }
 
 bool identically_zero(const Rational& r) { return r.num.is_zero(); }
+
+/// A constant of the spec (c_i, d_i, a drift sum): GiNaC syntax read in Qs::kApproxDigits
+/// digits, so decimals are exactly as written. Errors name the method and the coefficient.
+Qs read_constant(const MethodSpec& spec, const std::string& what, const std::string& text) {
+  long saved = GiNaC::Digits;
+  GiNaC::Digits = Qs::kApproxDigits;
+  try {
+    symbol unused("v");
+    ex e = make_parser(unused)(text);
+    GiNaC::Digits = saved;
+    return value(e);
+  } catch (const std::exception& err) {
+    GiNaC::Digits = saved;
+    throw std::runtime_error(spec.name + ": " + what + " = '" + text + "': " + err.what());
+  }
+}
+
+/// Nodes c_i and weights d_i (into out.c, out.d): as given, or the d_i from the quadrature
+/// conditions sum_i d_i c_i^k = 1/(k+1), k < s (eq. (f) for the bushy trees at V = 0, over
+/// symbolic c_i so the general formulas appear), and one node `?` from the next condition.
+void solve_nodes(const MethodSpec& spec, const std::vector<symbol>& c, const std::vector<symbol>& d,
+                 Derived& out) {
+  const int s = spec.stages;
+  auto fail = [&](const std::string& why) { throw std::runtime_error(spec.name + ": " + why); };
+  exmap nodes;
+  std::vector<int> unknown;
+  for (int i = 0; i < s; ++i) {
+    if (spec.c[i] == "?")
+      unknown.push_back(i);
+    else
+      nodes[c[i]] = read_constant(spec, "c" + idx(i), spec.c[i]).to_ex();
+  }
+  if (!spec.d.empty()) {
+    if (!unknown.empty()) fail("c" + idx(unknown[0]) + " = ?: with d given, give every c_i");
+    for (int i = 0; i < s; ++i) {
+      out.c.push_back(value(nodes[c[i]]));
+      out.d.push_back(read_constant(spec, "d" + idx(i), spec.d[i]));
+      if (out.d[i].is_zero()) fail("d" + idx(i) + " = 0: abar_ij = (...)/d_i is undefined");
+    }
+    return;
+  }
+  std::vector<ex> quad;  // sum_i d_i c_i^k - 1/(k+1), k = 0 .. s (as far as the order goes)
+  for (int k = 0; k < std::min(spec.order, s + 1); ++k) {
+    ex sum = 0;
+    for (int i = 0; i < s; ++i) sum += d[i] * pow(c[i], k);
+    quad.push_back(sum - numeric(1, k + 1));
+  }
+  if (int(quad.size()) < s) fail("order < stages leaves d underdetermined: give d");
+  lst deqs, dsyms;
+  for (int i = 0; i < s; ++i) deqs.append(quad[i] == 0), dsyms.append(d[i]);
+  ex dsol = lsolve(deqs, dsyms);
+  if (unknown.size() > 1) fail("at most one node may be left to the generator when d is solved");
+  if (!unknown.empty()) {  // the first condition beyond the s that fixed d fixes the node
+    if (spec.order <= s) fail("no condition left to fix c" + idx(unknown[0]));
+    const symbol& cu = c[unknown[0]];
+    ex p = expand(normal(quad[s].subs(dsol)).numer());
+    if (p.degree(cu) != 1) fail("the node condition is not linear in c" + idx(unknown[0]));
+    ex sol = normal(-p.coeff(cu, 0) / p.coeff(cu, 1));
+    out.node_derivation.push_back(str(cu) + " = " + quotient(sol));
+    nodes[cu] = sol.subs(nodes);
+  }
+  for (size_t i = 0; i < dsol.nops(); ++i)
+    out.node_derivation.push_back(str(dsol.op(i).op(0)) + " = " + quotient(dsol.op(i).op(1)));
+  for (int i = 0; i < s; ++i) out.c.push_back(value(nodes[c[i]].subs(nodes)));
+  exmap cd;  // c_i -> values
+  for (int i = 0; i < s; ++i) cd[c[i]] = out.c[i].to_ex();
+  for (int i = 0; i < s; ++i) {
+    out.d.push_back(value(ex(d[i]).subs(dsol).subs(cd)));
+    if (out.d[i].is_zero()) fail("d" + idx(i) + " = 0: abar_ij = (...)/d_i is undefined");
+  }
+}
+
+/// The s+1 drifts of a splitting method sum to 1: exactly, or to 1e-12 for decimals (a
+/// transcription check; the polishing makes the decimals consistent).
+void check_drift_sum(const MethodSpec& spec) {
+  if (spec.drift_sum.empty()) return;
+  Qs sum = read_constant(spec, "the sum of the drifts", spec.drift_sum), err = sum - Qs(1);
+  if (err.is_zero() || (sum.is_approx() && std::abs(err.to_double()) <= 1e-12)) return;
+  throw std::runtime_error(spec.name + ": the drifts sum to " + sum.to_string() + ", not 1");
+}
+
+using Record = std::function<void(int, const symbol&, const ex&, const ex&)>;
+
+/// abar_ii from the spec's `diagonal` equations, taken as equalities in V; in them bAe, bbarAe,
+/// bcAe, bAc stand for the tree sums of eq. (f) with abar(V). Returns the equations lhs - rhs.
+std::vector<ex> solve_diagonal(const MethodSpec& spec, const symbol& v,
+                               const std::vector<symbol>& b, const std::vector<symbol>& bb,
+                               const std::vector<symbol>& c,
+                               const std::vector<std::vector<symbol>>& a, const Record& record) {
+  const int s = spec.stages;
+  auto fail = [&](const std::string& why) { throw std::runtime_error(spec.name + ": " + why); };
+  symtab table;
+  table["v"] = v;
+  ex bAe = 0, bbarAe = 0, bcAe = 0, bAc = 0;
+  for (int i = 0; i < s; ++i) {
+    ex row = 0, rowc = 0;
+    for (int j = 0; j <= i; ++j) row += a[i][j], rowc += a[i][j] * c[j];
+    bAe += b[i] * row, bbarAe += bb[i] * row, bcAe += b[i] * c[i] * row, bAc += b[i] * rowc;
+    table["b" + idx(i)] = b[i], table["bbar" + idx(i)] = bb[i], table["c" + idx(i)] = c[i];
+    for (int j = 0; j <= i; ++j) table["abar" + idx(i) + idx(j)] = a[i][j];
+  }
+  table["bAe"] = bAe, table["bbarAe"] = bbarAe, table["bcAe"] = bcAe, table["bAc"] = bAc;
+  parser read(table, true);
+  lst diag_eqs, diag_syms;
+  std::vector<ex> diagonal;
+  for (const std::string& text : spec.diagonal) {
+    size_t eqpos = text.find("==");
+    if (eqpos == std::string::npos) fail("diagonal condition is not an equation: " + text);
+    ex lhs = read(text.substr(0, eqpos)), rhs = read(text.substr(eqpos + 2));
+    diag_eqs.append(lhs == rhs);
+    diagonal.push_back(lhs - rhs);
+  }
+  for (int i = 0; i < s; ++i) diag_syms.append(a[i][i]);
+  if (diag_eqs.nops() != size_t(s)) fail("need one diagonal equation per stage");
+  ex dsol2 = lsolve(diag_eqs, diag_syms);
+  if (dsol2.nops() != size_t(s)) fail("diagonal equations do not determine abar_ii");
+  for (int i = 0; i < s; ++i) {
+    ex solution = normal(ex(a[i][i]).subs(dsol2));
+    record(abar_index(s, i + 1, i + 1), a[i][i], solution, solution);
+  }
+
+  return diagonal;
+}
 
 }  // namespace
 
@@ -119,53 +249,11 @@ Derived derive(const MethodSpec& spec) {
   out.spec = spec;
   auto fail = [&](const std::string& why) { throw std::runtime_error(spec.name + ": " + why); };
 
-  // --- Nodes and weights: quadrature conditions at V = 0, over symbolic c_i. ---------------
+  // --- Nodes and weights: given, or from the quadrature conditions at V = 0. ---------------
   std::vector<symbol> c, d;
   for (int i = 0; i < s; ++i) c.emplace_back("c" + idx(i)), d.emplace_back("d" + idx(i));
-  std::vector<ex> quad;  // sum_i d_i c_i^k - 1/(k+1), k = 0 .. order-1
-  for (int k = 0; k < spec.order; ++k) {
-    ex sum = 0;
-    for (int i = 0; i < s; ++i) sum += d[i] * pow(c[i], k);
-    quad.push_back(sum - numeric(1, k + 1));
-  }
-  if (int(quad.size()) < s) fail("order < stages leaves d underdetermined");
-  lst deqs, dsyms;
-  for (int i = 0; i < s; ++i) deqs.append(quad[i] == 0), dsyms.append(d[i]);
-  ex dsol = lsolve(deqs, dsyms);
-  exmap nodes;  // c_i -> value (free ones from the spec, solved ones below)
-  std::vector<int> unknown;
-  for (int i = 0; i < s; ++i) {
-    if (spec.c[i] == "?") {
-      unknown.push_back(i);
-      continue;
-    }
-    symbol dummy("v");
-    nodes[c[i]] = make_parser(dummy)(spec.c[i]);
-  }
-  if (unknown.size() > 1) fail("at most one node may be left to the generator");
-  if (!unknown.empty()) {  // the first condition beyond the s that fixed d fixes the node
-    if (spec.order <= s) fail("no condition left to fix c" + idx(unknown[0]));
-    const symbol& cu = c[unknown[0]];
-    ex p = expand(normal(quad[s].subs(dsol)).numer());
-    if (p.degree(cu) != 1) fail("the node condition is not linear in c" + idx(unknown[0]));
-    ex sol = normal(-p.coeff(cu, 0) / p.coeff(cu, 1));
-    out.node_derivation.push_back(str(cu) + " = " + quotient(sol));
-    nodes[cu] = sol.subs(nodes);
-  }
-  for (size_t i = 0; i < dsol.nops(); ++i)
-    out.node_derivation.push_back(str(dsol.op(i).op(0)) + " = " + quotient(dsol.op(i).op(1)));
-  for (int i = 0; i < s; ++i) out.c.push_back(value(nodes[c[i]].subs(nodes)));
-  exmap cd;  // c_i, d_i -> exact values as GiNaC numbers
-  for (int i = 0; i < s; ++i) cd[c[i]] = out.c[i].to_ex();
-  for (int i = 0; i < s; ++i) {
-    out.d.push_back(value(ex(d[i]).subs(dsol).subs(cd)));
-    cd[d[i]] = out.d[i].to_ex();
-    if (out.d[i].is_zero()) fail("d" + idx(i) + " = 0: abar_ij = (...)/d_i is undefined");
-  }
-  for (int k = 0; k < spec.order; ++k)
-    if (!value(quad[k].subs(cd)).is_zero())
-      fail("quadrature condition sum d_i c_i^" + std::to_string(k) + " = 1/" +
-           std::to_string(k + 1) + " fails");
+  solve_nodes(spec, c, d, out);
+  check_drift_sum(spec);
 
   // --- Symbols of the tableau, and the trig environment that gives them meaning. ----------
   symbol v("v");
@@ -219,36 +307,12 @@ Derived derive(const MethodSpec& spec) {
       record(abar_index(s, i + 1, j + 1), a[i][j], solution, solution);
     }
 
-  // --- abar_ii: the diagonal equations of the spec, as equalities in V. --------------------
-  symtab table;
-  table["v"] = v;
-  ex bAe = 0, bbarAe = 0, bcAe = 0, bAc = 0;
-  for (int i = 0; i < s; ++i) {
-    ex row = 0, rowc = 0;
-    for (int j = 0; j <= i; ++j) row += a[i][j], rowc += a[i][j] * c[j];
-    bAe += b[i] * row, bbarAe += bb[i] * row, bcAe += b[i] * c[i] * row, bAc += b[i] * rowc;
-    table["b" + idx(i)] = b[i], table["bbar" + idx(i)] = bb[i], table["c" + idx(i)] = c[i];
-    for (int j = 0; j <= i; ++j) table["abar" + idx(i) + idx(j)] = a[i][j];
-  }
-  table["bAe"] = bAe, table["bbarAe"] = bbarAe, table["bcAe"] = bcAe, table["bAc"] = bAc;
-  parser read(table, true);
-  lst diag_eqs, diag_syms;
+  // --- abar_ii: zero (explicit), or the diagonal equations of the spec as equalities in V. ---
   std::vector<ex> diagonal;
-  for (const std::string& text : spec.diagonal) {
-    size_t eqpos = text.find("==");
-    if (eqpos == std::string::npos) fail("diagonal condition is not an equation: " + text);
-    ex lhs = read(text.substr(0, eqpos)), rhs = read(text.substr(eqpos + 2));
-    diag_eqs.append(lhs == rhs);
-    diagonal.push_back(lhs - rhs);
-  }
-  for (int i = 0; i < s; ++i) diag_syms.append(a[i][i]);
-  if (diag_eqs.nops() != size_t(s)) fail("need one diagonal equation per stage");
-  ex dsol2 = lsolve(diag_eqs, diag_syms);
-  if (dsol2.nops() != size_t(s)) fail("diagonal equations do not determine abar_ii");
-  for (int i = 0; i < s; ++i) {
-    ex solution = normal(ex(a[i][i]).subs(dsol2));
-    record(abar_index(s, i + 1, i + 1), a[i][i], solution, solution);
-  }
+  if (spec.kind == SpecKind::explicit_erkn)
+    for (int i = 0; i < s; ++i) record(abar_index(s, i + 1, i + 1), a[i][i], 0, 0);
+  else
+    diagonal = solve_diagonal(spec, v, b, bb, c, a, record);
 
   // --- Verify, identically in V: everything imposed holds. --------------------------------
   for (int i = 0; i < s; ++i) {
@@ -265,7 +329,32 @@ Derived derive(const MethodSpec& spec) {
       fail("diagonal condition '" + spec.diagonal[k] + "' fails");
 
   for (const Rational& r : out.coef) out.series.push_back(taylor(r, kSeriesTerms));
+  certify_order(out);
   return out;
+}
+
+void certify_order(Derived& m) {
+  const int s = m.stages();
+  SeriesTableau t;
+  t.s = s;
+  t.c = m.c;
+  for (int i = 0; i < s; ++i) t.b.push_back(m.series[i]), t.bbar.push_back(m.series[s + i]);
+  for (int i = 0; i < s; ++i)
+    for (int j = 0; j <= i; ++j) t.abar.push_back(m.series[abar_index(s, i + 1, j + 1)]);
+  const int max_power = std::max(m.spec.order + 1, kCertifyPowers);
+  for (bool rkn : {false, true}) {
+    if (rkn && m.spec.rkn.empty()) continue;
+    Certificate cert = certify(t, rkn, max_power);
+    if (cert.order < m.spec.order) {
+      const CheckedCondition* f = cert.first_failure();
+      throw std::runtime_error(
+          (rkn ? m.spec.rkn + " (the V -> 0 limit of " + m.spec.name + ")" : m.spec.name) +
+          ": claimed order " + std::to_string(m.spec.order) + " fails at tree " +
+          cert.trees[f->condition.tree].name + ": condition " + f->condition.text(cert.trees) +
+          " has residual " + f->residual + " (certified order " + std::to_string(cert.order) + ")");
+    }
+    (rkn ? m.rkn_certificate : m.certificate) = std::move(cert);
+  }
 }
 
 }  // namespace erkn::gen

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "certify.hpp"
 #include "spec.hpp"
 #include "trig.hpp"
 
@@ -24,16 +25,26 @@ struct Derived {
   std::vector<std::string> derivation;
   std::vector<std::string> node_derivation;  ///< c and d as functions of the free nodes
   std::vector<std::vector<Qs>> series;       ///< exact Taylor coefficients, kSeriesTerms each
+  Certificate certificate;                   ///< order conditions of eq. (f), checked
+  Certificate rkn_certificate;               ///< the same for the V -> 0 limit (if spec.rkn is set)
   int stages() const { return spec.stages; }
 };
 
 inline constexpr int kSeriesTerms = 25;
+/// Order conditions are checked up to this power of h (or the claimed order + 1 if higher):
+/// enough for the generalized orders (8, 6, 4) of the near-integrable methods.
+inline constexpr int kCertifyPowers = 10;
 
 /// Index of abar_ij (1-based i >= j) in Derived::coef.
 inline int abar_index(int s, int i, int j) { return 2 * s + i * (i - 1) / 2 + (j - 1); }
 
-/// Solves and verifies; throws std::runtime_error naming the condition that fails.
+/// Solves, verifies and certifies; throws std::runtime_error naming the method and the condition
+/// that fails.
 Derived derive(const MethodSpec& spec);
+
+/// Certifies the order of a derived method and of its V -> 0 limit (eq. (f) over the SEN-trees);
+/// throws naming the method, the first failing tree and its residual if the claimed order fails.
+void certify_order(Derived& m);
 
 using TrigEnv = std::map<GiNaC::ex, Rational, GiNaC::ex_is_less>;
 

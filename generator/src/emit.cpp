@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -71,234 +72,272 @@ std::string cpp_sum(const TrigPoly& p, const std::map<Qs, int>& omega_index, boo
 
 std::string quoted(const std::string& s) { return "\"" + s + "\""; }
 
+// `values` as "a, b, c" (each rendered by `f`), wrapped four to a line when `wrap`.
+template <class T, class F>
+std::string joined(const std::vector<T>& values, F f, bool wrap = false) {
+  std::string out;
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (wrap)
+      out += (i % 4 == 0 ? "    " : " ") + f(values[i]) + "," +
+             (i % 4 == 3 || i + 1 == values.size() ? "\n" : "");
+    else
+      out += (i ? ", " : "") + f(values[i]);
+  }
+  return out;
+}
+
+std::string name_of(const Derived& m, bool rkn) { return rkn ? m.spec.rkn : m.spec.name; }
+
+// The printed closed form of coefficient k: its constant term for an RKN limit.
+std::string closed_form(const Derived& m, int k, bool rkn) {
+  if (rkn) return m.series[k][0].to_string();
+  Rational r = m.coef[k].cleared();
+  return r.den.is_constant() ? m.coef[k].num.to_string()
+                             : "(" + r.num.to_string() + ")/(" + r.den.to_string() + ")";
+}
+
+std::string node_arrays(const Derived& m) {
+  auto dbl = [](const Qs& q) { return num(q.to_double()); };
+  auto str = [](const Qs& q) { return quoted(q.to_string()); };
+  return "constexpr double c[] = {" + joined(m.c, dbl) + "};\nconstexpr double d[] = {" +
+         joined(m.d, dbl) + "};\nconstexpr const char* c_exact[] = {" + joined(m.c, str) +
+         "};\nconstexpr const char* d_exact[] = {" + joined(m.d, str) + "};\n\n";
+}
+
+std::string closed_forms_array(const Derived& m, bool rkn) {
+  std::string out = "constexpr const char* closed_forms[] = {\n";
+  for (size_t k = 0; k < m.coef.size(); ++k)
+    out += "    // " + m.names[k] + "\n    " + quoted(closed_form(m, int(k), rkn)) + ",\n";
+  return out + "};\n\n";
+}
+
+std::string series_array(const Derived& m, bool rkn) {
+  std::string out = "constexpr double series[] = {\n";
+  for (size_t k = 0; k < m.coef.size(); ++k) {
+    std::vector<double> x;
+    for (int j = 0; j < kSeriesTerms; ++j)
+      x.push_back(rkn && j > 0 ? 0.0 : m.series[k][j].to_double());
+    out += "    // " + m.names[k] + "\n" + joined(x, num, true);
+  }
+  return out + "};\n\n";
+}
+
+std::string poles_array(const std::vector<double>& poles) {
+  if (poles.empty()) return "";
+  return "constexpr double poles[] = {\n" + joined(poles, num, true) + "};\n\n";
+}
+
+std::string generalized_array(const Derived& m, bool rkn) {
+  if (rkn) return "";
+  auto str = [](int x) { return std::to_string(x); };
+  return "constexpr int generalized_order[] = {" + joined(m.certificate.generalized, str) +
+         "};\n\n";
+}
+
+// Index of every frequency w of the closed forms (cos(w x), sinc(w x), x = sqrt(v)).
+std::map<Qs, int> frequencies(const Derived& m) {
+  std::map<Qs, int> index;
+  for (const Rational& r0 : m.coef) {
+    Rational r = r0.cleared();
+    for (const TrigPoly* p : {&r.num, &r.den})
+      for (const auto& [key, coef] : p->terms())
+        if (!key.omega.is_zero()) index.emplace(key.omega, 0);
+  }
+  int next = 0;
+  for (auto& [w, i] : index) i = next++;
+  return index;
+}
+
+std::string target(int k, int s) {
+  if (k < s) return "b[" + std::to_string(k) + "]";
+  if (k < 2 * s) return "bbar[" + std::to_string(k - s) + "]";
+  return "abar[" + std::to_string(k - 2 * s) + "]";
+}
+
+// C[k] = cos(w_k x), S[k] = sinc(w_k x) (and CL, SL in long double for the quotients).
+std::string frequency_setup(const std::map<Qs, int>& omega, bool any_quotient) {
+  const size_t n = omega.size();
+  if (n == 0) return "  static_cast<void>(x);\n";
+  std::vector<Qs> w;
+  for (const auto& [wq, i] : omega) w.push_back(wq);
+  std::ostringstream os;
+  os << "  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)\n"
+     << "  constexpr double w[] = {" << joined(w, [](const Qs& q) { return num(q.to_double()); })
+     << "};\n  double C[" << n << "], S[" << n << "];\n"
+     << "  for (int k = 0; k < " << n
+     << "; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);\n";
+  if (any_quotient)
+    os << "  // The quotients cancel near their poles: evaluated in long double.\n"
+       << "  constexpr long double wl[] = {" << joined(w, num_long) << "};\n"
+       << "  const long double V = v, X = std::sqrt(V);\n"
+       << "  long double CL[" << n << "], SL[" << n << "];\n"
+       << "  for (int k = 0; k < " << n
+       << "; ++k) CL[k] = std::cos(wl[k] * X), SL[k] = sincl(wl[k] * X);\n";
+  return os.str();
+}
+
+// One coefficient: a trig polynomial directly; a quotient by its series below the switch.
+std::string coefficient_line(const Emittable& e, int k, const std::map<Qs, int>& omega) {
+  const Derived& m = e.method;
+  const std::string t = target(k, m.stages());
+  Rational r = m.coef[k].cleared();
+  if (r.den.is_constant()) return "  " + t + " = " + cpp_sum(m.coef[k].as_poly(), omega) + ";\n";
+  return "  if (v < " + num(e.series_switch[k]) + ") {  // " + m.names[k] +
+         ": 0/0-prone, Taylor series\n    " + t + " = horner(series + " +
+         std::to_string(k * kSeriesTerms) + ", v);\n  } else {\n    " + t + " = double((" +
+         cpp_sum(r.num, omega, true) + ") /\n        (" + cpp_sum(r.den, omega, true) +
+         "));\n  }\n";
+}
+
+std::string coefficients_function(const Emittable& e, bool rkn) {
+  const Derived& m = e.method;
+  std::string out =
+      "void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {\n";
+  if (rkn) {
+    for (size_t k = 0; k < m.coef.size(); ++k)
+      out += "  " + target(int(k), m.stages()) + " = series[" + std::to_string(k * kSeriesTerms) +
+             "];\n";
+    return out + "}\n\n";
+  }
+  std::map<Qs, int> omega = frequencies(m);
+  bool any_quotient = false;
+  for (const Rational& r : m.coef) any_quotient |= !r.cleared().den.is_constant();
+  out += "  const double x = std::sqrt(v);\n" + frequency_setup(omega, any_quotient);
+  for (size_t k = 0; k < m.coef.size(); ++k) out += coefficient_line(e, int(k), omega);
+  return out + "}\n\n";
+}
+
 std::string method_cpp(const Emittable& e, bool rkn) {
   const Derived& m = e.method;
-  const int s = m.stages(), n = int(m.coef.size());
-  const std::string name = rkn ? m.spec.rkn : m.spec.name, id = identifier(name);
-  std::ostringstream os;
-  os << "// " << name << ": "
-     << (rkn ? "V -> 0 limit of " + m.spec.name + ", an RKN method with constant coefficients"
-             : m.spec.section)
-     << ".\nnamespace " << id << " {\n\n";
-  os << "constexpr double c[] = {";
-  for (int i = 0; i < s; ++i) os << (i ? ", " : "") << num(m.c[i].to_double());
-  os << "};\nconstexpr double d[] = {";
-  for (int i = 0; i < s; ++i) os << (i ? ", " : "") << num(m.d[i].to_double());
-  os << "};\nconstexpr const char* c_exact[] = {";
-  for (int i = 0; i < s; ++i) os << (i ? ", " : "") << quoted(m.c[i].to_string());
-  os << "};\nconstexpr const char* d_exact[] = {";
-  for (int i = 0; i < s; ++i) os << (i ? ", " : "") << quoted(m.d[i].to_string());
-  os << "};\n\n";
-  os << "constexpr const char* closed_forms[] = {\n";
-  for (int k = 0; k < n; ++k) {
-    std::string f;
-    if (rkn) {
-      f = m.series[k][0].to_string();
-    } else {
-      Rational r = m.coef[k].cleared();
-      f = r.den.is_constant() ? m.coef[k].num.to_string()
-                              : "(" + r.num.to_string() + ")/(" + r.den.to_string() + ")";
-    }
-    os << "    // " << m.names[k] << "\n    " << quoted(f) << ",\n";
-  }
-  os << "};\n\n";
-  os << "constexpr double series[] = {\n";
-  for (int k = 0; k < n; ++k) {
-    os << "    // " << m.names[k] << "\n";
-    for (int j = 0; j < kSeriesTerms; ++j) {
-      double x = rkn && j > 0 ? 0.0 : m.series[k][j].to_double();
-      os << (j % 4 == 0 ? "    " : " ") << num(x) << ","
-         << (j % 4 == 3 || j == kSeriesTerms - 1 ? "\n" : "");
-    }
-  }
-  os << "};\n\n";
-  std::vector<double> poles = rkn ? std::vector<double>{} : all_poles(e);
-  if (!poles.empty()) {
-    os << "constexpr double poles[] = {\n";
-    for (size_t i = 0; i < poles.size(); ++i)
-      os << (i % 4 == 0 ? "    " : " ") << num(poles[i]) << ","
-         << (i % 4 == 3 || i + 1 == poles.size() ? "\n" : "");
-    os << "};\n\n";
-  }
-
-  os << "void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {\n";
-  auto target = [&](int k) {
-    if (k < s) return "b[" + std::to_string(k) + "]";
-    if (k < 2 * s) return "bbar[" + std::to_string(k - s) + "]";
-    return "abar[" + std::to_string(k - 2 * s) + "]";
-  };
-  if (rkn) {
-    for (int k = 0; k < n; ++k)
-      os << "  " << target(k) << " = series[" << k * kSeriesTerms << "];\n";
-  } else {
-    std::map<Qs, int> omega_index;
-    for (const Rational& r0 : m.coef) {
-      Rational r = r0.cleared();
-      for (const TrigPoly* p : {&r.num, &r.den})
-        for (const auto& [key, coef] : p->terms())
-          if (!key.omega.is_zero()) omega_index.emplace(key.omega, 0);
-    }
-    int next = 0;
-    for (auto& [w, i] : omega_index) i = next++;
-    bool any_quotient = false;
-    for (const Rational& r0 : m.coef) any_quotient |= !r0.cleared().den.is_constant();
-    os << "  const double x = std::sqrt(v);\n";
-    if (next > 0) {
-      os << "  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)\n";
-      os << "  constexpr double w[] = {";
-      for (const auto& [wq, i] : omega_index) os << (i ? ", " : "") << num(wq.to_double());
-      os << "};\n  double C[" << next << "], S[" << next << "];\n";
-      os << "  for (int k = 0; k < " << next
-         << "; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);\n";
-      if (any_quotient) {
-        os << "  // The quotients cancel near their poles: evaluated in long double.\n";
-        os << "  constexpr long double wl[] = {";
-        for (const auto& [wq, i] : omega_index) os << (i ? ", " : "") << num_long(wq);
-        os << "};\n  const long double V = v, X = std::sqrt(V);\n";
-        os << "  long double CL[" << next << "], SL[" << next << "];\n";
-        os << "  for (int k = 0; k < " << next
-           << "; ++k) CL[k] = std::cos(wl[k] * X), SL[k] = sincl(wl[k] * X);\n";
-      }
-    } else {
-      os << "  static_cast<void>(x);\n";
-    }
-    for (int k = 0; k < n; ++k) {
-      Rational r = m.coef[k].cleared();
-      if (r.den.is_constant()) {
-        os << "  " << target(k) << " = " << cpp_sum(m.coef[k].as_poly(), omega_index) << ";\n";
-        continue;
-      }
-      double vs = e.series_switch[k];
-      os << "  if (v < " << num(vs) << ") {  // " << m.names[k] << ": 0/0-prone, Taylor series\n";
-      os << "    " << target(k) << " = horner(series + " << k * kSeriesTerms << ", v);\n";
-      os << "  } else {\n";
-      os << "    " << target(k) << " = double((" << cpp_sum(r.num, omega_index, true) << ") /\n";
-      os << "        (" << cpp_sum(r.den, omega_index, true) << "));\n  }\n";
-    }
-  }
-  os << "}\n\n}  // namespace " << id << "\n\n";
-  return os.str();
+  const std::string id = identifier(name_of(m, rkn));
+  std::string what =
+      rkn ? "V -> 0 limit of " + m.spec.name + ", an RKN method with constant coefficients"
+          : m.spec.source;
+  return "// " + name_of(m, rkn) + ": " + what + ".\nnamespace " + id + " {\n\n" + node_arrays(m) +
+         closed_forms_array(m, rkn) + series_array(m, rkn) +
+         poles_array(rkn ? std::vector<double>{} : all_poles(e)) + generalized_array(m, rkn) +
+         coefficients_function(e, rkn) + "}  // namespace " + id + "\n\n";
 }
 
 std::string table_entry(const Emittable& e, bool rkn) {
   const Derived& m = e.method;
-  const std::string name = rkn ? m.spec.rkn : m.spec.name, id = identifier(name);
-  bool has_poles = !rkn && !all_poles(e).empty();
+  const std::string name = name_of(m, rkn), id = identifier(name);
+  const bool has_poles = !rkn && !all_poles(e).empty();
+  const Certificate& cert = rkn ? m.rkn_certificate : m.certificate;
   std::string ref =
-      rkn ? "V -> 0 limit of " + m.spec.name + " (" + m.spec.section + ")" : m.spec.section;
+      rkn ? "V -> 0 limit of " + m.spec.name + " (" + m.spec.source + ")" : m.spec.source;
   std::ostringstream os;
-  os << "    {" << quoted(name) << ", " << quoted(id) << ", " << m.stages() << ", " << m.spec.order
-     << ", " << (rkn ? "true" : "false") << ",\n     " << quoted(ref) << ",\n     " << id << "::c, "
-     << id << "::d, " << id << "::c_exact, " << id << "::d_exact, " << id << "::coefficients, "
-     << id << "::series,\n     " << id << "::closed_forms, "
+  os << "    {" << quoted(name) << ", " << quoted(id) << ", " << m.stages() << ", " << cert.order
+     << ", " << (rkn ? "true" : "false") << ", "
+     << (m.spec.kind == SpecKind::explicit_erkn ? "true" : "false") << ",\n     " << quoted(ref)
+     << ",\n     "
+     << (rkn ? std::string("nullptr, 0")
+             : id + "::generalized_order, std::size(" + id + "::generalized_order)")
+     << ",\n     " << id << "::c, " << id << "::d, " << id << "::c_exact, " << id << "::d_exact, "
+     << id << "::coefficients, " << id << "::series,\n     " << id << "::closed_forms, "
      << (has_poles ? id + "::poles, std::size(" + id + "::poles)" : std::string("nullptr, 0"))
      << "},\n";
   return os.str();
 }
 
-}  // namespace
-
-void emit(const std::vector<Emittable>& methods, const std::string& outdir,
-          const std::string& command) {
-  int max_stages = 0;
-  for (const Emittable& e : methods) max_stages = std::max(max_stages, e.method.stages());
-
-  std::ostringstream def;
-  def << banner(command) << "// ERKN_METHOD(id, name, stages, order, kind)\n";
+// Every (method, rkn) pair that is emitted, in registry order: the methods, then their limits.
+std::vector<std::pair<const Emittable*, bool>> registry(const std::vector<Emittable>& methods) {
+  std::vector<std::pair<const Emittable*, bool>> out;
   for (bool rkn : {false, true})
-    for (const Emittable& e : methods) {
-      const std::string name = rkn ? e.method.spec.rkn : e.method.spec.name;
-      def << "ERKN_METHOD(" << identifier(name) << ", " << quoted(name) << ", " << e.method.stages()
-          << ", " << e.method.spec.order << ", " << (rkn ? "rkn" : "erkn") << ")\n";
-    }
-  write(outdir + "/include/erkn/generated/methods.def", def.str());
-
-  std::ostringstream hpp;
-  // clang-format off
-  hpp << banner(command) << R"CPP(#pragma once
-
-namespace erkn::generated {
-
-/// Largest stage count of any method.
-inline constexpr int kMaxStages = )CPP" << max_stages << R"CPP(;
-/// Stored Taylor coefficients per coefficient function: v^0 .. v^(kSeriesTerms-1).
-inline constexpr int kSeriesTerms = )CPP" << kSeriesTerms << R"CPP(;
-/// Poles are listed for v = h^2 lambda in (0, kPoleSearchMax].
-inline constexpr double kPoleSearchMax = )CPP" << num(kPoleSearchMax) << R"CPP(;
-
-/// One method of the paper (or its V -> 0 limit). Coefficient functions are listed in the order
-/// b_1..b_s, bbar_1..bbar_s, abar_11, abar_21, abar_22, abar_31, ... (lower triangle, row-major).
-struct Table {
-  const char* name;       ///< the paper's name, e.g. "SERKN3s4(1)"
-  const char* id;         ///< C identifier, e.g. "SERKN3s4_1"
-  int stages;             ///< s
-  int order;              ///< classical order
-  bool rkn;               ///< true: V -> 0 limit (constant coefficients, force -Mq - grad U)
-  const char* reference;  ///< where the paper derives it
-  const double* c;        ///< nodes c_1..c_s
-  const double* d;        ///< symplectic weights d_1..d_s of Theorem 2, eq. (g)
-  const char* const* c_exact;  ///< c_i in GiNaC syntax
-  const char* const* d_exact;  ///< d_i in GiNaC syntax
-  /// Evaluates b[s], bbar[s], abar[s(s+1)/2] at v = h^2 lambda >= 0 (v away from a pole).
-  void (*coefficients)(double v, double* b, double* bbar, double* abar);
-  const double* series;              ///< [ncoef][kSeriesTerms] Taylor coefficients in v
-  const char* const* closed_forms;   ///< [ncoef] closed forms, GiNaC syntax in v and phi(j,w*v)
-  const double* poles;               ///< real poles in (0, kPoleSearchMax], ascending
-  int npoles;
-};
-
-/// All methods, in the order of methods.def.
-extern const Table kTables[];
-extern const int kNumTables;
-
-}  // namespace erkn::generated
-)CPP";
-  // clang-format on
-  write(outdir + "/include/erkn/generated/tables.hpp", hpp.str());
-
-  std::ostringstream cpp;
-  // clang-format off
-  cpp << banner(command) << R"CPP(// Closed forms are phi-functions of scalar multiples of v: phi0(w^2 v) = cos(w x),
-// phi1(w^2 v) = sin(w x)/(w x), x = sqrt(v). A coefficient whose closed form is 0/0 at v = 0
-// switches to its Taylor series below a threshold chosen by the generator (numerics.hpp).
-// clang-format off
-#include "erkn/generated/tables.hpp"
-
-#include <cmath>
-#include <iterator>
-
-namespace erkn::generated {
-namespace {
-
-[[maybe_unused]] double sinc(double t) { return t == 0.0 ? 1.0 : std::sin(t) / t; }
-[[maybe_unused]] long double sincl(long double t) { return t == 0.0L ? 1.0L : std::sin(t) / t; }
-
-[[maybe_unused]] double horner(const double* a, double v) {
-  double sum = 0.0;
-  for (int k = kSeriesTerms - 1; k >= 0; --k) sum = sum * v + a[k];
-  return sum;
+    for (const Emittable& e : methods)
+      if (!rkn || !e.method.spec.rkn.empty()) out.emplace_back(&e, rkn);
+  return out;
 }
 
-)CPP";
-  // clang-format on
-  for (bool rkn : {false, true})
-    for (const Emittable& e : methods) cpp << method_cpp(e, rkn);
-  cpp << "}  // namespace\n\nconst Table kTables[] = {\n";
-  for (bool rkn : {false, true})
-    for (const Emittable& e : methods) cpp << table_entry(e, rkn);
-  cpp << "};\n\nconst int kNumTables = int(std::size(kTables));\n\n}  // namespace "
-         "erkn::generated\n";
-  write(outdir + "/src/tables.cpp", cpp.str());
+std::string methods_def(const std::vector<Emittable>& methods, const std::string& command) {
+  std::string out = banner(command) + "// ERKN_METHOD(id, name, stages, order, kind)\n";
+  for (const auto& [e, rkn] : registry(methods)) {
+    const Derived& m = e->method;
+    const std::string name = name_of(m, rkn);
+    const char* kind = rkn ? "rkn" : m.spec.kind == SpecKind::explicit_erkn ? "explicit" : "erkn";
+    out += "ERKN_METHOD(" + identifier(name) + ", " + quoted(name) + ", " +
+           std::to_string(m.stages()) + ", " +
+           std::to_string((rkn ? m.rkn_certificate : m.certificate).order) + ", " + kind + ")\n";
+  }
+  return out;
+}
 
+std::string tables_hpp(const std::vector<Emittable>& methods, const std::string& command) {
+  int max_stages = 0;
+  for (const Emittable& e : methods) max_stages = std::max(max_stages, e.method.stages());
+  return banner(command) +
+         "// The constants of the emitted tables; the Table struct is erkn/table.hpp.\n"
+         "#pragma once\n\n#include \"erkn/table.hpp\"\n\nnamespace erkn::generated {\n\n"
+         "/// Largest stage count of any method.\ninline constexpr int kMaxStages = " +
+         std::to_string(max_stages) +
+         ";\n/// Stored Taylor coefficients per coefficient function: v^0 .. v^(kSeriesTerms-1).\n"
+         "inline constexpr int kSeriesTerms = " +
+         std::to_string(kSeriesTerms) +
+         ";\n/// Poles are listed for v = h^2 lambda in (0, kPoleSearchMax].\n"
+         "inline constexpr double kPoleSearchMax = " +
+         num(kPoleSearchMax) + ";\n\n}  // namespace erkn::generated\n";
+}
+
+std::string tables_cpp(const std::vector<Emittable>& methods, const std::string& command) {
+  std::string out =
+      banner(command) +
+      "// Closed forms are phi-functions of scalar multiples of v: phi0(w^2 v) = cos(w x),\n"
+      "// phi1(w^2 v) = sin(w x)/(w x), x = sqrt(v). A coefficient whose closed form is 0/0 at v = "
+      "0\n"
+      "// switches to its Taylor series below a threshold chosen by the generator (numerics.hpp).\n"
+      "#include \"erkn/generated/tables.hpp\"\n\n#include <cmath>\n#include <iterator>\n\n"
+      "#include \"erkn/table_support.hpp\"\n\nnamespace erkn::generated {\nnamespace {\n\n"
+      "using support::horner;\nusing support::sinc;\nusing support::sincl;\n\n";
+  for (const auto& [e, rkn] : registry(methods)) out += method_cpp(*e, rkn);
+  out += "}  // namespace\n\nconst Table kTables[] = {\n";
+  for (const auto& [e, rkn] : registry(methods)) out += table_entry(*e, rkn);
+  return out +
+         "};\n\nconst int kNumTables = int(std::size(kTables));\n\n}  // namespace "
+         "erkn::generated\n";
+}
+
+std::string generalized_md(const Certificate& cert) {
+  std::string out;
+  for (size_t K = 0; K < cert.generalized.size(); ++K)
+    out += (K ? ", " : "") + std::string("eps^") + std::to_string(K + 1) + ": " +
+           std::to_string(cert.generalized[K]) +
+           (cert.generalized[K] == cert.max_power ? " (all checked)" : "");
+  return out;
+}
+
+// The certificate: arithmetic, orders, and every condition checked with its residual.
+std::string certificate_md(const Derived& m) {
+  const Certificate& cert = m.certificate;
+  std::ostringstream md;
+  md << "\nOrder certificate (eq. (f) over the SEN-trees, conditions up to h^" << cert.max_power
+     << ", " << cert.arithmetic << "): **order " << cert.order << "**"
+     << (cert.order == cert.max_power ? " (every condition checked holds)" : "")
+     << "; generalized order for H = A + eps B (order in h per power of eps): "
+     << generalized_md(cert) << ".";
+  if (!m.spec.rkn.empty())
+    md << " Its V -> 0 limit " << m.spec.rkn << " (Nystrom trees, V^0): order "
+       << m.rkn_certificate.order << ".";
+  md << "\n\n| h^ | tree | condition | residual |\n|---|---|---|---|\n";
+  for (const CheckedCondition& c : cert.checked)
+    md << "| " << c.condition.power << " | `" << cert.trees[c.condition.tree].name << "` | `"
+       << c.condition.text(cert.trees) << "` | " << (c.holds ? "" : "**") << c.residual
+       << (c.holds ? "" : "**") << " |\n";
+  return md.str();
+}
+
+std::string derivation_md(const std::vector<Emittable>& methods, const std::string& command) {
   std::ostringstream md;
   md << "<!-- " << banner(command, "").substr(1) << "-->\n\n# Derivation of the methods\n\n"
      << "What erkn-generate solved, method by method: the general formulas over symbolic nodes, "
         "each coefficient as solved (in the paper's symbols) and in closed form, its exact Taylor "
-        "coefficients of V^0..V^4, and the real poles in (0, 200].\n";
+        "coefficients of V^0..V^4, the real poles in (0, 200], and the order certificate: every "
+        "order condition checked, by SEN-tree, with its residual (failing ones in bold).\n";
   for (const Emittable& e : methods) {
     const Derived& m = e.method;
-    md << "\n## " << m.spec.name << " (" << m.spec.section << ")\n\n";
-    md << "Stages " << m.stages() << ", order " << m.spec.order << ". Nodes and weights:\n\n";
+    md << "\n## " << m.spec.name << " (" << m.spec.source << ")\n\n";
+    md << "Stages " << m.stages() << ", "
+       << (m.spec.kind == SpecKind::explicit_erkn ? "explicit (abar_ii = 0), " : "")
+       << "claimed order " << m.spec.order << ". Nodes and weights:\n\n";
     for (const std::string& s : m.node_derivation) md << "- `" << s << "`\n";
     for (int i = 0; i < m.stages(); ++i)
       md << "- `c" << i + 1 << " = " << m.c[i].to_string() << "`, `d" << i + 1 << " = "
@@ -311,21 +350,30 @@ namespace {
       md << "|\n";
     }
     md << "\nClosed forms (cleared of negative powers of v):\n\n";
-    for (size_t k = 0; k < m.coef.size(); ++k) {
-      Rational r = m.coef[k].cleared();
-      md << "- " << m.names[k] << " = `"
-         << (r.den.is_constant() ? m.coef[k].num.to_string()
-                                 : "(" + r.num.to_string() + ")/(" + r.den.to_string() + ")")
-         << "`\n";
-    }
+    for (size_t k = 0; k < m.coef.size(); ++k)
+      md << "- " << m.names[k] << " = `" << closed_form(m, int(k), false) << "`\n";
     md << "\nReal poles in (0, 200]: ";
-    std::vector<double> poles = all_poles(e);
     bool any = false;
-    for (double p : poles)
+    for (double p : all_poles(e))
       if (p <= 200) md << (any ? ", " : "") << num(p), any = true;
-    md << (any ? "" : "none") << ".\n";
+    md << (any ? "" : "none") << ".\n" << certificate_md(m);
   }
-  write(outdir + "/derivation.md", md.str());
+  return md.str();
+}
+
+}  // namespace
+
+void emit(const std::vector<Emittable>& methods, const std::string& outdir,
+          const std::string& command) {
+  std::filesystem::create_directories(outdir + "/include/erkn/generated");
+  std::filesystem::create_directories(outdir + "/src");
+  write(outdir + "/.clang-format",
+        "# generated/ is written by erkn-generate, byte-identical on every run: clang-format\n"
+        "# leaves its layout alone.\nDisableFormat: true\nSortIncludes: Never\n");
+  write(outdir + "/include/erkn/generated/methods.def", methods_def(methods, command));
+  write(outdir + "/include/erkn/generated/tables.hpp", tables_hpp(methods, command));
+  write(outdir + "/src/tables.cpp", tables_cpp(methods, command));
+  write(outdir + "/derivation.md", derivation_md(methods, command));
 }
 
 }  // namespace erkn::gen

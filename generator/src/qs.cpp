@@ -8,36 +8,83 @@ using GiNaC::ex;
 using GiNaC::numeric;
 
 namespace erkn::gen {
+namespace {
+
+// Runs f with GiNaC::Digits = Qs::kApproxDigits.
+template <class F>
+numeric with_digits(F f) {
+  long saved = GiNaC::Digits;
+  GiNaC::Digits = Qs::kApproxDigits;
+  numeric r = f();
+  GiNaC::Digits = saved;
+  return r;
+}
+
+Qs approx_of(const numeric& x) { return Qs::approximate(x); }
+
+}  // namespace
+
+const numeric& Qs::approx_zero() {
+  static const numeric z = numeric(1) / numeric(10).power(45);
+  return z;
+}
 
 Qs::Qs(numeric a, numeric b, int s) : a_(a), b_(b), s_(s) {
-  if (!a_.is_rational() || !b_.is_rational()) throw std::invalid_argument("Qs: non-rational part");
+  if (!a_.is_rational() || !b_.is_rational()) {
+    *this = approximate(a_ + b_ * GiNaC::sqrt(numeric(s)));
+    return;
+  }
   if (b_.is_zero()) s_ = 0;
   if (s_ == 0) b_ = 0;
 }
 
+Qs Qs::approximate(const ex& e) {
+  ex f = with_digits([&] {
+    ex v = GiNaC::evalf(e);
+    if (!GiNaC::is_a<numeric>(v) || !GiNaC::ex_to<numeric>(v).is_real())
+      throw std::invalid_argument("not a real constant");
+    return GiNaC::ex_to<numeric>(v);
+  });
+  Qs r;
+  r.a_ = GiNaC::ex_to<numeric>(f);
+  r.approx_ = true;
+  return r;
+}
+
+numeric Qs::value() const {
+  if (approx_) return a_;
+  return with_digits([&] { return GiNaC::ex_to<numeric>(GiNaC::evalf(to_ex())); });
+}
+
 int Qs::common_radicand(const Qs& x, const Qs& y) {
-  if (x.s_ && y.s_ && x.s_ != y.s_)
-    throw std::invalid_argument("Qs: mixing sqrt(" + std::to_string(x.s_) + ") and sqrt(" +
-                                std::to_string(y.s_) + ")");
+  if (x.approx_ || y.approx_ || (x.s_ && y.s_ && x.s_ != y.s_)) return -1;
   return x.s_ ? x.s_ : y.s_;
 }
 
 Qs operator+(const Qs& x, const Qs& y) {
-  return Qs(x.a_ + y.a_, x.b_ + y.b_, Qs::common_radicand(x, y));
+  int s = Qs::common_radicand(x, y);
+  if (s < 0) return approx_of(with_digits([&] { return x.value() + y.value(); }));
+  return Qs(x.a_ + y.a_, x.b_ + y.b_, s);
 }
 
 Qs operator*(const Qs& x, const Qs& y) {
   int s = Qs::common_radicand(x, y);
+  if (s < 0) return approx_of(with_digits([&] { return x.value() * y.value(); }));
   return Qs(x.a_ * y.a_ + x.b_ * y.b_ * s, x.a_ * y.b_ + x.b_ * y.a_, s);
 }
 
 Qs Qs::inverse() const {
+  if (approx_) {
+    if (a_.is_zero()) throw std::domain_error("Qs: division by (approximate) zero");
+    return approx_of(with_digits([&] { return numeric(1) / a_; }));
+  }
   numeric n = a_ * a_ - b_ * b_ * s_;  // (a + b r)(a - b r); nonzero for square-free s
   if (n.is_zero()) throw std::domain_error("Qs: division by zero");
   return Qs(a_ / n, -b_ / n, s_);
 }
 
 int Qs::sign() const {
+  if (approx_) return GiNaC::abs(a_) <= approx_zero() ? 0 : a_.csgn();
   int sa = a_.csgn(), sb = b_.csgn();
   if (sb == 0) return sa;
   if (sa == 0 || sa == sb) return sb;
@@ -49,6 +96,7 @@ int Qs::sign() const {
 Qs Qs::sqrt() const {
   if (sign() < 0) throw std::domain_error("Qs::sqrt of a negative number");
   if (is_zero()) return Qs();
+  if (approx_) return approx_of(with_digits([&] { return GiNaC::sqrt(a_); }));
   if (s_ == 0) {
     numeric r = GiNaC::sqrt(a_);
     if (r.is_rational()) return Qs(r);
@@ -102,13 +150,17 @@ Qs Qs::from_ex(const ex& e0) {
     for (size_t i = 0; i < e.nops(); ++i) r = r + term(e.op(i));
     return r;
   } catch (const std::invalid_argument&) {
-    std::ostringstream os;
-    os << e0;
-    throw std::invalid_argument("expected a number p + q*sqrt(s) with rational p, q: " + os.str());
+    try {
+      return approximate(e0);
+    } catch (const std::invalid_argument&) {
+      std::ostringstream os;
+      os << e0;
+      throw std::invalid_argument("expected a real constant: " + os.str());
+    }
   }
 }
 
-ex Qs::to_ex() const { return a_ + b_ * GiNaC::sqrt(ex(s_)); }
+ex Qs::to_ex() const { return approx_ ? ex(a_) : a_ + b_ * GiNaC::sqrt(ex(s_)); }
 
 numeric Qs::to_float(int digits) const {
   long saved = GiNaC::Digits;
@@ -122,6 +174,10 @@ double Qs::to_double() const { return to_float(40).to_double(); }
 
 std::string Qs::to_string() const {
   std::ostringstream os;
+  if (approx_) {
+    os << a_;
+    return os.str();
+  }
   if (b_.is_zero()) {
     os << a_;
     return os.str();

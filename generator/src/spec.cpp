@@ -18,12 +18,37 @@ std::vector<std::string> split(const std::string& s, char sep) {
   return out;
 }
 
+// `drift a_1, ..., a_s[, a_(s+1)]`: the drifts of a splitting method, c_i = a_1 + ... + a_i.
+std::vector<std::string> nodes_from_drifts(const std::vector<std::string>& drifts) {
+  std::vector<std::string> c;
+  std::string sum;
+  for (const std::string& a : drifts)
+    c.push_back(sum += (sum.empty() ? "" : "+") + ("(" + a + ")"));
+  return c;
+}
+
+void check(const MethodSpec& m) {
+  auto fail = [&](const std::string& why) {
+    throw std::runtime_error("methods.spec:" + std::to_string(m.line) + ": method " + m.name +
+                             ": " + why);
+  };
+  if (m.stages < 1) fail("needs `stages` >= 1");
+  if (m.order < 1) fail("needs the claimed `order` >= 1");
+  if (int(m.c.size()) != m.stages) fail("needs one c (or drift) per stage");
+  if (!m.d.empty() && int(m.d.size()) != m.stages) fail("needs one d (kick) per stage");
+  if (m.kind == SpecKind::erkn && m.diagonal.empty()) fail("kind erkn needs `diagonal`");
+  if (m.kind == SpecKind::explicit_erkn && !m.diagonal.empty())
+    fail("kind explicit has abar_ii = 0: no `diagonal`");
+  if (m.kind == SpecKind::erkn && m.rkn.empty()) fail("kind erkn needs the `rkn` name");
+  if (m.source.empty()) fail("needs a `source`");
+}
+
 }  // namespace
 
 std::string identifier(const std::string& name) {
   std::string id;
   for (char ch : name)
-    if (ch == '(')
+    if (ch == '(' || ch == ',' || ch == '-' || ch == '.' || ch == ' ')
       id += '_';
     else if (ch != ')')
       id += ch;
@@ -46,30 +71,44 @@ std::vector<MethodSpec> read_specs(std::istream& in) {
     if (key == "method") {
       specs.push_back({});
       specs.back().name = value;
+      specs.back().line = lineno;
       continue;
     }
     if (specs.empty()) fail("'" + key + "' before the first 'method'");
     MethodSpec& m = specs.back();
-    if (key == "rkn")
+    if (key == "kind") {
+      if (value != "erkn" && value != "explicit") fail("kind is erkn or explicit, not " + value);
+      m.kind = value == "erkn" ? SpecKind::erkn : SpecKind::explicit_erkn;
+    } else if (key == "rkn") {
       m.rkn = value;
-    else if (key == "section")
-      m.section = value;
-    else if (key == "stages")
+    } else if (key == "source" || key == "section") {
+      m.source = value;
+    } else if (key == "stages") {
       m.stages = std::stoi(value);
-    else if (key == "order")
+    } else if (key == "order") {
       m.order = std::stoi(value);
-    else if (key == "c")
+    } else if (key == "c") {
       m.c = split(value, ',');
-    else if (key == "diagonal")
+    } else if (key == "drift") {
+      m.drift = split(value, ',');
+    } else if (key == "d" || key == "kick") {
+      m.d = split(value, ',');
+    } else if (key == "diagonal") {
       m.diagonal = split(value, ';');
-    else
+    } else {
       fail("unknown key '" + key + "'");
+    }
   }
-  for (const MethodSpec& m : specs)
-    if (m.stages < 1 || m.order < 1 || int(m.c.size()) != m.stages || m.rkn.empty() ||
-        m.diagonal.empty())
-      throw std::runtime_error("methods.spec: method " + m.name +
-                               " needs rkn, stages, order, one c per stage and diagonal");
+  for (MethodSpec& m : specs) {
+    if (!m.drift.empty() && !m.c.empty())
+      throw std::runtime_error(m.name + ": c or drift, not both");
+    if (!m.drift.empty()) m.c = nodes_from_drifts(m.drift);
+    if (!m.drift.empty() && int(m.c.size()) == m.stages + 1) {  // the last drift closes the step
+      m.drift_sum = m.c.back();
+      m.c.pop_back();
+    }
+    check(m);
+  }
   return specs;
 }
 

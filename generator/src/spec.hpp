@@ -1,4 +1,5 @@
-// Reading generator/methods.spec: one block of `key value` lines per method.
+// Reading generator/methods.spec: one block of `key value` lines per method (the syntax is
+// documented at the top of methods.spec).
 #pragma once
 
 #include <istream>
@@ -7,20 +8,27 @@
 
 namespace erkn::gen {
 
+enum class SpecKind { erkn, explicit_erkn };
+
 struct MethodSpec {
-  std::string name;     ///< the paper's name, e.g. "SERKN3s4(1)"
-  std::string rkn;      ///< the name of its V -> 0 limit
-  std::string section;  ///< where the paper derives it
+  std::string name;  ///< e.g. "SERKN3s4(1)"
+  SpecKind kind = SpecKind::erkn;
+  std::string rkn;     ///< the name of its V -> 0 limit (empty: none emitted)
+  std::string source;  ///< where the method comes from (paper section, article and table)
   int stages = 0;
-  int order = 0;
-  std::vector<std::string> c;         ///< GiNaC syntax, or "?" for a node solved by the generator
-  std::vector<std::string> diagonal;  ///< equations `lhs == rhs` fixing abar_ii
+  int order = 0;  ///< claimed; erkn-generate refuses the spec unless it certifies it
+  /// GiNaC syntax (decimals read exactly as written), or "?" for a value the generator solves.
+  std::vector<std::string> c, d;
+  std::vector<std::string> drift;     ///< as written; c_i = drift_1 + ... + drift_i
+  std::string drift_sum;              ///< sum of all s+1 drifts when `drift` gives them: must be 1
+  std::vector<std::string> diagonal;  ///< equations `lhs == rhs` fixing abar_ii (kind erkn)
+  int line = 0;                       ///< where the block starts in the spec
 };
 
-/// C identifier for a method name: "SERKN3s4(1)" -> "SERKN3s4_1".
+/// C identifier for a method name: "SERKN3s4(1)" -> "SERKN3s4_1", "ABA(8,6,4)" -> "ABA_8_6_4".
 std::string identifier(const std::string& name);
 
-/// Throws std::runtime_error naming the line of a malformed spec.
+/// Throws std::runtime_error naming the line (or method) of a malformed spec.
 std::vector<MethodSpec> read_specs(std::istream& in);
 
 }  // namespace erkn::gen

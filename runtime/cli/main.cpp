@@ -1,5 +1,5 @@
 // erkn: the command-line face of the library.
-//   erkn list                      every method: kind, stages, order, where the paper derives it
+//   erkn list [--json]             every method: kind, stages, certified order, source
 //   erkn tableau NAME ...          coefficients at a v, Taylor series, or poles (JSON)
 //   erkn run ...                   the paper's problems against peers: charts, docs/results.md
 //   erkn stability NAME|all ...    stability regions of S(V, z) (CSV and charts)
@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
     std::cerr << e.what() << "\n";
     return 1;
   }
-  std::cerr << "usage: erkn list | --version\n"
+  std::cerr << "usage: erkn list [--json] | --version\n"
                "       erkn tableau NAME (--v X | --series K | --poles VMAX)\n"
                "       erkn run [--quick | --full] [experiment options; erkn run --help]\n"
                "       erkn stability NAME|all [--vmax V --zmin Z --zmax Z --grid N --out DIR]\n";

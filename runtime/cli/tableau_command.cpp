@@ -51,13 +51,44 @@ double parse_number(const char* option, const char* text) {
   return x;
 }
 
-int list_command(int, char**) {
-  std::cout << "name          kind  stages  order  reference\n";
+// One JSON object per method: name, kind, stages, certified order, generalized order, poles,
+// source.
+void list_json() {
+  std::cout << "[";
+  bool first = true;
   for (const Method& m : Method::all()) {
-    std::string name(m.name());
-    name.resize(std::max<size_t>(name.size(), 13), ' ');
-    std::cout << name << " " << (m.kind() == Kind::erkn ? "ERKN" : "RKN ") << "  " << m.stages()
-              << "       " << m.order() << "      " << m.reference() << "\n";
+    std::vector<double> generalized(m.generalized_order().begin(), m.generalized_order().end());
+    std::vector<double> poles(m.poles().begin(), m.poles().end());
+    std::cout << (first ? "\n" : ",\n") << " {\"name\": " << json_string(std::string(m.name()))
+              << ", \"kind\": " << json_string(std::string(m.kind_name()))
+              << ", \"stages\": " << m.stages() << ", \"order\": " << m.order()
+              << ", \"generalized_order\": " << json_list(generalized)
+              << ", \"poles\": " << json_list(poles)
+              << ", \"source\": " << json_string(std::string(m.reference())) << "}";
+    first = false;
+  }
+  std::cout << "\n]\n";
+}
+
+int list_command(int argc, char** argv) {
+  if (argc == 2 && std::string(argv[1]) == "--json") {
+    list_json();
+    return 0;
+  }
+  if (argc != 1) {
+    std::cerr << "usage: erkn list [--json]\n";
+    return 2;
+  }
+  size_t width = 4;
+  for (const Method& m : Method::all()) width = std::max(width, m.name().size());
+  std::cout << std::string("name") + std::string(width - 3, ' ')
+            << "kind      stages  order  reference\n";
+  for (const Method& m : Method::all()) {
+    std::string name(m.name()), kind(m.kind_name());
+    name.resize(width, ' ');
+    kind.resize(8, ' ');
+    std::cout << name << " " << kind << "  " << m.stages() << "       " << m.order() << "      "
+              << m.reference() << "\n";
   }
   return 0;
 }

@@ -37,6 +37,10 @@ const Method& Method::by_name(std::string_view name) {
   throw Error("unknown method '" + std::string(name) + "'; known methods: " + known);
 }
 
+std::string_view Method::kind_name() const {
+  return kind() == Kind::rkn ? "rkn" : is_explicit() ? "explicit" : "erkn";
+}
+
 double Method::nearest_pole(double v) const {
   double best = -1.0;
   for (double p : poles())

@@ -80,7 +80,8 @@ Eigen::Vector2d direct_step(const Method& m, double w2, double k, double h, doub
 
 TEST(StageSolver, StepsAgreeWithADirectSolutionOfTheStageEquationsAndNewtonTakesOverWhenNeeded) {
   const double w2 = 9, h = 0.1;
-  for (const Method& m : Method::all())
+  for (const Method& m : Method::all()) {
+    if (m.is_explicit()) continue;  // abar_ii = 0: no stage equation
     for (double k : {0.5, 5000.0})  // h^2 k abar_ii << 1: fixed point; >> 1: it diverges
       for (bool hessian : {true, false}) {
         SCOPED_TRACE(std::string(m.name()) + " k = " + std::to_string(k) +
@@ -110,6 +111,7 @@ TEST(StageSolver, StepsAgreeWithADirectSolutionOfTheStageEquationsAndNewtonTakes
           EXPECT_EQ(st.newton_fallbacks, 0);
         }
       }
+  }
 }
 
 TEST(StageSolver, StageWithoutSolutionIsAnErrorNamingStepTimeStageAndResidual) {
@@ -119,6 +121,7 @@ TEST(StageSolver, StageWithoutSolutionIsAnErrorNamingStepTimeStageAndResidual) {
   s.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = 1e5 * q.array().sign(); };
   s.hessian = [](const Eigen::VectorXd&, Eigen::MatrixXd& H) { H.setZero(); };
   for (const Method& m : Method::all()) {
+    if (m.is_explicit()) continue;  // abar_ii = 0: no stage equation
     SCOPED_TRACE(std::string(m.name()));
     Integrator run(m, s, 0.1, Eigen::VectorXd::Constant(1, 0.01), Eigen::VectorXd::Zero(1));
     try {

@@ -41,7 +41,17 @@ class Method {
   std::string_view id_name() const { return table_->id; }
   int stages() const { return table_->stages; }
   int order() const { return table_->order; }
+  /// How the runtime integrates it: erkn (exact linear flow) or rkn (V -> 0 limit).
   Kind kind() const { return table_->rkn ? Kind::rkn : Kind::erkn; }
+  /// abar_ii = 0: every stage is explicit (a splitting method: exact linear flow and kicks).
+  bool is_explicit() const { return table_->explicit_method; }
+  /// "erkn", "explicit" or "rkn" (the spec's kind; explicit methods are erkn methods).
+  std::string_view kind_name() const;
+  /// Certified order in h of the eps^K terms (index K-1) for H = A + eps B; empty for RKN
+  /// limits.
+  std::span<const int> generalized_order() const {
+    return {table_->generalized_order, size_t(table_->ngeneralized)};
+  }
   std::string_view reference() const { return table_->reference; }
   int num_coefficients() const { return 2 * stages() + stages() * (stages() + 1) / 2; }
 

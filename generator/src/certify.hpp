@@ -1,0 +1,47 @@
+// Order certification: evaluates every order condition of eq. (f) (trees.hpp) on a method's
+// Taylor coefficients and finds the highest order whose conditions all hold, exactly (numbers
+// of Q(sqrt(s))) or in 60-digit CLN arithmetic against a stated bound (approximate Qs).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "qs.hpp"
+#include "trees.hpp"
+
+namespace erkn::gen {
+
+/// Taylor coefficients in V of a method's coefficient functions.
+struct SeriesTableau {
+  int s = 0;
+  std::vector<Qs> c;
+  std::vector<std::vector<Qs>> b, bbar;  ///< [i][k]: coefficient of V^k
+  std::vector<std::vector<Qs>> abar;     ///< [i(i+1)/2 + j][k], j <= i (0-based)
+};
+
+struct CheckedCondition {
+  OrderCondition condition;
+  std::string residual;  ///< exact, or its value in the working precision
+  bool holds = false;
+};
+
+struct Certificate {
+  int order = 0;      ///< highest r: every condition of power <= r holds (max_power if all do)
+  int max_power = 0;  ///< conditions were checked up to this power of h
+  /// generalized[K-1]: the order in h of the eps^K terms for H = A + eps B (trees with K
+  /// f-vertices), capped at max_power.
+  std::vector<int> generalized;
+  std::vector<CheckedCondition> checked;  ///< every condition checked, by increasing power
+  std::string arithmetic;                 ///< how the residuals were computed and judged
+  std::vector<SenTree> trees;
+  /// The first condition that fails (order + 1 == its power), or nullptr.
+  const CheckedCondition* first_failure() const;
+};
+
+/// Every condition of power <= max_power, exactly or, if a coefficient is approximate, in
+/// Qs::kApproxDigits digits with |residual| <= Qs::approx_zero() for "holds".
+/// rkn: the V -> 0 limit applied to q'' = -Mq + f: only Nystrom trees and V^0 conditions,
+/// with the coefficients' constant terms.
+Certificate certify(const SeriesTableau& t, bool rkn, int max_power);
+
+}  // namespace erkn::gen

@@ -1,0 +1,39 @@
+// The generated-table contract: what erkn-generate emits per method (generated/src/tables.cpp)
+// and the registry (method.hpp) reads. Hand-written; the emitted data fills it.
+#pragma once
+
+namespace erkn::generated {
+
+/// One method (or the V -> 0 limit of one). Coefficient functions are listed in the order
+/// b_1..b_s, bbar_1..bbar_s, abar_11, abar_21, abar_22, abar_31, ... (lower triangle, row-major).
+struct Table {
+  const char* name;  ///< e.g. "SERKN3s4(1)"
+  const char* id;    ///< C identifier, e.g. "SERKN3s4_1"
+  int stages;        ///< s
+  /// Classical order certified by the generator: every order condition of eq. (f) (SEN-trees)
+  /// up to h^order holds (generated/derivation.md lists them).
+  int order;
+  bool rkn;               ///< true: V -> 0 limit (constant coefficients, force -Mq - grad U)
+  bool explicit_method;   ///< abar_ii = 0: a splitting method (exact linear flow and kicks)
+  const char* reference;  ///< where the method comes from
+  /// For H = A + eps B: generalized_order[K-1] is the order in h of the eps^K terms of the
+  /// local error (certified, capped at the powers checked); empty for RKN limits.
+  const int* generalized_order;
+  int ngeneralized;
+  const double* c;             ///< nodes c_1..c_s
+  const double* d;             ///< symplectic weights d_1..d_s of Theorem 2, eq. (g)
+  const char* const* c_exact;  ///< c_i in GiNaC syntax (exact, or a decimal of >= 45 digits)
+  const char* const* d_exact;  ///< d_i in GiNaC syntax
+  /// Evaluates b[s], bbar[s], abar[s(s+1)/2] at v = h^2 lambda >= 0 (v away from a pole).
+  void (*coefficients)(double v, double* b, double* bbar, double* abar);
+  const double* series;             ///< [ncoef][kSeriesTerms] Taylor coefficients in v
+  const char* const* closed_forms;  ///< [ncoef] closed forms, GiNaC syntax in v and phi(j,w*v)
+  const double* poles;              ///< real poles in (0, kPoleSearchMax], ascending
+  int npoles;
+};
+
+/// All methods, in the order of methods.def.
+extern const Table kTables[];
+extern const int kNumTables;
+
+}  // namespace erkn::generated
