@@ -6,14 +6,22 @@
 //   phi0(V) p - h sum_i b_i(V) g_i
 // RKN methods use V = 0 and g = M Q + grad U(Q) (their force is -M q - grad U(q)).
 // The coefficients are evaluated once per (h, M) at each eigenvalue of M and applied in M's
-// eigenbasis; a step allocates nothing (the Newton fallback allocates its workspace once).
+// eigenbasis, where q and p stay between steps (q() and p() transform back on demand); a step
+// allocates nothing (the Newton fallback allocates its workspace once).
 //
-// Stage i solves Q = r_i - h^2 abar_ii(V) grad U(Q) by fixed-point iteration started from the
-// previous step's stage gradients extrapolated to the new nodes (as GNI_IRK2 does). It stops when
-// theta/(1-theta) * |dQ| <= tolerance (theta: ratio of successive updates, |.| relative 2-norm),
-// without a confirming evaluation; the step uses the gradients already evaluated. If the
-// iteration diverges or stalls, Newton's method takes over (user Hessian, else finite
-// differences). A stage that still fails throws erkn::Error and leaves the state unchanged.
+// Explicit methods (every abar_ii identically 0) step as what they are: exact flows of
+// q'' + M q = 0 alternated with kicks p -= h d_i g_i, the first kick reusing the previous step's
+// last gradient when c_1 = 0 and c_s = 1 (FSAL).
+//
+// Implicit stage i solves Q = r_i - h^2 abar_ii(V) grad U(Q) by fixed-point iteration started
+// from the stage gradients of the previous step and of this one extrapolated to c_i. It stops
+// when theta/(1-theta) * |dQ| <= tolerance (theta: ratio of successive updates, |.| relative
+// 2-norm), without a confirming evaluation; after one evaluation already when the contraction
+// measured at an earlier solve of that stage (times 4, weighted by how g reaches q and p) proves
+// it. If the iteration diverges or stalls, Newton's method takes over: for d <= 256 with a dense
+// LU (user Hessian, else finite differences), beyond that matrix-free (GMRES on directional
+// differences of grad U, preconditioned in M's eigenbasis). A stage that still fails throws
+// erkn::Error and leaves the state unchanged.
 #pragma once
 
 #include <Eigen/Core>

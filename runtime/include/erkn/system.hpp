@@ -18,7 +18,9 @@ struct System {
   /// Optional: U(q), for Integrator::energy().
   std::function<double(const Eigen::VectorXd& q)> potential;
   /// Optional: writes the Hessian of U at q into H (arrives sized d x d). Used by the Newton
-  /// fallback of the stage solver; without it a finite-difference Jacobian is used.
+  /// fallback of the stage solver for d <= 256; without it a finite-difference Jacobian is used.
+  /// Beyond d = 256 the fallback is matrix-free (directional differences of the gradient) and
+  /// never calls it.
   std::function<void(const Eigen::VectorXd& q, Eigen::MatrixXd& H)> hessian;
 };
 
