@@ -32,7 +32,9 @@ int main(int argc, char** argv) {
           throw std::runtime_error(spec.name + ": " + e.method.names[k] + ": " + err.what());
         }
       }
-      std::cerr << "derived " << spec.name << "\n";
+      std::cerr << "derived " << spec.name << ": order " << e.method.certificate.order
+                << " certified (" << e.method.certificate.checked.size() << " conditions, "
+                << e.method.certify_seconds << " s)\n";
       out.push_back(std::move(e));
     }
     emit(out, argv[2], "cmake --build <build> --target regenerate");
