@@ -15,8 +15,10 @@ class ErknSolver : public Solver {
     return method_.kind() == erkn::Kind::erkn ? Family::erkn : Family::rkn;
   }
   int order() const override { return method_.order(); }
-  // Every method of today's registry is the paper's (an ERKN method or its V -> 0 limit).
-  bool from_paper() const override { return true; }
+  // The paper's methods are its diagonal implicit ERKN methods and their V -> 0 limits; the
+  // registry marks the explicit (splitting) family, which the paper does not contain. (An implicit
+  // method from another source would need a registry flag of its own: there is none yet.)
+  bool from_paper() const override { return !method_.is_explicit(); }
   bool exact_for_linear_part() const override { return method_.kind() != erkn::Kind::rkn; }
 
   RunResult run(const Problem& pr, double h, long steps, const Observer* obs) const override {
