@@ -1,6 +1,7 @@
 // The adapter to the ERKN runtime: every method of erkn::Method::all() as an ex::Solver.
 #include <erkn/integrator.hpp>
 #include <erkn/method.hpp>
+#include <erkn/stability.hpp>
 
 #include "solver.hpp"
 
@@ -19,6 +20,12 @@ class ErknSolver : public Solver {
   // registry marks the explicit (splitting) family, which the paper does not contain. (An implicit
   // method from another source would need a registry flag of its own: there is none yet.)
   bool from_paper() const override { return !method_.is_explicit(); }
+  std::optional<double> first_unstable_z() const override {
+    return ex::first_unstable_z([this](double z) {
+      const erkn::StabilityClass c = erkn::classify(erkn::stability_matrix(method_, 0, z));
+      return c == erkn::StabilityClass::unstable || c == erkn::StabilityClass::singular;
+    });
+  }
   bool exact_for_linear_part() const override { return method_.kind() != erkn::Kind::rkn; }
 
   RunResult run(const Problem& pr, double h, long steps, const Observer* obs) const override {

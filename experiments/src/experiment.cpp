@@ -11,7 +11,13 @@ ProblemResult run_problem(const Problem& problem, const SolverList& solvers,
   out.reference = reference_solution(problem, problem.t_error, config.reference_tolerance);
   for (const auto& solver : solvers) {
     progress.label(problem.key + " " + solver->name() + " sweep");
-    MethodResult m{solver->name(), solver->family(), solver->from_paper(), solver->order(), {}, {}};
+    MethodResult m{solver->name(),
+                   solver->family(),
+                   solver->from_paper(),
+                   solver->order(),
+                   solver->first_unstable_z(),
+                   {},
+                   {}};
     m.sweep = sweep(*solver, problem, problem.t_error, out.reference.q, config.sweep, config.steps);
     progress.label(problem.key + " " + solver->name() + " energy");
     m.energy = energy_errors(*solver, problem, problem.h_energy, config.energy_t_ends);

@@ -18,6 +18,7 @@ struct MethodResult {
   Family family;
   bool from_paper;
   int order;
+  std::optional<double> first_unstable_z;  ///< Solver::first_unstable_z
   std::vector<Measurement> sweep;
   EnergyCurve energy;
 };

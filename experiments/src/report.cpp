@@ -181,20 +181,24 @@ void stiff_section(std::ostream& md, const std::vector<StiffResult>& stiff) {
         "“fails at h” is the smallest step size that failed (unstable or refused), “runs at h” "
         "the largest one below it that ran; the charts mark failed runs with crosses. "
         "`erkn stability` charts the (V, z) regions, z = h²·(∇²U eigenvalue), that predict "
-        "these limits.\n";
+        "these limits; the table gives their V = 0 line: the smallest z at which |tr S(0, z)| > 2 "
+        "(S singular included), for the registry's methods from erkn::stability_matrix and for "
+        "the splitting peers from the product of their flow and kick matrices (the other peers: "
+        "—). With ∇²U = κ cos u, a run is linearly unstable once h²κ passes it.\n";
   for (const auto& [kappa, r] : stiff) {
     const std::string key = slug(r.key);
     md << "\n### " << r.title << "\n\nReference: " << r.reference.method << "; agreement "
        << sci(r.reference.accuracy) << ".\n\n"
        << "![error vs CPU time](charts/" << key << "_cpu.png)\n"
        << "![error vs step size](charts/" << key << "_h.png)\n\n"
-       << "| method | kind | fails at h (h²κ) | runs at h | failure | CPU ms to 1e-3 | CPU ms to "
-          "1e-6 |\n"
-       << "|---|---|--:|--:|---|--:|--:|\n";
+       << "| method | kind | S(0, z) unstable from z = | fails at h (h²κ) | runs at h | failure "
+          "| CPU ms to 1e-3 | CPU ms to 1e-6 |\n"
+       << "|---|---|--:|--:|--:|---|--:|--:|\n";
     const double tolerances[] = {1e-3, 1e-6};
     for (const MethodResult& m : r.methods) {
       const Limit l = stability_limit(m.sweep);
       md << "| " << m.name << " | " << family_name(m.family) << " | "
+         << (m.first_unstable_z ? fmt("%.3g", *m.first_unstable_z) : "—") << " | "
          << (l.failed_h ? fmt("%.3g", *l.failed_h) + " (" +
                               fmt("%.3g", *l.failed_h * *l.failed_h * kappa) + ")"
                         : "—")

@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,10 @@ class Solver {
   virtual int order() const = 0;
   /// True when q'' + Mq = 0 is integrated exactly (no step-size limit from M's frequencies).
   virtual bool exact_for_linear_part() const { return false; }
+  /// Linear stability on y'' = -eps y (the V = 0 line of the (V, z) charts): the smallest z = h^2
+  /// eps > 0 at which |tr S(0, z)| > 2 (or S is singular), found on a geometric grid z = 0.01 ..
+  /// 1e4 and refined by bisection; empty when none there or the solver cannot tell.
+  virtual std::optional<double> first_unstable_z() const { return std::nullopt; }
   /// True for the methods of the source paper (read from the registry; false for peers).
   virtual bool from_paper() const { return false; }
   /// Integrates from t = 0 with `steps` steps of size h (coefficient setup included); throws on
@@ -45,6 +50,9 @@ class Solver {
 };
 
 using SolverList = std::vector<std::unique_ptr<Solver>>;
+
+/// The search behind Solver::first_unstable_z for a predicate "S(0, z) is unstable".
+std::optional<double> first_unstable_z(const std::function<bool(double z)>& unstable);
 
 std::unique_ptr<Solver> make_stormer_verlet();
 std::unique_ptr<Solver> make_mclachlan_sb3a();     ///< Boost.Odeint symplectic_rkn_sb3a_mclachlan

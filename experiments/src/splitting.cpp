@@ -40,6 +40,21 @@ Vec checked_lambda(const Vec& lambda, const std::string& method) {
   return lambda.cwiseMax(0.0);
 }
 
+/// |tr S(0, z)| > 2 for the composition on y'' = -eps y, z = h^2 eps, in (y, h y'): a flow of
+/// fraction a is [[1, a], [0, 1]], a kick of weight b is [[1, 0], [-b z, 1]] (mollified kicks
+/// are unfiltered at V = 0).
+bool unstable_at(const Composition& c, double z) {
+  Eigen::Matrix2d s = Eigen::Matrix2d::Identity(), kick0, flow;
+  for (size_t i = 0; i < c.flow.size(); ++i) {
+    kick0 << 1, 0, -c.kick[i] * z, 1;
+    flow << 1, c.flow[i], 0, 1;
+    s = flow * kick0 * s;
+  }
+  kick0 << 1, 0, -c.kick.back() * z, 1;
+  s = kick0 * s;
+  return !(std::abs(s.trace()) <= 2);
+}
+
 class SplittingPeer : public Solver {
  public:
   explicit SplittingPeer(Composition c) : c_(std::move(c)) {
@@ -50,6 +65,9 @@ class SplittingPeer : public Solver {
   Family family() const override { return Family::peer; }
   int order() const override { return c_.order; }
   bool exact_for_linear_part() const override { return true; }
+  std::optional<double> first_unstable_z() const override {
+    return ex::first_unstable_z([this](double z) { return unstable_at(c_, z); });
+  }
 
   RunResult run(const Problem& pr, double h, long steps, const Observer* obs) const override {
     EigenCoordinates basis(pr.M, pr.dim());
@@ -116,6 +134,22 @@ class SplittingPeer : public Solver {
 };
 
 }  // namespace
+
+std::optional<double> first_unstable_z(const std::function<bool(double z)>& unstable) {
+  double previous = 0;
+  for (double z = 0.01; z <= 1e4; z *= 1.02) {
+    if (unstable(z)) {
+      double lo = previous, hi = z;
+      for (int it = 0; it < 40; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (unstable(mid) ? hi : lo) = mid;
+      }
+      return hi;
+    }
+    previous = z;
+  }
+  return std::nullopt;
+}
 
 std::unique_ptr<Solver> make_splitting(Composition composition) {
   return std::make_unique<SplittingPeer>(std::move(composition));

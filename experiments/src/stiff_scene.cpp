@@ -36,8 +36,13 @@ std::vector<StiffResult> run_stiff(const SolverList& solvers, const StiffConfig&
     policy.error_high = std::numeric_limits<double>::infinity();
     for (const auto& solver : solvers) {
       progress.label(problem.key + " " + solver->name());
-      MethodResult m{
-          solver->name(), solver->family(), solver->from_paper(), solver->order(), {}, {}};
+      MethodResult m{solver->name(),
+                     solver->family(),
+                     solver->from_paper(),
+                     solver->order(),
+                     solver->first_unstable_z(),
+                     {},
+                     {}};
       m.sweep = sweep(*solver, problem, problem.t_error, r.reference.q, policy, {});
       r.methods.push_back(std::move(m));
       progress.advance(problem.key + " " + solver->name());

@@ -105,6 +105,18 @@ TEST(SplittingPeers, FsalSavesOneEvaluationPerStep) {
   }
 }
 
+// At V = 0 Strang is leapfrog: tr S(0, z) = 2 - z, unstable exactly from z = 4. Every splitting
+// peer is stable for small z (the search finds no instability below 0.01).
+TEST(SplittingPeers, LinearStabilityLimitAtVZero) {
+  EXPECT_NEAR(*make_splitting(strang())->first_unstable_z(), 4.0, 1e-9);
+  for (const auto& s : make_splitting_peers()) {
+    const auto z = s->first_unstable_z();
+    ASSERT_TRUE(z) << s->name();
+    EXPECT_GT(*z, 0.01) << s->name();
+  }
+  EXPECT_FALSE(make_stormer_verlet()->first_unstable_z());  // not a splitting peer: no answer
+}
+
 // Without a nonlinearity every exact-flow peer is exact at any step size (here h omega_max ~ 16).
 TEST(SplittingPeers, ExactForTheLinearPart) {
   Problem p = sine_gordon(16);
