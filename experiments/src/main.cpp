@@ -6,6 +6,7 @@
 #include <set>
 
 #include "charts.hpp"
+#include "grid_scenes.hpp"
 #include "options.hpp"
 #include "raw_results.hpp"
 #include "report.hpp"
@@ -36,7 +37,8 @@ SolverList select(const std::vector<std::string>& wanted) {
 
 void list() {
   std::printf(
-      "problems: P1 (sine-Gordon, N = 32), P2 (Duffing), P3 (stellar orbits), scaling, stiff\n");
+      "problems: P1 (sine-Gordon, N = 32), P2 (Duffing), P3 (stellar orbits), scaling, stiff,\n"
+      "          grids\n");
   std::printf("methods:\n");
   for (const auto& s : all_solvers())
     std::printf("  %s  (order %d)\n", s->name().c_str(), s->order());
@@ -55,12 +57,14 @@ int run(const Options& o, const std::string& command) {
   for (auto& s : select(o.methods))
     if (s->family() != Family::rkn) scaling_solvers.push_back(std::move(s));
   std::vector<std::string> keys;
-  bool scaling = false, stiff = false;
+  bool scaling = false, stiff = false, grids = false;
   for (const std::string& p : o.problems) {
     if (p == "scaling")
       scaling = true;
     else if (p == "stiff")
       stiff = true;
+    else if (p == "grids")
+      grids = true;
     else
       keys.push_back(p);
   }
@@ -84,6 +88,9 @@ int run(const Options& o, const std::string& command) {
   if (stiff) stiff_results = run_stiff(solvers, stiff_config, o.config, progress);
   for (const StiffResult& s : stiff_results) chart_stiff(s.result, charts);
   progress.finish();
+  if (grids)
+    run_grid_scenes(grid_scene_config(o.mode == "full", o.config.sweep), select(o.methods), o.out,
+                    command);
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::vector<ProblemResult> raw = results;  // the raw files list the stiff scene's sweeps too

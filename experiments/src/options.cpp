@@ -40,11 +40,11 @@ void set_full(RunConfig& c) {
 }  // namespace
 
 std::string usage() {
-  return "usage: erkn-experiments [--quick | --full] [--problems P1,P2,P3,scaling,stiff]\n"
+  return "usage: erkn-experiments [--quick | --full] [--problems P1,P2,P3,scaling,stiff,grids]\n"
          "                        [--methods NAME,...] [--steps H,...] [--out DIR] [--list]\n"
          "  --quick      small sweep (default): step factor 2, best of up to 5 timings\n"
          "  --full       fine sweep: step factor sqrt 2, up to 2e6 steps, best of 7 timings\n"
-         "  --problems   which scenes to run (default: all five)\n"
+         "  --problems   which scenes to run (default: all six; grids: docs/grids.md)\n"
          "  --methods    the paper's names, e.g. SERKN3s4(1),RKN3s4(1),Gauss2 (default: all)\n"
          "  --steps      fixed step sizes on [0, 10], e.g. 1/40,1/80 (no extension)\n"
          "  --out DIR    writes DIR/results.md and DIR/charts/ (default: docs)\n"
@@ -80,8 +80,9 @@ Options parse_options(int argc, char** argv) {
   }
   if (!o.config.steps.empty()) o.mode = "custom";
   for (const std::string& p : o.problems)
-    if (p != "P1" && p != "P2" && p != "P3" && p != "scaling" && p != "stiff")
-      throw std::invalid_argument("unknown problem " + p + " (known: P1, P2, P3, scaling, stiff)");
+    if (p != "P1" && p != "P2" && p != "P3" && p != "scaling" && p != "stiff" && p != "grids")
+      throw std::invalid_argument("unknown problem " + p +
+                                  " (known: P1, P2, P3, scaling, stiff, grids)");
   return o;
 }
 

@@ -10,7 +10,7 @@
 namespace ex {
 
 struct Options {
-  std::vector<std::string> problems{"P1", "P2", "P3", "scaling", "stiff"};
+  std::vector<std::string> problems{"P1", "P2", "P3", "scaling", "stiff", "grids"};
   std::vector<std::string> methods;  ///< empty: all
   std::string mode = "quick";        ///< "quick", "full" or "custom" (with --steps)
   std::filesystem::path out = "docs";

@@ -6,6 +6,7 @@
 namespace ex {
 
 using erkn::problems::duffing;
+using erkn::problems::GridAxis;
 using erkn::problems::LinearPart;
 using erkn::problems::Problem;
 using erkn::problems::problem_by_key;

@@ -1,14 +1,12 @@
 #include "derive.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <functional>
 #include <sstream>
 #include <stdexcept>
 
 #include "phi.hpp"
-#include "polish.hpp"
 
 using namespace GiNaC;
 
@@ -128,14 +126,6 @@ Qs read_constant(const MethodSpec& spec, const std::string& what, const std::str
   }
 }
 
-/// A decimal among the spec's nodes, drifts or weights: they get polished.
-bool has_decimals(const MethodSpec& spec) {
-  for (const auto* list : {&spec.c, &spec.d})
-    for (const std::string& x : *list)
-      if (x.find('.') != std::string::npos) return true;
-  return false;
-}
-
 /// Nodes c_i and weights d_i (into out.c, out.d): as given, or the d_i from the quadrature
 /// conditions sum_i d_i c_i^k = 1/(k+1), k < s (eq. (f) for the bushy trees at V = 0, over
 /// symbolic c_i so the general formulas appear), and one node `?` from the next condition.
@@ -157,13 +147,6 @@ void solve_nodes(const MethodSpec& spec, const std::vector<symbol>& c, const std
       out.c.push_back(value(nodes[c[i]]));
       out.d.push_back(read_constant(spec, "d" + idx(i), spec.d[i]));
       if (out.d[i].is_zero()) fail("d" + idx(i) + " = 0: abar_ij = (...)/d_i is undefined");
-    }
-    if (has_decimals(spec)) {
-      if (spec.kind != SpecKind::explicit_erkn)
-        fail("decimal constants are polished for explicit methods only: give c, d exactly");
-      Polished p = polish_explicit(spec.name, out.c, out.d, spec.order, spec.generalized);
-      out.c = p.c, out.d = p.d;
-      out.node_derivation.push_back(p.summary());
     }
     return;
   }
@@ -346,25 +329,9 @@ Derived derive(const MethodSpec& spec) {
       fail("diagonal condition '" + spec.diagonal[k] + "' fails");
 
   for (const Rational& r : out.coef) out.series.push_back(taylor(r, kSeriesTerms));
-  auto t0 = std::chrono::steady_clock::now();
   certify_order(out);
-  out.certify_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }
-
-namespace {
-
-// The first failing condition of a tree with K f-vertices, as text.
-std::string generalized_failure(const Certificate& cert, int K) {
-  for (const CheckedCondition& c : cert.checked)
-    if (!c.holds && cert.trees[c.condition.tree].fvertices == K)
-      return "tree " + cert.trees[c.condition.tree].name + ": condition " +
-             c.condition.text(cert.trees) + " has residual " + c.residual;
-  return "no failing condition";
-}
-
-}  // namespace
 
 void certify_order(Derived& m) {
   const int s = m.stages();
@@ -374,18 +341,10 @@ void certify_order(Derived& m) {
   for (int i = 0; i < s; ++i) t.b.push_back(m.series[i]), t.bbar.push_back(m.series[s + i]);
   for (int i = 0; i < s; ++i)
     for (int j = 0; j <= i; ++j) t.abar.push_back(m.series[abar_index(s, i + 1, j + 1)]);
-  int max_power = std::max(m.spec.order + 1, kCertifyPowers);
-  for (int g : m.spec.generalized) max_power = std::max(max_power, g + 1);
+  const int max_power = std::max(m.spec.order + 1, kCertifyPowers);
   for (bool rkn : {false, true}) {
     if (rkn && m.spec.rkn.empty()) continue;
     Certificate cert = certify(t, rkn, max_power);
-    for (size_t K = 0; !rkn && K < m.spec.generalized.size(); ++K)
-      if (K >= cert.generalized.size() || cert.generalized[K] < m.spec.generalized[K])
-        throw std::runtime_error(
-            m.spec.name + ": claimed generalized order " + std::to_string(m.spec.generalized[K]) +
-            " for eps^" + std::to_string(K + 1) + " is not certified (" +
-            (K < cert.generalized.size() ? std::to_string(cert.generalized[K]) : "unchecked") +
-            "): " + generalized_failure(cert, int(K) + 1));
     if (cert.order < m.spec.order) {
       const CheckedCondition* f = cert.first_failure();
       throw std::runtime_error(

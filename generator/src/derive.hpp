@@ -27,7 +27,6 @@ struct Derived {
   std::vector<std::vector<Qs>> series;       ///< exact Taylor coefficients, kSeriesTerms each
   Certificate certificate;                   ///< order conditions of eq. (f), checked
   Certificate rkn_certificate;               ///< the same for the V -> 0 limit (if spec.rkn is set)
-  double certify_seconds = 0;                ///< wall time of both certifications
   int stages() const { return spec.stages; }
 };
 

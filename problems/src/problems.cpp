@@ -131,6 +131,22 @@ Problem problem_by_key(const std::string& key) {
 
 namespace erkn::problems {
 
+namespace {
+
+erkn::GridAxis::Boundary boundary(GridAxis::Boundary b) {
+  switch (b) {
+    case GridAxis::Boundary::periodic:
+      return erkn::GridAxis::Boundary::periodic;
+    case GridAxis::Boundary::dirichlet:
+      return erkn::GridAxis::Boundary::dirichlet;
+    case GridAxis::Boundary::neumann:
+      return erkn::GridAxis::Boundary::neumann;
+  }
+  throw std::logic_error("unknown grid boundary");
+}
+
+}  // namespace
+
 Stiffness stiffness(const LinearPart& m) {
   switch (m.kind) {
     case LinearPart::Kind::scalar:
@@ -139,6 +155,11 @@ Stiffness stiffness(const LinearPart& m) {
       return Stiffness::diagonal(m.diag);
     case LinearPart::Kind::circulant:
       return Stiffness::circulant(m.column);
+    case LinearPart::Kind::grid: {
+      std::vector<erkn::GridAxis> axes;
+      for (const GridAxis& a : m.axes) axes.push_back({a.n, a.spacing, boundary(a.boundary)});
+      return Stiffness::grid(axes, m.shift);
+    }
   }
   throw std::logic_error("unknown LinearPart kind");
 }
@@ -148,7 +169,8 @@ System system(const Problem& p) {
   s.M = stiffness(p.M);
   s.gradient = p.grad_u;
   s.potential = p.potential;
-  s.hessian = [h = p.hessian_u](const Vec& q, Eigen::MatrixXd& hess) { hess = h(q); };
+  if (p.hessian_u)  // (the grid problems have none: no d x d matrix there)
+    s.hessian = [h = p.hessian_u](const Vec& q, Eigen::MatrixXd& hess) { hess = h(q); };
   return s;
 }
 

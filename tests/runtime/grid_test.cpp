@@ -129,6 +129,25 @@ TEST(Grid, IntegratorAgreesWithTheDensePathForEveryMethod) {
     }
 }
 
+// Circulant M beyond the Fourier basis size goes through the FFT (FFTW's halfcomplex transform
+// when built with it): the same trajectory as the dense path, even and odd N.
+TEST(Grid, CirculantBeyondTheFourierBasisSizeAgreesWithTheDensePath) {
+  for (int N : {100, 101}) {
+    const Stiffness circ = Stiffness::circulant(sine_gordon_column(N));
+    for (const Method& m : Method::all()) {
+      SCOPED_TRACE(std::string(m.name()) + " N = " + std::to_string(N));
+      const Eigen::VectorXd q0 = random_vector(N, 10), p0 = random_vector(N, 11);
+      const double h = m.kind() == Kind::rkn ? 0.002 : 0.05;
+      Integrator a(m, sine_gordon(circ), h, q0, p0),
+          b(m, sine_gordon(Stiffness::dense(circ.to_dense(N))), h, q0, p0);
+      for (int n = 0; n < 10; ++n) a.step(), b.step();
+      const double scale = std::max(b.q().cwiseAbs().maxCoeff(), b.p().cwiseAbs().maxCoeff());
+      EXPECT_LE((a.q() - b.q()).cwiseAbs().maxCoeff() / scale, 1e-12);
+      EXPECT_LE((a.p() - b.p()).cwiseAbs().maxCoeff() / scale, 1e-12);
+    }
+  }
+}
+
 // q(t) = cos(t sqrt(M)) q0 + sin(t sqrt(M)) / sqrt(M) p0 from the dense eigendecomposition.
 Eigen::VectorXd exact_linear(const Stiffness& M, double t, const Eigen::VectorXd& q0,
                              const Eigen::VectorXd& p0) {
@@ -177,12 +196,14 @@ TEST(Grid, ObservedOrderOfEveryMethodOnAGridIsItsClaimedOrder) {
   rk4(s, M.to_dense(6), T, 40000, ref, p);
   for (const Method& m : Method::all()) {
     SCOPED_TRACE(std::string(m.name()));
-    std::vector<double> x, y;  // log h, log error: the four finest above 3e-13, as order_test
+    // log h, log error: the four finest above 1e-10, far above the stage solver's accumulated
+    // floor (steps x its 1e-14 tolerance: RKN2s4 levels off at 3e-12 near T/1280).
+    std::vector<double> x, y;
     for (int n = 10; n <= 2560; n *= 2) {
       Integrator run(m, s, T / n, q0, p0);
       run.integrate(T);
       const double err = (run.q() - ref).norm();
-      if (err < 3e-13) break;
+      if (err < 1e-10) break;
       x.push_back(std::log(T / n)), y.push_back(std::log(err));
     }
     ASSERT_GE(x.size(), 4u);
