@@ -22,7 +22,12 @@ plot 'data/p2_serkn1s2_1.dat' u 4:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.
   'data/p2_st_rmer_verlet.dat' u 4:3 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
   'data/p2_odeint_sb3a_mclachlan.dat' u 4:3 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
   'data/p2_odeint_sb3a_m4_mclachlan.dat' u 4:3 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
-  'data/p2_gauss2_order_4.dat' u 4:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)'
+  'data/p2_gauss2_order_4.dat' u 4:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)', \
+  'data/p2_strang_impulse.dat' u 4:3 w lp lc rgb '#1f77b4' dt (2,4) lw 2.2 pt 12 ps 1.0 t 'Strang (impulse)', \
+  'data/p2_blanes_moan_srkn6b.dat' u 4:3 w lp lc rgb '#d62728' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
+  'data/p2_blanes_moan_srkn14a.dat' u 4:3 w lp lc rgb '#2ca02c' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
+  'data/p2_aba_10_6_4.dat' u 4:3 w lp lc rgb '#9467bd' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
+  'data/p2_mollified_impulse_sinc.dat' u 4:3 w lp lc rgb '#ff7f0e' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
 set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
 set output 'p2_evals.svg'
 plot 'data/p2_serkn1s2_1.dat' u 4:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(1)', \
@@ -40,7 +45,12 @@ plot 'data/p2_serkn1s2_1.dat' u 4:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.
   'data/p2_st_rmer_verlet.dat' u 4:3 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
   'data/p2_odeint_sb3a_mclachlan.dat' u 4:3 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
   'data/p2_odeint_sb3a_m4_mclachlan.dat' u 4:3 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
-  'data/p2_gauss2_order_4.dat' u 4:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)'
+  'data/p2_gauss2_order_4.dat' u 4:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)', \
+  'data/p2_strang_impulse.dat' u 4:3 w lp lc rgb '#1f77b4' dt (2,4) lw 2.2 pt 12 ps 1.0 t 'Strang (impulse)', \
+  'data/p2_blanes_moan_srkn6b.dat' u 4:3 w lp lc rgb '#d62728' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
+  'data/p2_blanes_moan_srkn14a.dat' u 4:3 w lp lc rgb '#2ca02c' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
+  'data/p2_aba_10_6_4.dat' u 4:3 w lp lc rgb '#9467bd' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
+  'data/p2_mollified_impulse_sinc.dat' u 4:3 w lp lc rgb '#ff7f0e' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
 unset output
 set title 'P2: Duffing, k = 0.03 — error vs CPU time' noenhanced
 set xlabel 'CPU time (s)'
@@ -66,7 +76,12 @@ plot 'data/p2_serkn1s2_1.dat' u 5:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.
   'data/p2_st_rmer_verlet.dat' u 5:3 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
   'data/p2_odeint_sb3a_mclachlan.dat' u 5:3 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
   'data/p2_odeint_sb3a_m4_mclachlan.dat' u 5:3 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
-  'data/p2_gauss2_order_4.dat' u 5:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)'
+  'data/p2_gauss2_order_4.dat' u 5:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)', \
+  'data/p2_strang_impulse.dat' u 5:3 w lp lc rgb '#1f77b4' dt (2,4) lw 2.2 pt 12 ps 1.0 t 'Strang (impulse)', \
+  'data/p2_blanes_moan_srkn6b.dat' u 5:3 w lp lc rgb '#d62728' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
+  'data/p2_blanes_moan_srkn14a.dat' u 5:3 w lp lc rgb '#2ca02c' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
+  'data/p2_aba_10_6_4.dat' u 5:3 w lp lc rgb '#9467bd' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
+  'data/p2_mollified_impulse_sinc.dat' u 5:3 w lp lc rgb '#ff7f0e' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
 set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
 set output 'p2_cpu.svg'
 plot 'data/p2_serkn1s2_1.dat' u 5:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(1)', \
@@ -84,7 +99,12 @@ plot 'data/p2_serkn1s2_1.dat' u 5:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.
   'data/p2_st_rmer_verlet.dat' u 5:3 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
   'data/p2_odeint_sb3a_mclachlan.dat' u 5:3 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
   'data/p2_odeint_sb3a_m4_mclachlan.dat' u 5:3 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
-  'data/p2_gauss2_order_4.dat' u 5:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)'
+  'data/p2_gauss2_order_4.dat' u 5:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)', \
+  'data/p2_strang_impulse.dat' u 5:3 w lp lc rgb '#1f77b4' dt (2,4) lw 2.2 pt 12 ps 1.0 t 'Strang (impulse)', \
+  'data/p2_blanes_moan_srkn6b.dat' u 5:3 w lp lc rgb '#d62728' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
+  'data/p2_blanes_moan_srkn14a.dat' u 5:3 w lp lc rgb '#2ca02c' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
+  'data/p2_aba_10_6_4.dat' u 5:3 w lp lc rgb '#9467bd' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
+  'data/p2_mollified_impulse_sinc.dat' u 5:3 w lp lc rgb '#ff7f0e' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
 unset output
 set title 'P2: Duffing, k = 0.03 — energy error, h = 1/50' noenhanced
 set xlabel 't_{end} (time units)'
@@ -110,7 +130,12 @@ plot 'data/p2_serkn1s2_1_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 
   'data/p2_st_rmer_verlet_energy.dat' u 1:2 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
   'data/p2_odeint_sb3a_mclachlan_energy.dat' u 1:2 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
   'data/p2_odeint_sb3a_m4_mclachlan_energy.dat' u 1:2 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
-  'data/p2_gauss2_order_4_energy.dat' u 1:2 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)'
+  'data/p2_gauss2_order_4_energy.dat' u 1:2 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)', \
+  'data/p2_strang_impulse_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt (2,4) lw 2.2 pt 12 ps 1.0 t 'Strang (impulse)', \
+  'data/p2_blanes_moan_srkn6b_energy.dat' u 1:2 w lp lc rgb '#d62728' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
+  'data/p2_blanes_moan_srkn14a_energy.dat' u 1:2 w lp lc rgb '#2ca02c' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
+  'data/p2_aba_10_6_4_energy.dat' u 1:2 w lp lc rgb '#9467bd' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
+  'data/p2_mollified_impulse_sinc_energy.dat' u 1:2 w lp lc rgb '#ff7f0e' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
 set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
 set output 'p2_energy.svg'
 plot 'data/p2_serkn1s2_1_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(1)', \
@@ -128,5 +153,10 @@ plot 'data/p2_serkn1s2_1_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 
   'data/p2_st_rmer_verlet_energy.dat' u 1:2 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
   'data/p2_odeint_sb3a_mclachlan_energy.dat' u 1:2 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
   'data/p2_odeint_sb3a_m4_mclachlan_energy.dat' u 1:2 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
-  'data/p2_gauss2_order_4_energy.dat' u 1:2 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)'
+  'data/p2_gauss2_order_4_energy.dat' u 1:2 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)', \
+  'data/p2_strang_impulse_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt (2,4) lw 2.2 pt 12 ps 1.0 t 'Strang (impulse)', \
+  'data/p2_blanes_moan_srkn6b_energy.dat' u 1:2 w lp lc rgb '#d62728' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
+  'data/p2_blanes_moan_srkn14a_energy.dat' u 1:2 w lp lc rgb '#2ca02c' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
+  'data/p2_aba_10_6_4_energy.dat' u 1:2 w lp lc rgb '#9467bd' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
+  'data/p2_mollified_impulse_sinc_energy.dat' u 1:2 w lp lc rgb '#ff7f0e' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
 unset output
