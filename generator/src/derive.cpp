@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cancel.hpp"
 #include "phi.hpp"
 
 using namespace GiNaC;
@@ -271,7 +272,7 @@ Derived derive(const MethodSpec& spec) {
   out.derivation.resize(out.names.size());
   // `shown` is the solution as derivation.md prints it (the symbols phi0V... spelled out).
   auto record = [&](int index, const symbol& sym, const ex& solution, const ex& shown) {
-    Rational r = trig(solution);
+    Rational r = cancel_common(trig(solution));
     out.names[index] = str(sym);
     out.coef[index] = r.is_poly() ? Rational{r.as_poly()} : r.monic();
     out.derivation[index] = str(sym) + " = " + quotient(shown);
