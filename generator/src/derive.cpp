@@ -127,9 +127,65 @@ Qs read_constant(const MethodSpec& spec, const std::string& what, const std::str
   }
 }
 
+/// sqrt(r) for a rational r >= 0 as k sqrt(n)/m with n square-free (Qs expects a square-free n).
+ex exact_sqrt(const numeric& r) {
+  numeric n = r.numer() * r.denom(), k = 1;
+  for (numeric f = 2; f * f <= n; f += 1)
+    while (irem(n, f * f).is_zero()) n = n / (f * f), k *= f;
+  return k * sqrt(ex(n)) / r.denom();
+}
+
+/// Real roots in Q(sqrt(n)) of a univariate polynomial over Q: those of its factors over Q of
+/// degree 1 or 2 (a root of a higher factor is not in a quadratic field).
+std::vector<ex> quadratic_roots(const ex& p, const symbol& x) {
+  std::vector<ex> roots;
+  ex f = factor(p);
+  for (size_t i = 0; i < (is_a<mul>(f) ? f.nops() : 1); ++i) {
+    ex g = is_a<mul>(f) ? f.op(i) : f;
+    if (is_a<GiNaC::power>(g)) g = g.op(0);
+    g = expand(g);
+    ex a = g.coeff(x, 2), b = g.coeff(x, 1), c0 = g.coeff(x, 0);
+    if (g.degree(x) == 1) roots.push_back(normal(-c0 / b));
+    if (g.degree(x) != 2) continue;
+    ex disc = expand(b * b - 4 * a * c0);
+    if (!is_a<numeric>(disc) || ex_to<numeric>(disc).is_negative()) continue;
+    for (int sign : {-1, 1})
+      roots.push_back(expand((-b + sign * exact_sqrt(ex_to<numeric>(disc))) / (2 * a)));
+  }
+  return roots;
+}
+
+/// Two free nodes cu < cv (in the spec's order) from the two quadrature conditions p = q = 0
+/// beyond the s that fix d: candidates are the roots of the resultants in each node, kept if both
+/// conditions vanish exactly, the nodes are distinct from each other and from the given ones.
+std::pair<ex, ex> two_free_nodes(const MethodSpec& spec, const ex& p, const ex& q, const symbol& cu,
+                                 const symbol& cv, const exmap& given) {
+  auto fail = [&](const std::string& why) { throw std::runtime_error(spec.name + ": " + why); };
+  ex ru = resultant(p, q, cv), rv = resultant(p, q, cu);
+  if (ru.is_zero() || rv.is_zero())
+    fail("the quadrature conditions leave the free nodes " + str(cu) + ", " + str(cv) +
+         " undetermined (a common factor): give one of them");
+  std::vector<std::pair<ex, ex>> found;
+  for (const ex& x : quadratic_roots(ru, cu))
+    for (const ex& y : quadratic_roots(rv, cv)) {
+      exmap at{{cu, x}, {cv, y}};
+      if (!value(p.subs(at)).is_zero() || !value(q.subs(at)).is_zero()) continue;
+      if (!(value(x) < value(y))) continue;  // the free nodes ascend in the spec's order
+      bool distinct = true;
+      for (const auto& [sym, val] : given)
+        distinct = distinct && !value(val - x).is_zero() && !value(val - y).is_zero();
+      if (distinct) found.emplace_back(x, y);
+    }
+  if (found.size() != 1)
+    fail(std::to_string(found.size()) + " solutions for the free nodes " + str(cu) + " < " +
+         str(cv) + " in a quadratic field (the roots of the resultants " + str(ru) + " and " +
+         str(rv) + "): give one node");
+  return found[0];
+}
+
 /// Nodes c_i and weights d_i (into out.c, out.d): as given, or the d_i from the quadrature
 /// conditions sum_i d_i c_i^k = 1/(k+1), k < s (eq. (f) for the bushy trees at V = 0, over
-/// symbolic c_i so the general formulas appear), and one node `?` from the next condition.
+/// symbolic c_i so the general formulas appear), and one or two nodes `?` from the next ones.
 void solve_nodes(const MethodSpec& spec, const std::vector<symbol>& c, const std::vector<symbol>& d,
                  Derived& out) {
   const int s = spec.stages;
@@ -152,7 +208,8 @@ void solve_nodes(const MethodSpec& spec, const std::vector<symbol>& c, const std
     return;
   }
   std::vector<ex> quad;  // sum_i d_i c_i^k - 1/(k+1), k = 0 .. s (as far as the order goes)
-  for (int k = 0; k < std::min(spec.order, s + 1); ++k) {
+  const int nfree = int(unknown.size());
+  for (int k = 0; k < std::min(spec.order, s + std::max(1, nfree)); ++k) {
     ex sum = 0;
     for (int i = 0; i < s; ++i) sum += d[i] * pow(c[i], k);
     quad.push_back(sum - numeric(1, k + 1));
@@ -161,8 +218,22 @@ void solve_nodes(const MethodSpec& spec, const std::vector<symbol>& c, const std
   lst deqs, dsyms;
   for (int i = 0; i < s; ++i) deqs.append(quad[i] == 0), dsyms.append(d[i]);
   ex dsol = lsolve(deqs, dsyms);
-  if (unknown.size() > 1) fail("at most one node may be left to the generator when d is solved");
-  if (!unknown.empty()) {  // the first condition beyond the s that fixed d fixes the node
+  if (nfree > 2)
+    fail(std::to_string(nfree) + " free nodes: the generator solves at most two (give the others)");
+  if (nfree == 2) {  // two polynomial conditions beyond the s that fixed d
+    if (int(quad.size()) < s + 2)
+      fail("2 free nodes need the quadrature conditions k = " + std::to_string(s) + ", " +
+           std::to_string(s + 1) + " beyond the s that fix d, i.e. order >= " +
+           std::to_string(s + 2) + " (claimed " + std::to_string(spec.order) + "): give one node");
+    const symbol &cu = c[unknown[0]], &cv = c[unknown[1]];
+    ex p = expand(normal(quad[s].subs(dsol).subs(nodes)).numer());
+    ex q = expand(normal(quad[s + 1].subs(dsol).subs(nodes)).numer());
+    auto [x, y] = two_free_nodes(spec, p, q, cu, cv, nodes);
+    out.node_derivation.push_back(str(cu) + ", " + str(cv) + " = " + str(x) + ", " + str(y) +
+                                  " (quadrature conditions k = " + std::to_string(s) + ", " +
+                                  std::to_string(s + 1) + ")");
+    nodes[cu] = x, nodes[cv] = y;
+  } else if (!unknown.empty()) {  // the first condition beyond the s that fixed d fixes the node
     if (spec.order <= s) fail("no condition left to fix c" + idx(unknown[0]));
     const symbol& cu = c[unknown[0]];
     ex p = expand(normal(quad[s].subs(dsol)).numer());
