@@ -357,11 +357,11 @@ GridSceneConfig grid_scene_config(bool full, const SweepPolicy& sweep) {
   c.sweep.max_steps = full ? 16384 : 1024;  // (order-2 methods and Verlet are the costly lines)
   if (full) {
     c.sg_sizes = {128, 256, 512, 1024}, c.kg_sizes = {32, 64, 128};
-    c.sg_step_sizes = {64, 128, 256, 512, 1024}, c.kg_step_sizes = {16, 32, 64, 128};
+    c.sg_step_sizes = {64, 128, 256, 512, 1024}, c.kg_step_sizes = {16, 32, 64, 128};  // (<= sizes)
     c.dense_sizes = {256, 512, 1024, 2048, 4096};
   } else {
     c.sg_sizes = {64, 128, 256}, c.kg_sizes = {16, 32, 64};
-    c.sg_step_sizes = {64, 128, 256, 512}, c.kg_step_sizes = {16, 32, 64};
+    c.sg_step_sizes = {32, 64, 128, 256}, c.kg_step_sizes = {8, 16, 32, 64};
     c.dense_sizes = {256, 512, 1024};
   }
   return c;
