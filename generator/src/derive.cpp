@@ -338,16 +338,15 @@ Derived derive(const MethodSpec& spec) {
   TrigEnv env;
   for (int i = 0; i < s; ++i) env[c[i]] = constant(out.c[i]), env[d[i]] = constant(out.d[i]);
   auto trig = [&](const ex& e) { return to_rational(e, env, v); };
-  out.names.resize(2 * s + s * (s + 1) / 2);
-  out.coef.resize(out.names.size());
-  out.derivation.resize(out.names.size());
+  out.coefficients.resize(2 * s + s * (s + 1) / 2);
   // `shown` is the solution as derivation.md prints it (the symbols phi0V... spelled out).
   auto record = [&](int index, const symbol& sym, const ex& solution, const ex& shown) {
     Rational r = cancel_common(trig(solution));
-    out.names[index] = str(sym);
-    out.coef[index] = r.is_poly() ? Rational{r.as_poly()} : r.monic();
-    out.derivation[index] = str(sym) + " = " + quotient(shown);
-    env[sym] = out.coef[index];
+    Coefficient& k = out.coefficients[index];
+    k.name = str(sym);
+    k.closed_form = r.is_poly() ? Rational{r.as_poly()} : r.monic();
+    k.derivation = str(sym) + " = " + quotient(shown);
+    env[sym] = k.closed_form;
   };
 
   // --- b_i, bbar_i: the first two symplectic conditions of (g), a 2x2 linear system. ------
@@ -366,7 +365,7 @@ Derived derive(const MethodSpec& spec) {
       const int index = k == 0 ? i : s + i;
       ex solution = normal(ex(sym).subs(sol));
       record(index, sym, solution, solution.subs(phis));
-      if (!out.coef[index].is_poly())
+      if (!out.coefficients[index].closed_form.is_poly())
         fail("symplectic solution for " + str(sym) + " did not reduce to a trig polynomial");
     }
   }
@@ -400,7 +399,7 @@ Derived derive(const MethodSpec& spec) {
     if (!identically_zero(trig(diagonal[k])))
       fail("diagonal condition '" + spec.diagonal[k] + "' fails");
 
-  for (const Rational& r : out.coef) out.series.push_back(taylor(r, kSeriesTerms));
+  for (Coefficient& k : out.coefficients) k.series = taylor(k.closed_form, kSeriesTerms);
   certify_order(out);
   return out;
 }
@@ -410,9 +409,10 @@ void certify_order(Derived& m) {
   SeriesTableau t;
   t.s = s;
   t.c = m.c;
-  for (int i = 0; i < s; ++i) t.b.push_back(m.series[i]), t.bbar.push_back(m.series[s + i]);
+  const std::vector<Coefficient>& k = m.coefficients;
+  for (int i = 0; i < s; ++i) t.b.push_back(k[i].series), t.bbar.push_back(k[s + i].series);
   for (int i = 0; i < s; ++i)
-    for (int j = 0; j <= i; ++j) t.abar.push_back(m.series[abar_index(s, i + 1, j + 1)]);
+    for (int j = 0; j <= i; ++j) t.abar.push_back(k[abar_index(s, i + 1, j + 1)].series);
   const int max_power = std::max(m.spec.order + 1, kCertifyPowers);
   for (bool rkn : {false, true}) {
     if (rkn && m.spec.rkn.empty()) continue;

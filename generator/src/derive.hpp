@@ -14,17 +14,24 @@
 
 namespace erkn::gen {
 
+/// One coefficient function of the tableau and everything known about it.
+struct Coefficient {
+  std::string name;      ///< b1, bbar1, abar21, ...
+  Rational closed_form;  ///< den = 1 except for the solved diagonal
+  /// How it was solved, in the symbols of the paper (GiNaC syntax), e.g.
+  /// "abar11 = (bbar2*phi(3,v)-b2*phi(4,v))/(b1*bbar2-b2*bbar1)".
+  std::string derivation;
+  std::vector<Qs> series;     ///< exact Taylor coefficients, kSeriesTerms
+  std::vector<double> poles;  ///< real poles in v, ascending (locate_poles())
+  double series_switch = 0;   ///< the series below, the closed form above (locate_poles())
+};
+
 struct Derived {
   MethodSpec spec;
   std::vector<Qs> c, d;
-  /// Coefficient functions in table order: b_1..b_s, bbar_1..bbar_s, abar_11, abar_21, abar_22, ...
-  std::vector<std::string> names;
-  std::vector<Rational> coef;  ///< closed forms (den = 1 except for the solved diagonal)
-  /// How each coefficient was solved, in the symbols of the paper (GiNaC syntax), e.g.
-  /// "abar11 = (bbar2*phi(3,v)-b2*phi(4,v))/(b1*bbar2-b2*bbar1)".
-  std::vector<std::string> derivation;
+  /// In table order: b_1..b_s, bbar_1..bbar_s, abar_11, abar_21, abar_22, ...
+  std::vector<Coefficient> coefficients;
   std::vector<std::string> node_derivation;  ///< c and d as functions of the free nodes
-  std::vector<std::vector<Qs>> series;       ///< exact Taylor coefficients, kSeriesTerms each
   Certificate certificate;                   ///< order conditions of eq. (f), checked
   Certificate rkn_certificate;               ///< the same for the V -> 0 limit (if spec.rkn is set)
   int stages() const { return spec.stages; }
@@ -35,7 +42,7 @@ inline constexpr int kSeriesTerms = 25;
 /// enough for the generalized orders (8, 6, 4) of the near-integrable methods.
 inline constexpr int kCertifyPowers = 10;
 
-/// Index of abar_ij (1-based i >= j) in Derived::coef.
+/// Index of abar_ij (1-based i >= j) in Derived::coefficients.
 inline int abar_index(int s, int i, int j) { return 2 * s + i * (i - 1) / 2 + (j - 1); }
 
 /// Solves, verifies and certifies; throws std::runtime_error naming the method and the condition

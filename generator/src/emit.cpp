@@ -9,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "numerics.hpp"
+
 namespace erkn::gen {
 namespace {
 
@@ -40,9 +42,9 @@ void write(const std::string& path, const std::string& text) {
   f << text;
 }
 
-std::vector<double> all_poles(const Emittable& e) {
+std::vector<double> all_poles(const Derived& m) {
   std::vector<double> p;
-  for (const auto& q : e.poles) p.insert(p.end(), q.begin(), q.end());
+  for (const Coefficient& k : m.coefficients) p.insert(p.end(), k.poles.begin(), k.poles.end());
   std::sort(p.begin(), p.end());
   std::vector<double> out;  // the diagonal coefficients share their determinant: merge repeats
   for (double x : p)
@@ -90,9 +92,10 @@ std::string name_of(const Derived& m, bool rkn) { return rkn ? m.spec.rkn : m.sp
 
 // The printed closed form of coefficient k: its constant term for an RKN limit.
 std::string closed_form(const Derived& m, int k, bool rkn) {
-  if (rkn) return m.series[k][0].to_string();
-  Rational r = m.coef[k].cleared();
-  return r.den.is_constant() ? m.coef[k].num.to_string()
+  const Coefficient& f = m.coefficients[k];
+  if (rkn) return f.series[0].to_string();
+  Rational r = f.closed_form.cleared();
+  return r.den.is_constant() ? f.closed_form.num.to_string()
                              : "(" + r.num.to_string() + ")/(" + r.den.to_string() + ")";
 }
 
@@ -106,18 +109,19 @@ std::string node_arrays(const Derived& m) {
 
 std::string closed_forms_array(const Derived& m, bool rkn) {
   std::string out = "constexpr const char* closed_forms[] = {\n";
-  for (size_t k = 0; k < m.coef.size(); ++k)
-    out += "    // " + m.names[k] + "\n    " + quoted(closed_form(m, int(k), rkn)) + ",\n";
+  for (size_t k = 0; k < m.coefficients.size(); ++k)
+    out +=
+        "    // " + m.coefficients[k].name + "\n    " + quoted(closed_form(m, int(k), rkn)) + ",\n";
   return out + "};\n\n";
 }
 
 std::string series_array(const Derived& m, bool rkn) {
   std::string out = "constexpr double series[] = {\n";
-  for (size_t k = 0; k < m.coef.size(); ++k) {
+  for (const Coefficient& k : m.coefficients) {
     std::vector<double> x;
     for (int j = 0; j < kSeriesTerms; ++j)
-      x.push_back(rkn && j > 0 ? 0.0 : m.series[k][j].to_double());
-    out += "    // " + m.names[k] + "\n" + joined(x, num, true);
+      x.push_back(rkn && j > 0 ? 0.0 : k.series[j].to_double());
+    out += "    // " + k.name + "\n" + joined(x, num, true);
   }
   return out + "};\n\n";
 }
@@ -137,8 +141,8 @@ std::string generalized_array(const Derived& m, bool rkn) {
 // Index of every frequency w of the closed forms (cos(w x), sinc(w x), x = sqrt(v)).
 std::map<Qs, int> frequencies(const Derived& m) {
   std::map<Qs, int> index;
-  for (const Rational& r0 : m.coef) {
-    Rational r = r0.cleared();
+  for (const Coefficient& k : m.coefficients) {
+    Rational r = k.closed_form.cleared();
     for (const TrigPoly* p : {&r.num, &r.den})
       for (const auto& [key, coef] : p->terms())
         if (!key.omega.is_zero()) index.emplace(key.omega, 0);
@@ -177,52 +181,51 @@ std::string frequency_setup(const std::map<Qs, int>& omega, bool any_quotient) {
 }
 
 // One coefficient: a trig polynomial directly; a quotient by its series below the switch.
-std::string coefficient_line(const Emittable& e, int k, const std::map<Qs, int>& omega) {
-  const Derived& m = e.method;
+std::string coefficient_line(const Derived& m, int k, const std::map<Qs, int>& omega) {
+  const Coefficient& f = m.coefficients[k];
   const std::string t = target(k, m.stages());
-  Rational r = m.coef[k].cleared();
-  if (r.den.is_constant()) return "  " + t + " = " + cpp_sum(m.coef[k].as_poly(), omega) + ";\n";
-  return "  if (v < " + num(e.series_switch[k]) + ") {  // " + m.names[k] +
+  Rational r = f.closed_form.cleared();
+  if (r.den.is_constant())
+    return "  " + t + " = " + cpp_sum(f.closed_form.as_poly(), omega) + ";\n";
+  return "  if (v < " + num(f.series_switch) + ") {  // " + f.name +
          ": 0/0-prone, Taylor series\n    " + t + " = horner(series + " +
          std::to_string(k * kSeriesTerms) + ", v);\n  } else {\n    " + t + " = double((" +
          cpp_sum(r.num, omega, true) + ") /\n        (" + cpp_sum(r.den, omega, true) +
          "));\n  }\n";
 }
 
-std::string coefficients_function(const Emittable& e, bool rkn) {
-  const Derived& m = e.method;
+std::string coefficients_function(const Derived& m, bool rkn) {
   std::string out =
       "void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {\n";
   if (rkn) {
-    for (size_t k = 0; k < m.coef.size(); ++k)
+    for (size_t k = 0; k < m.coefficients.size(); ++k)
       out += "  " + target(int(k), m.stages()) + " = series[" + std::to_string(k * kSeriesTerms) +
              "];\n";
     return out + "}\n\n";
   }
   std::map<Qs, int> omega = frequencies(m);
   bool any_quotient = false;
-  for (const Rational& r : m.coef) any_quotient |= !r.cleared().den.is_constant();
+  for (const Coefficient& k : m.coefficients)
+    any_quotient |= !k.closed_form.cleared().den.is_constant();
   out += "  const double x = std::sqrt(v);\n" + frequency_setup(omega, any_quotient);
-  for (size_t k = 0; k < m.coef.size(); ++k) out += coefficient_line(e, int(k), omega);
+  for (size_t k = 0; k < m.coefficients.size(); ++k) out += coefficient_line(m, int(k), omega);
   return out + "}\n\n";
 }
 
-std::string method_cpp(const Emittable& e, bool rkn) {
-  const Derived& m = e.method;
+std::string method_cpp(const Derived& m, bool rkn) {
   const std::string id = identifier(name_of(m, rkn));
   std::string what =
       rkn ? "V -> 0 limit of " + m.spec.name + ", an RKN method with constant coefficients"
           : m.spec.source;
   return "// " + name_of(m, rkn) + ": " + what + ".\nnamespace " + id + " {\n\n" + node_arrays(m) +
          closed_forms_array(m, rkn) + series_array(m, rkn) +
-         poles_array(rkn ? std::vector<double>{} : all_poles(e)) + generalized_array(m, rkn) +
-         coefficients_function(e, rkn) + "}  // namespace " + id + "\n\n";
+         poles_array(rkn ? std::vector<double>{} : all_poles(m)) + generalized_array(m, rkn) +
+         coefficients_function(m, rkn) + "}  // namespace " + id + "\n\n";
 }
 
-std::string table_entry(const Emittable& e, bool rkn) {
-  const Derived& m = e.method;
+std::string table_entry(const Derived& m, bool rkn) {
   const std::string name = name_of(m, rkn), id = identifier(name);
-  const bool has_poles = !rkn && !all_poles(e).empty();
+  const bool has_poles = !rkn && !all_poles(m).empty();
   const Certificate& cert = rkn ? m.rkn_certificate : m.certificate;
   std::string ref =
       rkn ? "V -> 0 limit of " + m.spec.name + " (" + m.spec.source + ")" : m.spec.source;
@@ -241,18 +244,18 @@ std::string table_entry(const Emittable& e, bool rkn) {
 }
 
 // Every (method, rkn) pair that is emitted, in registry order: the methods, then their limits.
-std::vector<std::pair<const Emittable*, bool>> registry(const std::vector<Emittable>& methods) {
-  std::vector<std::pair<const Emittable*, bool>> out;
+std::vector<std::pair<const Derived*, bool>> registry(const std::vector<Derived>& methods) {
+  std::vector<std::pair<const Derived*, bool>> out;
   for (bool rkn : {false, true})
-    for (const Emittable& e : methods)
-      if (!rkn || !e.method.spec.rkn.empty()) out.emplace_back(&e, rkn);
+    for (const Derived& m : methods)
+      if (!rkn || !m.spec.rkn.empty()) out.emplace_back(&m, rkn);
   return out;
 }
 
-std::string methods_def(const std::vector<Emittable>& methods, const std::string& command) {
+std::string methods_def(const std::vector<Derived>& methods, const std::string& command) {
   std::string out = banner(command) + "// ERKN_METHOD(id, name, stages, order, kind)\n";
   for (const auto& [e, rkn] : registry(methods)) {
-    const Derived& m = e->method;
+    const Derived& m = *e;
     const std::string name = name_of(m, rkn);
     const char* kind = rkn ? "rkn" : m.spec.kind == SpecKind::explicit_erkn ? "explicit" : "erkn";
     out += "ERKN_METHOD(" + identifier(name) + ", " + quoted(name) + ", " +
@@ -262,9 +265,9 @@ std::string methods_def(const std::vector<Emittable>& methods, const std::string
   return out;
 }
 
-std::string tables_hpp(const std::vector<Emittable>& methods, const std::string& command) {
+std::string tables_hpp(const std::vector<Derived>& methods, const std::string& command) {
   int max_stages = 0;
-  for (const Emittable& e : methods) max_stages = std::max(max_stages, e.method.stages());
+  for (const Derived& m : methods) max_stages = std::max(max_stages, m.stages());
   return banner(command) +
          "// The constants of the emitted tables; the Table struct is erkn/table.hpp.\n"
          "#pragma once\n\n#include \"erkn/table.hpp\"\n\nnamespace erkn::generated {\n\n"
@@ -278,7 +281,7 @@ std::string tables_hpp(const std::vector<Emittable>& methods, const std::string&
          num(kPoleSearchMax) + ";\n\n}  // namespace erkn::generated\n";
 }
 
-std::string tables_cpp(const std::vector<Emittable>& methods, const std::string& command) {
+std::string tables_cpp(const std::vector<Derived>& methods, const std::string& command) {
   std::string out =
       banner(command) +
       "// Closed forms are phi-functions of scalar multiples of v: phi0(w^2 v) = cos(w x),\n"
@@ -325,15 +328,14 @@ std::string certificate_md(const Derived& m) {
   return md.str();
 }
 
-std::string derivation_md(const std::vector<Emittable>& methods, const std::string& command) {
+std::string derivation_md(const std::vector<Derived>& methods, const std::string& command) {
   std::ostringstream md;
   md << "<!-- " << banner(command, "").substr(1) << "-->\n\n# Derivation of the methods\n\n"
      << "What erkn-generate solved, method by method: the general formulas over symbolic nodes, "
         "each coefficient as solved (in the paper's symbols) and in closed form, its exact Taylor "
         "coefficients of V^0..V^4, the real poles in (0, 200], and the order certificate: every "
         "order condition checked, by SEN-tree, with its residual (failing ones in bold).\n";
-  for (const Emittable& e : methods) {
-    const Derived& m = e.method;
+  for (const Derived& m : methods) {
     md << "\n## " << m.spec.name << " (" << m.spec.source << ")\n\n";
     md << "Stages " << m.stages() << ", "
        << (m.spec.kind == SpecKind::explicit_erkn ? "explicit (abar_ii = 0), " : "")
@@ -344,17 +346,17 @@ std::string derivation_md(const std::vector<Emittable>& methods, const std::stri
          << m.d[i].to_string() << "`\n";
     md << "\n| coefficient | solved as | V^0 | V^1 | V^2 | V^3 | V^4 "
           "|\n|---|---|---|---|---|---|---|\n";
-    for (size_t k = 0; k < m.coef.size(); ++k) {
-      md << "| " << m.names[k] << " | `" << m.derivation[k] << "` ";
-      for (int j = 0; j < 5; ++j) md << "| " << m.series[k][j].to_string() << " ";
+    for (const Coefficient& k : m.coefficients) {
+      md << "| " << k.name << " | `" << k.derivation << "` ";
+      for (int j = 0; j < 5; ++j) md << "| " << k.series[j].to_string() << " ";
       md << "|\n";
     }
     md << "\nClosed forms (cleared of negative powers of v):\n\n";
-    for (size_t k = 0; k < m.coef.size(); ++k)
-      md << "- " << m.names[k] << " = `" << closed_form(m, int(k), false) << "`\n";
+    for (size_t k = 0; k < m.coefficients.size(); ++k)
+      md << "- " << m.coefficients[k].name << " = `" << closed_form(m, int(k), false) << "`\n";
     md << "\nReal poles in (0, 200]: ";
     bool any = false;
-    for (double p : all_poles(e))
+    for (double p : all_poles(m))
       if (p <= 200) md << (any ? ", " : "") << num(p), any = true;
     md << (any ? "" : "none") << ".\n" << certificate_md(m);
   }
@@ -363,7 +365,7 @@ std::string derivation_md(const std::vector<Emittable>& methods, const std::stri
 
 }  // namespace
 
-void emit(const std::vector<Emittable>& methods, const std::string& outdir,
+void emit(const std::vector<Derived>& methods, const std::string& outdir,
           const std::string& command) {
   std::filesystem::create_directories(outdir + "/include/erkn/generated");
   std::filesystem::create_directories(outdir + "/src");

@@ -8,16 +8,8 @@
 
 namespace erkn::gen {
 
-struct Emittable {
-  Derived method;
-  std::vector<std::vector<double>> poles;  ///< per coefficient
-  std::vector<double> series_switch;       ///< per coefficient: series below, closed form above
-};
-
-inline constexpr double kPoleSearchMax = 10000.0;
-
 /// Writes every file under `outdir`; `command` goes into the banners.
-void emit(const std::vector<Emittable>& methods, const std::string& outdir,
+void emit(const std::vector<Derived>& methods, const std::string& outdir,
           const std::string& command);
 
 }  // namespace erkn::gen

@@ -18,17 +18,18 @@ int main(int argc, char** argv) {
     auto t0 = std::chrono::steady_clock::now();
     std::ifstream in(argv[1]);
     if (!in) throw std::runtime_error(std::string("cannot read ") + argv[1]);
-    std::vector<Emittable> out;
+    std::vector<Derived> out;
     for (const MethodSpec& spec : read_specs(in)) {
-      Emittable e{derive(spec), {}, {}};
-      for (size_t k = 0; k < e.method.coef.size(); ++k) {
-        std::vector<double> series;
-        for (const Qs& q : e.method.series[k]) series.push_back(q.to_double());
-        e.poles.push_back(real_poles(e.method.coef[k], kPoleSearchMax));
-        e.series_switch.push_back(series_switch(e.method.coef[k], series));
+      Derived m = derive(spec);
+      for (Coefficient& k : m.coefficients) {
+        try {
+          locate_poles(k);
+        } catch (const std::exception& err) {  // name the method and the coefficient
+          throw std::runtime_error(spec.name + ": " + k.name + ": " + err.what());
+        }
       }
       std::cerr << "derived " << spec.name << "\n";
-      out.push_back(std::move(e));
+      out.push_back(std::move(m));
     }
     emit(out, argv[2], "cmake --build <build> --target regenerate");
     std::chrono::duration<double> dt = std::chrono::steady_clock::now() - t0;

@@ -95,4 +95,11 @@ double series_switch(const Rational& r0, const std::vector<double>& series) {
   throw std::runtime_error("no v where both the series and the closed form are accurate");
 }
 
+void locate_poles(Coefficient& k) {
+  std::vector<double> series;
+  for (const Qs& q : k.series) series.push_back(q.to_double());
+  k.poles = real_poles(k.closed_form, kPoleSearchMax);
+  k.series_switch = series_switch(k.closed_form, series);
+}
+
 }  // namespace erkn::gen
