@@ -44,6 +44,42 @@ bool any_approx(const SeriesTableau& t) {
 
 }  // namespace
 
+std::vector<Qs> residuals(const SeriesTableau& t, const std::vector<SenTree>& trees,
+                          const std::vector<OrderCondition>& conditions) {
+  const auto phi = elementary_weights(t, trees);
+  std::vector<Qs> out;
+  for (const OrderCondition& oc : conditions) {
+    Qs r = -Qs(oc.rhs);
+    for (int i = 0; i < t.s; ++i) r = r + (oc.bbar ? t.bbar : t.b)[i][oc.j] * phi[oc.tree][i];
+    out.push_back(r);
+  }
+  return out;
+}
+
+SeriesTableau explicit_series(const std::vector<Qs>& c, const std::vector<Qs>& d, int terms) {
+  // K w^m sum_j (-1)^j w^(2j) / (2j + m)!: the series of K w^m phi_m(w^2 V), m = 0, 1.
+  auto series = [terms](const Qs& K, const Qs& w, int m) {
+    std::vector<Qs> out;
+    Qs wp = m == 0 ? Qs(1) : w;
+    GiNaC::numeric fact = 1;
+    for (int j = 0; j < terms; ++j) {
+      if (j > 0) fact = fact * (2 * j + m) * (2 * j + m - 1);
+      out.push_back(K * wp * Qs((j % 2 ? -1 : 1) / fact));
+      wp = wp * w * w;
+    }
+    return out;
+  };
+  SeriesTableau t;
+  t.s = int(c.size());
+  t.c = c;
+  for (int i = 0; i < t.s; ++i) {
+    t.b.push_back(series(d[i], Qs(1) - c[i], 0));
+    t.bbar.push_back(series(d[i], Qs(1) - c[i], 1));
+    for (int j = 0; j <= i; ++j) t.abar.push_back(series(j < i ? d[j] : Qs(0), c[i] - c[j], 1));
+  }
+  return t;
+}
+
 const CheckedCondition* Certificate::first_failure() const {
   for (const CheckedCondition& c : checked)
     if (!c.holds) return &c;

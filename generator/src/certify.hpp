@@ -38,6 +38,15 @@ struct Certificate {
   const CheckedCondition* first_failure() const;
 };
 
+/// The residuals (lhs - rhs) of `conditions` (indices into `trees`) for the tableau t.
+std::vector<Qs> residuals(const SeriesTableau& t, const std::vector<SenTree>& trees,
+                          const std::vector<OrderCondition>& conditions);
+
+/// The Taylor coefficients (to V^(terms-1)) of the explicit method with nodes c and weights d:
+/// b_i = d_i phi0((1-c_i)^2 V), bbar_i = d_i (1-c_i) phi1((1-c_i)^2 V),
+/// abar_ij = d_j (c_i-c_j) phi1((c_i-c_j)^2 V) (j < i), abar_ii = 0.
+SeriesTableau explicit_series(const std::vector<Qs>& c, const std::vector<Qs>& d, int terms);
+
 /// Every condition of power <= max_power, exactly or, if a coefficient is approximate, in
 /// Qs::kApproxDigits digits with |residual| <= Qs::approx_zero() for "holds".
 /// rkn: the V -> 0 limit applied to q'' = -Mq + f: only Nystrom trees and V^0 conditions,

@@ -1,6 +1,7 @@
 #include "derive.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <sstream>
@@ -8,6 +9,7 @@
 
 #include "cancel.hpp"
 #include "phi.hpp"
+#include "polish.hpp"
 
 using namespace GiNaC;
 
@@ -183,6 +185,14 @@ std::pair<ex, ex> two_free_nodes(const MethodSpec& spec, const ex& p, const ex& 
   return found[0];
 }
 
+/// A decimal among the spec's nodes, drifts or weights: they get polished.
+bool has_decimals(const MethodSpec& spec) {
+  for (const auto* list : {&spec.c, &spec.d})
+    for (const std::string& x : *list)
+      if (x.find('.') != std::string::npos) return true;
+  return false;
+}
+
 /// Nodes c_i and weights d_i (into out.c, out.d): as given, or the d_i from the quadrature
 /// conditions sum_i d_i c_i^k = 1/(k+1), k < s (eq. (f) for the bushy trees at V = 0, over
 /// symbolic c_i so the general formulas appear), and one or two nodes `?` from the next ones.
@@ -204,6 +214,13 @@ void solve_nodes(const MethodSpec& spec, const std::vector<symbol>& c, const std
       out.c.push_back(value(nodes[c[i]]));
       out.d.push_back(read_constant(spec, "d" + idx(i), spec.d[i]));
       if (out.d[i].is_zero()) fail("d" + idx(i) + " = 0: abar_ij = (...)/d_i is undefined");
+    }
+    if (has_decimals(spec)) {
+      if (spec.kind != SpecKind::explicit_erkn)
+        fail("decimal constants are polished for explicit methods only: give c, d exactly");
+      Polished p = polish_explicit(spec.name, out.c, out.d, spec.order, spec.generalized);
+      out.c = p.c, out.d = p.d;
+      out.node_derivation.push_back(p.summary());
     }
     return;
   }
@@ -400,9 +417,25 @@ Derived derive(const MethodSpec& spec) {
       fail("diagonal condition '" + spec.diagonal[k] + "' fails");
 
   for (Coefficient& k : out.coefficients) k.series = taylor(k.closed_form, kSeriesTerms);
+  auto t0 = std::chrono::steady_clock::now();
   certify_order(out);
+  out.certify_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }
+
+namespace {
+
+// The first failing condition of a tree with K f-vertices, as text.
+std::string generalized_failure(const Certificate& cert, int K) {
+  for (const CheckedCondition& c : cert.checked)
+    if (!c.holds && cert.trees[c.condition.tree].fvertices == K)
+      return "tree " + cert.trees[c.condition.tree].name + ": condition " +
+             c.condition.text(cert.trees) + " has residual " + c.residual;
+  return "no failing condition";
+}
+
+}  // namespace
 
 void certify_order(Derived& m) {
   const int s = m.stages();
@@ -413,10 +446,18 @@ void certify_order(Derived& m) {
   for (int i = 0; i < s; ++i) t.b.push_back(k[i].series), t.bbar.push_back(k[s + i].series);
   for (int i = 0; i < s; ++i)
     for (int j = 0; j <= i; ++j) t.abar.push_back(k[abar_index(s, i + 1, j + 1)].series);
-  const int max_power = std::max(m.spec.order + 1, kCertifyPowers);
+  int max_power = std::max(m.spec.order + 1, kCertifyPowers);
+  for (int g : m.spec.generalized) max_power = std::max(max_power, g + 1);
   for (bool rkn : {false, true}) {
     if (rkn && m.spec.rkn.empty()) continue;
     Certificate cert = certify(t, rkn, max_power);
+    for (size_t K = 0; !rkn && K < m.spec.generalized.size(); ++K)
+      if (K >= cert.generalized.size() || cert.generalized[K] < m.spec.generalized[K])
+        throw std::runtime_error(
+            m.spec.name + ": claimed generalized order " + std::to_string(m.spec.generalized[K]) +
+            " for eps^" + std::to_string(K + 1) + " is not certified (" +
+            (K < cert.generalized.size() ? std::to_string(cert.generalized[K]) : "unchecked") +
+            "): " + generalized_failure(cert, int(K) + 1));
     if (cert.order < m.spec.order) {
       const CheckedCondition* f = cert.first_failure();
       throw std::runtime_error(

@@ -34,6 +34,7 @@ struct Derived {
   std::vector<std::string> node_derivation;  ///< c and d as functions of the free nodes
   Certificate certificate;                   ///< order conditions of eq. (f), checked
   Certificate rkn_certificate;               ///< the same for the V -> 0 limit (if spec.rkn is set)
+  double certify_seconds = 0;                ///< wall time of both certifications
   int stages() const { return spec.stages; }
 };
 

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <fstream>
 #include <iostream>
+#include <stdexcept>
 
 #include "derive.hpp"
 #include "emit.hpp"
@@ -28,7 +29,8 @@ int main(int argc, char** argv) {
           throw std::runtime_error(spec.name + ": " + k.name + ": " + err.what());
         }
       }
-      std::cerr << "derived " << spec.name << "\n";
+      std::cerr << "derived " << spec.name << ": order " << m.certificate.order << " certified ("
+                << m.certificate.checked.size() << " conditions, " << m.certify_seconds << " s)\n";
       out.push_back(std::move(m));
     }
     emit(out, argv[2], "cmake --build <build> --target regenerate");

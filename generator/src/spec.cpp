@@ -87,6 +87,8 @@ std::vector<MethodSpec> read_specs(std::istream& in) {
       m.stages = std::stoi(value);
     } else if (key == "order") {
       m.order = std::stoi(value);
+    } else if (key == "generalized") {
+      for (const std::string& g : split(value, ',')) m.generalized.push_back(std::stoi(g));
     } else if (key == "c") {
       m.c = split(value, ',');
     } else if (key == "drift") {

@@ -17,6 +17,8 @@ struct MethodSpec {
   std::string source;  ///< where the method comes from (paper section, article and table)
   int stages = 0;
   int order = 0;  ///< claimed; erkn-generate refuses the spec unless it certifies it
+  /// Claimed generalized order for H = A + eps B: order in h of the eps^K terms, K = 1, 2, ...
+  std::vector<int> generalized;
   /// GiNaC syntax (decimals read exactly as written), or "?" for a value the generator solves.
   std::vector<std::string> c, d;
   std::vector<std::string> drift;     ///< as written; c_i = drift_1 + ... + drift_i

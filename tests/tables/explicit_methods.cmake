@@ -3,6 +3,9 @@
 # as explicit with entire coefficients (no poles); raising Yoshida's order is refused at a tree.
 # Yoshida6 (the triple jump of Yoshida4) certifies exactly order 6: the conditions of the trees
 # with M-vertices (power >= 5) hold for a composition known to be of order 6, and power 7 fails.
+# Yoshida4dec (16-digit decimals) is polished onto its order conditions and emits exactly
+# Yoshida4's doubles; a decimal off by 1e-6 is refused as a transcription error. SABA2 certifies
+# its claimed generalized order (4, 2), and a claim of 5 for eps^1 is refused at a tree.
 execute_process(COMMAND ${GENERATOR} ${SPEC} ${WORKDIR}/ok RESULT_VARIABLE rc ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "erkn-generate failed: ${err}")
@@ -18,6 +21,20 @@ foreach(expect
     message(FATAL_ERROR "derivation.md does not match '${expect}'")
   endif()
 endforeach()
+file(READ ${WORKDIR}/ok/src/tables.cpp cpp)
+set(arrays "\n\nconstexpr double c\\[\\] = {[^}]*};\nconstexpr double d\\[\\] = {[^}]*}")
+string(REGEX MATCH "namespace Yoshida4 {${arrays}" exact "${cpp}")
+string(REGEX MATCH "namespace Yoshida4dec {${arrays}" polished "${cpp}")
+string(REPLACE "Yoshida4dec" "Yoshida4" polished "${polished}")
+if(exact STREQUAL "" OR NOT exact STREQUAL polished)
+  message(FATAL_ERROR "polished Yoshida4dec differs from Yoshida4:\n${exact}\n${polished}")
+endif()
+if(NOT md MATCHES "## Yoshida4dec[^#]*decimals polished[^#]*symmetry kept[^#]*\\*\\*order 4\\*\\*")
+  message(FATAL_ERROR "derivation.md does not show Yoshida4dec polished and of order 4")
+endif()
+if(NOT md MATCHES "## SABA2[^#]*eps\\^1: 4, eps\\^2: 2")
+  message(FATAL_ERROR "derivation.md does not show SABA2's generalized order (4, 2)")
+endif()
 if(NOT def MATCHES "ERKN_METHOD\\(Yoshida4, \"Yoshida4\", 3, 4, explicit\\)")
   message(FATAL_ERROR "methods.def lacks Yoshida4 as explicit of order 4: ${def}")
 endif()
@@ -30,3 +47,19 @@ if(rc EQUAL 0 OR NOT err MATCHES "Yoshida4: claimed order 5 fails at tree f.*has
   message(FATAL_ERROR "expected Yoshida4 of order 5 to be refused at a tree: ${err}")
 endif()
 message(STATUS "refused as expected: ${err}")
+
+# Negative controls: a decimal off by 1e-6, and a generalized order raised by one.
+string(REPLACE "0.6756035959798289, -0.1756035959798288" "0.6756045959798289, -0.1756035959798288"
+       typo "${spec}")
+string(REPLACE "generalized 4, 2" "generalized 5, 2" raised_g "${spec}")
+foreach(case typo raised_g)
+  file(WRITE ${WORKDIR}/${case}.spec "${${case}}")
+  execute_process(COMMAND ${GENERATOR} ${WORKDIR}/${case}.spec ${WORKDIR}/${case}
+                  RESULT_VARIABLE rc ERROR_VARIABLE err)
+  set(expect_typo "Yoshida4dec: polishing failed: the decimals are [0-9.e-]+ away from a method of the claimed order: a transcription error")
+  set(expect_raised_g "SABA2: claimed generalized order 5 for eps\\^1 is not certified \\(4\\): tree f")
+  if(rc EQUAL 0 OR NOT err MATCHES "${expect_${case}}")
+    message(FATAL_ERROR "${case}: expected a refusal matching '${expect_${case}}', got: ${err}")
+  endif()
+  message(STATUS "refused as expected: ${err}")
+endforeach()

@@ -1,0 +1,32 @@
+// Polishing decimal coefficients: an explicit method transcribed from the literature as decimals
+// (16-30 digits) satisfies its order conditions only to that precision. A minimum-norm Newton
+// correction moves (c, d) onto the conditions in Qs::kApproxDigits-digit arithmetic, keeping the
+// symmetry c_i + c_(s+1-i) = 1, d_i = d_(s+1-i) when the decimals have it, so that the emitted
+// doubles are the correctly rounded values of a method that satisfies them.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "qs.hpp"
+
+namespace erkn::gen {
+
+struct Polished {
+  std::vector<Qs> c, d;
+  double correction = 0;       ///< largest |change| of a c_i or d_i
+  double residual_before = 0;  ///< largest |residual| of the conditions polished onto
+  double residual_after = 0;
+  int conditions = 0;  ///< how many conditions
+  bool symmetric = false;
+  std::string summary() const;  ///< one line for derivation.md
+};
+
+/// Newton onto every condition of eq. (f) of power <= order and, for K = 1.., those of the trees
+/// with K f-vertices of power <= generalized[K-1]. Throws (naming `method`) if the decimals are
+/// more than 1e-8 away from the conditions (a transcription error, not rounding) or Newton does
+/// not bring every residual below 1e-50.
+Polished polish_explicit(const std::string& method, std::vector<Qs> c, std::vector<Qs> d, int order,
+                         const std::vector<int>& generalized);
+
+}  // namespace erkn::gen
