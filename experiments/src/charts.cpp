@@ -2,12 +2,12 @@
 
 #include <cctype>
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <stdexcept>
 
+#include "process.hpp"
 #include "summary.hpp"
 
 namespace ex {
@@ -83,8 +83,10 @@ void write_outputs(std::ostream& gp, const std::string& stem, const std::string&
 }
 
 void run_gnuplot(const fs::path& charts_dir, const std::string& script) {
-  const std::string cmd = "cd '" + charts_dir.string() + "' && gnuplot " + script;
-  if (std::system(cmd.c_str()) != 0) throw std::runtime_error("gnuplot failed: " + cmd);
+  erkn::process::Request gnuplot;
+  gnuplot.argv = {"gnuplot", script};
+  gnuplot.working_directory = charts_dir.string();
+  erkn::process::run_checked(gnuplot);
 }
 
 std::ofstream open(const fs::path& p) {

@@ -1,28 +1,53 @@
 #include "options.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
 namespace ex {
 namespace {
 
-std::vector<std::string> split(const std::string& s) {
+// "A,B,C" -> {A, B, C}; an empty list or an empty item is refused (it would silently mean
+// "all" or nothing).
+std::vector<std::string> split(const std::string& option, const std::string& s) {
   std::vector<std::string> out;
-  std::stringstream in(s);
-  for (std::string item; std::getline(in, item, ',');)
-    if (!item.empty()) out.push_back(item);
-  return out;
+  for (size_t start = 0;;) {
+    const size_t comma = s.find(',', start);
+    out.push_back(s.substr(start, comma - start));
+    if (out.back().empty())
+      throw std::invalid_argument(option +
+                                  " expects a comma-separated list without empty items, "
+                                  "got '" +
+                                  s + "'");
+    if (comma == std::string::npos) return out;
+    start = comma + 1;
+  }
 }
 
-// "1/40" or "0.025" -> step count on [0, 10].
+// A whole string as a finite number, else an error naming the option and the value.
+double number(const std::string& option, const std::string& value, const std::string& text) {
+  char* end = nullptr;
+  const double x = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(x))
+    throw std::invalid_argument(option + " expects step sizes like 0.025 or 1/40, got '" + value +
+                                "'");
+  return x;
+}
+
+// "1/40" or "0.025" -> step count on [0, 10]; h must be finite, > 0 and at most 10.
 long steps_of(const std::string& h_text) {
   const auto slash = h_text.find('/');
   const double h = slash == std::string::npos
-                       ? std::stod(h_text)
-                       : std::stod(h_text.substr(0, slash)) / std::stod(h_text.substr(slash + 1));
-  if (!(h > 0)) throw std::invalid_argument("step size must be positive: " + h_text);
-  return std::max(1L, std::lround(10 / h));
+                       ? number("--steps", h_text, h_text)
+                       : number("--steps", h_text, h_text.substr(0, slash)) /
+                             number("--steps", h_text, h_text.substr(slash + 1));
+  if (!std::isfinite(h) || !(h > 0) || h > 10)
+    throw std::invalid_argument("--steps: step size " + h_text +
+                                " must be a finite number in (0, 10]");
+  const double n = std::round(10 / h);
+  if (n > 1e9) throw std::invalid_argument("--steps: step size " + h_text + " is too small");
+  return std::max(1L, long(n));
 }
 
 void set_quick(RunConfig& c) {
@@ -65,12 +90,12 @@ Options parse_options(int argc, char** argv) {
     else if (arg == "--full")
       o.mode = "full", set_full(o.config);
     else if (arg == "--problems")
-      o.problems = split(value());
+      o.problems = split(arg, value());
     else if (arg == "--methods")
-      o.methods = split(value());
+      o.methods = split(arg, value());
     else if (arg == "--steps") {
       o.config.steps.clear();
-      for (const std::string& h : split(value())) o.config.steps.push_back(steps_of(h));
+      for (const std::string& h : split(arg, value())) o.config.steps.push_back(steps_of(h));
     } else if (arg == "--out")
       o.out = value();
     else if (arg == "--list")

@@ -10,7 +10,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -21,6 +20,7 @@
 #include "erkn/error.hpp"
 #include "erkn/method.hpp"
 #include "erkn/stability.hpp"
+#include "process.hpp"
 
 namespace erkn::cli {
 namespace {
@@ -143,10 +143,14 @@ void render(const Args& a, const std::string& stem, const std::string& body, int
     const std::filesystem::path gp = a.out / (stem + "." + ext + ".gp");
     std::ofstream(gp) << "set terminal " << term << "\nset output '" << stem << "." << ext << "'\n"
                       << kHeader << body;
-    const std::string cmd =
-        "cd '" + a.out.string() + "' && gnuplot '" + gp.filename().string() + "'";
-    if (std::system(cmd.c_str()) != 0)
-      throw Error("gnuplot failed on " + gp.string() + " (is gnuplot installed?)");
+    // No shell: the script names only files in DIR, which is gnuplot's working directory.
+    process::Request gnuplot;
+    gnuplot.argv = {"gnuplot", gp.filename().string()};
+    gnuplot.working_directory = a.out.string();
+    const process::Result r = process::run(gnuplot);
+    if (!r.ok())
+      throw Error("gnuplot failed on " + gp.string() + " (is gnuplot installed?)" +
+                  (r.err.empty() ? "" : ": " + r.err));
   }
   std::cout << "chart: " << (a.out / (stem + ".png")).string() << " (+ .svg)\n";
 }
@@ -191,6 +195,10 @@ int stability_command(int argc, char** argv) {
   }
   if (a.name.empty()) return usage();
   if (!(a.vmax > 0) || !(a.zmax > a.zmin)) throw Error("need --vmax > 0 and --zmax > --zmin");
+  if (a.vmax > generated::kPoleSearchMax)
+    throw Error("--vmax " + fmt(a.vmax) + " is beyond the table of poles (V <= " +
+                fmt(generated::kPoleSearchMax) + "): points there could not be classified");
+  if (!std::isfinite(a.zmax - a.zmin)) throw Error("--zmax - --zmin is not a finite number");
   std::filesystem::create_directories(a.out);
   if (a.name != "all") {
     const Written w = write_csv(Method::by_name(a.name), a);

@@ -7,6 +7,7 @@
 
 #include "erkn/error.hpp"
 #include "format.hpp"
+#include "options_check.hpp"
 #include "step_size_check.hpp"
 #include "stepper.hpp"
 #include "transforms.hpp"
@@ -90,12 +91,16 @@ std::unique_ptr<detail::StepperBase> make_stepper(const Method& method, System s
 Integrator::Integrator(const Method& method, System system, double h, const Eigen::VectorXd& q0,
                        const Eigen::VectorXd& p0, const Options& options)
     : method_(method), options_(options), h_(h) {
+  detail::validate(options);
   require_step_size(h);
   require_state(system, q0, p0);
   if (!system.gradient) throw Error("System::gradient is not set");
+  if (options.energy_tolerance > 0 && !system.potential)
+    throw Error("Options::energy_tolerance (the energy monitor) needs System::potential");
   stepper_ = make_stepper(method, std::move(system), h, options, q0.size());
   q_ = q0;
   p_ = p0;
+  energy_0_ = monitored_energy(q0, p0);
   stepper_->set_state(q_, p_);
 }
 
@@ -106,9 +111,47 @@ Integrator& Integrator::operator=(Integrator&&) noexcept = default;
 const System& Integrator::system() const { return stepper_->system(); }
 
 void Integrator::step() {
-  stepper_->step(statistics_.steps + 1, t(), statistics_);
+  checked_step(*stepper_);
   stale_ = true;
   ++steps_since_base_;
+}
+
+void Integrator::checked_step(detail::StepperBase& stepper) {
+  const Statistics before = statistics_;  // a failed step counts nothing
+  const bool monitor = options_.energy_tolerance > 0;
+  if (monitor) saved_q_ = q(), saved_p_ = p();
+  try {
+    stepper.step(statistics_.steps + 1, t(), statistics_);
+    if (monitor) check_energy(stepper);
+  } catch (...) {
+    statistics_ = before;
+    throw;
+  }
+}
+
+double Integrator::monitored_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& p) const {
+  if (options_.energy_tolerance <= 0) return 0;
+  const double H = energy(q, p);
+  if (!std::isfinite(H))
+    throw Error("the energy monitor needs a finite H at the initial state; got H = " + format(H));
+  return H;
+}
+
+// The energy monitor after a step of `stepper`: beyond the tolerance, the state before the step
+// is restored (its compensated-summation errors are dropped) and the step is an error.
+void Integrator::check_energy(detail::StepperBase& stepper) {
+  stepper.get_state(q_, p_);
+  stale_ = false;
+  const double H = energy(q_, p_), scale = energy_0_ == 0 ? 1.0 : std::abs(energy_0_);
+  const double drift = std::abs(H - energy_0_) / scale;
+  if (drift <= options_.energy_tolerance) return;  // (false for NaN)
+  stepper.set_state(saved_q_, saved_p_);
+  q_.swap(saved_q_), p_.swap(saved_p_);
+  throw Error("energy monitor: step " + std::to_string(statistics_.steps) +
+              " (from t = " + format(t()) + ") gives H = " + format(H) + ", |H - H_0| " +
+              (energy_0_ == 0 ? "= " : "/ |H_0| = ") + format(drift, 3) +
+              " > Options::energy_tolerance = " + format(options_.energy_tolerance, 3) +
+              " (H_0 = " + format(energy_0_) + "); the state before the step is kept");
 }
 
 void Integrator::load_state() const {
@@ -118,7 +161,11 @@ void Integrator::load_state() const {
 
 void Integrator::set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p, double t) {
   require_state(system(), q, p);
+  if (q.size() != q_.size())  // (a scalar M fits any dimension, the integrator only its own)
+    throw Error("dimension mismatch: the integrator was built for dimension " +
+                std::to_string(q_.size()) + ", the new q has size " + std::to_string(q.size()));
   if (!std::isfinite(t)) throw Error("t = " + format(t) + " is not finite");
+  energy_0_ = monitored_energy(q, p);
   stepper_->set_state(q, p);
   q_ = q;
   p_ = p;
@@ -191,7 +238,7 @@ detail::StepperBase& Integrator::stepper_of_size(double h) {
 
 void Integrator::step_to(double t_end) {
   detail::StepperBase& s = stepper_of_size(t_end - t());
-  s.step(statistics_.steps + 1, t(), statistics_);
+  checked_step(s);
   s.get_state(q_, p_);
   stepper_->set_state(q_, p_);  // (the next step of h does not follow a step of h)
   t_base_ = t_end;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <type_traits>
 
 #include "erkn/error.hpp"
 
@@ -25,7 +26,13 @@ std::string format_double(double x) {
 
 }  // namespace
 
-const Method& Method::get(MethodId id) { return kAll.at(size_t(id)); }
+const Method& Method::get(MethodId id) {
+  const auto index = static_cast<std::underlying_type_t<MethodId>>(id);
+  if (index < 0 || size_t(index) >= kAll.size())
+    throw Error("unknown method id " + std::to_string(index) + "; ids are 0.." +
+                std::to_string(kAll.size() - 1));
+  return kAll[size_t(index)];
+}
 
 std::span<const Method> Method::all() { return kAll; }
 

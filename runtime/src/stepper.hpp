@@ -177,8 +177,20 @@ class Stepper final : public StepperBase {
       dq -= k.h2bbar(i) * G(i);
       dp -= k.hb(i) * G(i);
     }
+    require_finite_result(q_hat_ + dq, p_hat_ + dp);
     add(q_hat_, eq_hat_, dq);
     add(p_hat_, ep_hat_, dp);
+  }
+
+  // A step whose q_{n+1} or p_{n+1} would not be finite fails before it changes the state.
+  template <class Q, class P>
+  void require_finite_result(const Q& q_new, const P& p_new) const {
+    const bool q_ok = q_new.allFinite();
+    if (q_ok && p_new.allFinite()) return;
+    throw Error("step " + std::to_string(step_number_) + " (t = " + format(t_) + ") of " +
+                std::string(method_.name()) + " gives a non-finite " + (q_ok ? "p" : "q") +
+                " (is h unstable for this problem? see erkn::advise_step_size); the state "
+                "before the step is kept");
   }
 
   // An explicit method as the flows over tau_k and the kicks p -= h d_k g_k it is, on a copy
@@ -202,6 +214,7 @@ class Stepper final : public StepperBase {
       kick(h_ * d[i], G(i));
     }
     flow(s_);
+    require_finite_result(qw_hat_, pw_hat_);
     for (auto [a, b] : {std::pair{&q_hat_, &qw_hat_},
                         {&p_hat_, &pw_hat_},
                         {&eq_hat_, &eqw_hat_},
@@ -518,6 +531,11 @@ class Stepper final : public StepperBase {
   }
 
   void gradient(const Eigen::VectorXd& Q, Eigen::VectorXd& g, int i, Statistics& stats) {
+    if (!Q.allFinite())
+      throw Error("step " + std::to_string(step_number_) + " (t = " + format(t_) + "): stage " +
+                  std::to_string(i + 1) + " of " + std::string(method_.name()) +
+                  " is not finite (is h unstable for this problem? see erkn::advise_step_size); "
+                  "the state is unchanged");
     system_.gradient(Q, g);
     ++stats.gradient_evaluations;
     if (g.size() != d_) {

@@ -51,6 +51,13 @@ struct Options {
   bool compensated_summation = true;
   /// A step size is refused when some h^2*lambda lies within this relative distance of a pole.
   double pole_tolerance = 1e-6;
+  /// Energy monitor: when > 0, a step after which |H_n - H_0| > energy_tolerance * |H_0| (H_0:
+  /// the energy at construction or set_state; absolute when H_0 = 0) throws erkn::Error naming
+  /// the step and the drift, and leaves the state before that step. Needs System::potential.
+  double energy_tolerance = 0;
+  /// Construction (and set_step_size) refuses an h that erkn::advise_step_size finds unstable on
+  /// the linearisation at the initial state (see erkn/advisor.hpp); off by default.
+  bool check_stability = false;
 };
 
 struct Statistics {
@@ -182,6 +189,12 @@ class Integrator {
   void require_output_times(double t_end, const Eigen::Ref<const Eigen::VectorXd>& times) const;
   detail::StepperBase& stepper_of_size(double h);
   void step_to(double t_end);
+  // Energy monitor (Options::energy_tolerance > 0): H_0 and the state before the current step.
+  double energy_0_ = 0;
+  Eigen::VectorXd saved_q_, saved_p_;
+  void checked_step(detail::StepperBase& stepper);  // rolls back statistics, energy monitor
+  double monitored_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& p) const;
+  void check_energy(detail::StepperBase& stepper);
 };
 
 }  // namespace erkn

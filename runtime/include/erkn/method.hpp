@@ -30,6 +30,7 @@ struct Coefficients {
 
 class Method {
  public:
+  /// Throws erkn::Error for an id outside the registry (e.g. a cast integer).
   static const Method& get(MethodId id);
   /// Lookup by the paper's name ("SERKN3s4(1)") or the id ("SERKN3s4_1"); throws erkn::Error
   /// naming the unknown method and listing the known ones.

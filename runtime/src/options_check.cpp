@@ -1,0 +1,38 @@
+#include "options_check.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "erkn/error.hpp"
+#include "format.hpp"
+
+namespace erkn::detail {
+namespace {
+
+// Throws unless ok, naming the field, its value and the range it must lie in.
+void require(bool ok, const char* field, double value, const char* range) {
+  if (!ok)
+    throw Error(std::string("Options::") + field + " = " + format(value) +
+                " is invalid; it must be " + range);
+}
+
+}  // namespace
+
+void validate(const Options& o) {
+  const auto finite = [](double x) { return std::isfinite(x); };
+  require(finite(o.tolerance) && o.tolerance > 0 && o.tolerance < 1, "tolerance", o.tolerance,
+          "finite and in (0, 1)");
+  require(finite(o.roundoff_level) && o.roundoff_level > 0 && o.roundoff_level < 1,
+          "roundoff_level", o.roundoff_level, "finite and in (0, 1)");
+  require(o.max_fixed_point_iterations >= 1, "max_fixed_point_iterations",
+          o.max_fixed_point_iterations, ">= 1");
+  require(finite(o.max_theta) && o.max_theta > 0 && o.max_theta < 1, "max_theta", o.max_theta,
+          "finite and in (0, 1)");
+  require(o.max_newton_iterations >= 1, "max_newton_iterations", o.max_newton_iterations, ">= 1");
+  require(finite(o.pole_tolerance) && o.pole_tolerance > 0 && o.pole_tolerance < 1,
+          "pole_tolerance", o.pole_tolerance, "finite and in (0, 1)");
+  require(finite(o.energy_tolerance) && o.energy_tolerance >= 0, "energy_tolerance",
+          o.energy_tolerance, "finite and >= 0 (0: no energy monitor)");
+}
+
+}  // namespace erkn::detail

@@ -1,0 +1,199 @@
+// The erkn CLI started as a user would (no shell between): exact refusals for the inputs issue
+// 12 lists, no shell injection through --out, and a bounded fuzz of argument lists (fixed seed):
+// no signal, no hang, never exit 0 on junk.
+#include <gtest/gtest.h>
+
+#include <erkn/method.hpp>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "process.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using Args = std::vector<std::string>;
+
+erkn::process::Result erkn_cli(const Args& args, const std::string& cwd = "") {
+  erkn::process::Request r;
+  r.argv = {ERKN_CLI};
+  r.argv.insert(r.argv.end(), args.begin(), args.end());
+  r.working_directory = cwd;
+  r.timeout_seconds = 30;
+  return erkn::process::run(r);
+}
+
+std::string joined(const Args& args) {
+  std::string s = "erkn";
+  for (const std::string& a : args) s += " [" + a + "]";
+  return s;
+}
+
+fs::path fresh_directory(const std::string& name) {
+  const fs::path d =
+      fs::temp_directory_path() / ("erkn_cli_" + name + "_" + std::to_string(getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+void expect_refusal(const Args& args, const std::string& message) {
+  const erkn::process::Result r = erkn_cli(args);
+  EXPECT_NE(r.exit_code, 0) << joined(args);
+  EXPECT_EQ(r.signal, 0) << joined(args);
+  EXPECT_FALSE(r.timed_out) << joined(args);
+  EXPECT_NE(r.err.find(message), std::string::npos)
+      << joined(args) << ": stderr '" << r.err << "' lacks '" << message << "'";
+}
+
+TEST(Cli, RefusesTheInputsOfIssue12) {
+  expect_refusal({"list", "junk"}, "usage: erkn list");
+  expect_refusal({"run", "--steps", "1/0"}, "--steps: step size 1/0 must be a finite number");
+  expect_refusal({"run", "--steps", "abc"},
+                 "--steps expects step sizes like 0.025 or 1/40, got 'abc'");
+  expect_refusal({"run", "--methods", ""}, "--methods expects a comma-separated list");
+  expect_refusal({"run", "--problems", ""}, "--problems expects a comma-separated list");
+  expect_refusal({"run", "--methods", "SERKN2s4,,RKN2s4"}, "without empty items");
+  const std::string name(erkn::Method::all()[0].name());
+  expect_refusal({"stability", name, "--vmax", "1e6", "--grid", "5"}, "beyond the table of poles");
+  expect_refusal({"stability", name, "--vmax", "1e308", "--grid", "5"},
+                 "beyond the table of poles");
+  expect_refusal({"stability", name, "--vmax", "inf"}, "--vmax expects a finite number");
+  expect_refusal({"stability", name, "--zmin", "-1e308", "--zmax", "1e308", "--grid", "5"},
+                 "not a finite number");
+}
+
+TEST(Cli, NoShellBetweenErknAndGnuplot) {
+  const fs::path cwd = fresh_directory("injection");
+  const std::string out = "d'; touch INJECTED; echo '";
+  const std::string name(erkn::Method::all()[0].name());
+  const erkn::process::Result r =
+      erkn_cli({"stability", name, "--grid", "5", "--out", out}, cwd.string());
+  EXPECT_FALSE(fs::exists(cwd / "INJECTED")) << r.out << r.err;
+  EXPECT_FALSE(fs::exists(cwd / out / "INJECTED"));
+  const std::string csv = "stability_" + std::string(erkn::Method::all()[0].id_name());
+  EXPECT_TRUE(fs::exists(cwd / out / (csv + ".csv")));
+  // The chart is drawn when gnuplot is there (it is wherever install-deps.sh ran).
+  if (erkn::process::run({{"gnuplot", "--version"}}).ok()) {
+    EXPECT_TRUE(r.ok()) << r.err;
+    EXPECT_TRUE(fs::exists(cwd / out / (csv + ".png")));
+  }
+  fs::remove_all(cwd);
+}
+
+// Junk for an option: values every command refuses for it.
+const std::vector<std::pair<std::string, Args>> kJunk = {
+    {"--v", {"-1", "-0.5", "nan", "inf", "abc", "", "1e999", "1/0", "0x", " 1"}},
+    {"--series", {"-1", "0.5", "1e9", "nan", "abc", "", "1e999"}},
+    {"--poles", {"0", "-1", "1e9", "nan", "abc", "", "inf"}},
+    {"--vmax", {"0", "-1", "1e6", "1e308", "nan", "inf", "abc", "", "1e999"}},
+    {"--zmin", {"nan", "abc", "", "1e999", "-inf", "100"}},
+    {"--zmax", {"nan", "abc", "", "1e999", "inf", "-100"}},
+    {"--grid", {"1", "0", "-5", "2.5", "1e9", "nan", "abc", ""}},
+    {"--steps", {"1/0", "abc", "", "0", "-1", "nan", "1/", "/3", "1e-300", "20", "0.1,", ",0.1"}},
+    {"--methods", {"", ",", "SERKN2s4,,RKN2s4", "NOPE", "'; touch X"}},
+    {"--problems", {"", "P9", ",P1", "P1,"}},
+};
+
+const Args& junk_for(const std::string& option) {
+  for (const auto& [o, values] : kJunk)
+    if (o == option) return values;
+  static const Args none;
+  return none;
+}
+
+struct Generator {
+  std::mt19937 rng{20261123};  // fixed seed: the same argument lists on every run
+  std::string out;
+  template <class T>
+  const T& pick(const std::vector<T>& v) {
+    return v[std::uniform_int_distribution<size_t>(0, v.size() - 1)(rng)];
+  }
+  std::string method() {
+    return std::string(erkn::Method::all()[index(erkn::Method::all().size())].name());
+  }
+  size_t index(size_t n) { return std::uniform_int_distribution<size_t>(0, n - 1)(rng); }
+  std::string number(double lo, double hi) {
+    return std::to_string(std::uniform_real_distribution<double>(lo, hi)(rng));
+  }
+
+  // A valid command line (option, value pairs after the command words); never a real `run`.
+  Args valid() {
+    switch (index(4)) {
+      case 0:
+        return {"tableau", method(), "--v", number(0, 5)};
+      case 1:
+        return {"tableau", method(), "--series", std::to_string(index(3))};
+      case 2:
+        return {"tableau", method(), "--poles", number(1, 1000)};
+      default:
+        return {"stability", index(4) ? method() : "all",
+                "--vmax",    number(1, 100),
+                "--zmin",    number(-20, 0),
+                "--zmax",    number(1, 20),
+                "--grid",    std::to_string(2 + index(3)),
+                "--out",     out};
+    }
+  }
+  Args run_line() {
+    return {"run", "--quick", "--steps", "1/40", "--methods", method(), "--problems", "P2"};
+  }
+
+  // One corruption of a command line that makes it junk.
+  Args junk() {
+    Args a = index(3) == 0 ? run_line() : valid();
+    std::vector<size_t> options;
+    for (size_t i = 0; i < a.size(); ++i)
+      if (a[i].rfind("--", 0) == 0 && !junk_for(a[i]).empty() && i + 1 < a.size())
+        options.push_back(i);
+    switch (index(6)) {
+      case 0:
+      case 1: {  // a junk value
+        const size_t i = pick(options);
+        a[i + 1] = pick(junk_for(a[i]));
+        return a;
+      }
+      case 2:  // an option without its value
+        a.push_back(pick(options) == options.front() ? a[options.front()] : a[options.back()]);
+        return a;
+      case 3:  // an unknown option
+        a.insert(a.begin() + 1 + index(a.size()), "--bogus" + std::to_string(index(100)));
+        return a;
+      case 4:  // a junk method name or command
+        if (a[0] == "run") return {"run", "--" + std::to_string(index(1000))};
+        a[1] = pick(Args{"", "SERKN", "'; touch X", std::string(5000, 'x'), a[1] + "x", "--v"});
+        return a;
+      default:
+        return Args{pick(Args{"", "lst", "tableaux", "--help", "RUN", "list", "x"}), "y"};
+    }
+  }
+};
+
+TEST(Cli, FuzzedArgumentListsNeverCrashHangOrAcceptJunk) {
+  const fs::path dir = fresh_directory("fuzz");
+  Generator gen;
+  gen.out = (dir / "out").string();
+  int junk = 0, valid = 0;
+  for (int n = 0; n < 300; ++n) {
+    const bool is_junk = n % 5 != 0;
+    const Args args = is_junk ? gen.junk() : gen.valid();
+    const erkn::process::Result r = erkn_cli(args, dir.string());
+    EXPECT_EQ(r.signal, 0) << joined(args) << "\n" << r.err;
+    EXPECT_FALSE(r.timed_out) << joined(args);
+    if (is_junk) {
+      ++junk;
+      EXPECT_NE(r.exit_code, 0) << "junk accepted: " << joined(args) << "\n" << r.out;
+      EXPECT_FALSE(r.err.empty()) << "refused without a word: " << joined(args);
+    } else {
+      ++valid;
+      EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1) << joined(args) << "\n" << r.err;
+    }
+  }
+  EXPECT_FALSE(fs::exists(dir / "X"));
+  std::cout << "fuzzed " << junk << " junk and " << valid << " valid argument lists\n";
+  fs::remove_all(dir);
+}
+
+}  // namespace
