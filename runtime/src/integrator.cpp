@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "erkn/advisor.hpp"
 #include "erkn/error.hpp"
 #include "format.hpp"
 #include "options_check.hpp"
@@ -86,6 +87,13 @@ std::unique_ptr<detail::StepperBase> make_stepper(const Method& method, System s
   throw Error("unknown structure of M");
 }
 
+// Options::check_stability: refuses h when the step-size advisor flags it at q.
+void require_advised(const Method& method, const System& system, double h,
+                     const Eigen::VectorXd& q) {
+  const StepSizeAdvice advice = advise_step_size(method, system, h, q);
+  if (!advice.safe()) throw Error("Options::check_stability refuses " + advice.report(method));
+}
+
 }  // namespace
 
 Integrator::Integrator(const Method& method, System system, double h, const Eigen::VectorXd& q0,
@@ -97,6 +105,7 @@ Integrator::Integrator(const Method& method, System system, double h, const Eige
   if (!system.gradient) throw Error("System::gradient is not set");
   if (options.energy_tolerance > 0 && !system.potential)
     throw Error("Options::energy_tolerance (the energy monitor) needs System::potential");
+  if (options.check_stability) require_advised(method, system, h, q0);
   stepper_ = make_stepper(method, std::move(system), h, options, q0.size());
   q_ = q0;
   p_ = p0;
@@ -176,6 +185,7 @@ void Integrator::set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p, d
 
 void Integrator::set_step_size(double h) {
   require_step_size(h);
+  if (options_.check_stability) require_advised(method_, system(), h, q_);
   auto fresh = make_stepper(method_, system(), h, options_, q_.size());
   fresh->set_state(q(), p());  // (the summation errors are dropped)
   t_base_ = t();

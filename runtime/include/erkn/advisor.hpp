@@ -1,0 +1,93 @@
+// erkn::advise_step_size: which step sizes h the stability analysis (erkn/stability.hpp) warns
+// against for a given problem, and the nearest h it does not warn against.
+//
+// Model: near a state, q'' + M q = -grad U(q) linearises to q'' + M q = -K q with K the Hessian
+// of U. Taking each eigenvalue lambda of M with a Hessian value kappa from a range [lo, hi] that
+// bounds K's eigenvalues gives the test equation of stability.hpp with
+//     V = h^2 lambda,   z = h^2 kappa,   kappa in [lo, hi].
+// For every eigenvalue lambda the advisor reports
+//   pole       V within pole_margin (relative) of a pole of the coefficients (ERKN methods);
+//   unstable   |tr S(V, z)| > 2 + trace_tolerance for some sampled z: |rho(S)| > 1, the linear
+//              solution grows geometrically;
+//   resonance  (ERKN methods, lambda > 0) h sqrt(lambda) within a band of k pi, k >= 1, where
+//              tr S(V, 0) = 2 cos(h sqrt(lambda)) = +-2: the stiff oscillation aliases to a
+//              phase near 0 or pi per step. The linear analysis is only marginal there, but the
+//              stiff mode resonates with the slow motion (Hairer & Lubich's numerical
+//              resonances): energy drifts or blows up. The band is the phase h sqrt(hi) that the
+//              fastest mode of the linearised U advances per step (measured on FPU: the bad
+//              band widens with h sqrt(hi)), or resonance_width * pi if wider.
+// What it cannot guarantee: K and M need not commute and K changes along the solution, so this is
+// a per-eigenvalue model of the linearisation; a range [lo, hi] estimated at the initial state
+// can be exceeded later. An h it accepts is not a proof of bounded energy, and a flagged h is not
+// a proof of blow-up (an unexcited mode cannot resonate).
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "erkn/method.hpp"
+#include "erkn/stability.hpp"
+#include "erkn/system.hpp"
+
+namespace erkn {
+
+/// Bounds on the eigenvalues of the Hessian of U (the kappa range above).
+struct HessianBounds {
+  double lo = 0, hi = 0;
+};
+
+struct AdvisorOptions {
+  /// Flags h sqrt(lambda) within max(resonance_width * pi, coupling_factor * h sqrt(hi)) of a
+  /// multiple k pi, k >= 1 (hi: the upper Hessian bound).
+  double resonance_width = 0.01;
+  double coupling_factor = 3;
+  /// Flags V within this relative distance of a pole (wider than the integrator's refusal).
+  double pole_margin = 1e-3;
+  /// |tr S| > 2 + trace_tolerance is unstable.
+  double trace_tolerance = kTraceTolerance;
+  /// Points sampled in [h^2 lo, h^2 hi] (the ends and 0, if inside, are always among them).
+  int z_samples = 33;
+  /// The suggestion is searched in [h (1 - max_change), h (1 + max_change)], relative steps of
+  /// search_step, nearest first (the smaller of two equally near).
+  double max_change = 0.5;
+  double search_step = 1e-3;
+};
+
+enum class Hazard { unstable, resonance, pole };
+std::string_view to_string(Hazard hazard);
+
+struct AdvisorFinding {
+  Eigen::Index index = 0;  ///< of the eigenvalue (Stiffness::eigenvalues() order)
+  double lambda = 0, V = 0;
+  Hazard hazard = Hazard::unstable;
+  double z = 0;      ///< unstable: the sampled z with the largest |tr S|
+  double trace = 0;  ///< unstable: tr S(V, z) there; resonance: tr S(V, 0)
+  double pole = 0;   ///< pole: the pole; resonance: k pi
+};
+
+struct StepSizeAdvice {
+  double h = 0;
+  HessianBounds hessian;
+  std::vector<AdvisorFinding> findings;  ///< empty: no warning for h
+  /// The nearest h without findings, or NaN when none lies within max_change of h.
+  double suggested_h = 0;
+  bool safe() const { return findings.empty(); }
+  /// A human-readable account: every finding, then the suggestion.
+  std::string report(const Method& method) const;
+};
+
+/// The advice for h given M's eigenvalues and the Hessian bounds; erkn::Error on invalid input
+/// (h not finite and > 0, non-finite or negative eigenvalues, lo > hi, invalid options).
+StepSizeAdvice advise_step_size(const Method& method, const Eigen::VectorXd& eigenvalues, double h,
+                                HessianBounds hessian, const AdvisorOptions& options = {});
+
+/// The Hessian bounds at q: the extreme eigenvalues of System::hessian at q, or of a
+/// finite-difference Hessian of System::gradient without it (d gradient evaluations; d <= 2000).
+HessianBounds hessian_bounds_at(const System& system, const Eigen::VectorXd& q);
+
+/// advise_step_size with M's eigenvalues and the Hessian bounds at q0.
+StepSizeAdvice advise_step_size(const Method& method, const System& system, double h,
+                                const Eigen::VectorXd& q0, const AdvisorOptions& options = {});
+
+}  // namespace erkn

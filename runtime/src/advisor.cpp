@@ -1,0 +1,209 @@
+#include "erkn/advisor.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include "erkn/error.hpp"
+#include "format.hpp"
+
+namespace erkn {
+namespace {
+
+void validate(const Eigen::VectorXd& eigenvalues, double h, HessianBounds k,
+              const AdvisorOptions& o) {
+  if (!std::isfinite(h) || h <= 0)
+    throw Error("advise_step_size: h must be finite and > 0; got " + format(h));
+  if (eigenvalues.size() == 0) throw Error("advise_step_size: no eigenvalues of M given");
+  for (Eigen::Index i = 0; i < eigenvalues.size(); ++i)
+    if (!std::isfinite(eigenvalues[i]) || eigenvalues[i] < 0)
+      throw Error("advise_step_size: eigenvalue " + std::to_string(i) +
+                  " of M = " + format(eigenvalues[i]) + " is not finite and >= 0");
+  if (!std::isfinite(k.lo) || !std::isfinite(k.hi) || k.lo > k.hi)
+    throw Error("advise_step_size: the Hessian bounds [" + format(k.lo) + ", " + format(k.hi) +
+                "] are not a finite range");
+  const bool ok = o.resonance_width >= 0 && o.resonance_width < 0.5 && o.pole_margin >= 0 &&
+                  o.pole_margin < 1 && o.trace_tolerance >= 0 && o.z_samples >= 2 &&
+                  o.z_samples <= 100000 && o.max_change >= 0 && o.max_change < 1 &&
+                  o.search_step > 0 && std::isfinite(o.trace_tolerance) && o.coupling_factor >= 0 &&
+                  std::isfinite(o.coupling_factor);
+  if (!ok)
+    throw Error(
+        "advise_step_size: invalid AdvisorOptions (need 0 <= resonance_width < 0.5, 0 <= "
+        "pole_margin < 1, finite trace_tolerance >= 0, 2 <= z_samples <= 100000, 0 <= "
+        "max_change < 1, search_step > 0)");
+}
+
+// The sampled kappa values: z_samples points spanning [lo, hi], and 0 when inside.
+std::vector<double> kappa_samples(HessianBounds k, int n) {
+  std::vector<double> kappa;
+  if (k.lo < 0 && k.hi > 0) kappa.push_back(0.0);
+  for (int j = 0; j < n; ++j) kappa.push_back(k.lo + (k.hi - k.lo) * j / (n - 1));
+  return kappa;  // (hi last)
+}
+
+// The worst finding for one eigenvalue at step h, if any.
+bool check(const Method& method, double h, double lambda, const std::vector<double>& kappa,
+           const AdvisorOptions& o, AdvisorFinding& f) {
+  const bool erkn = method.kind() == Kind::erkn;
+  const double V = h * h * lambda;
+  f.lambda = lambda, f.V = V;
+  if (erkn) {
+    if (V > generated::kPoleSearchMax || method.pole_within(V, o.pole_margin) > 0) {
+      f.hazard = Hazard::pole;
+      f.pole = V > generated::kPoleSearchMax ? std::numeric_limits<double>::infinity()
+                                             : method.pole_within(V, o.pole_margin);
+      return true;
+    }
+  }
+  const Coefficients c = method.at(erkn ? V : 0.0, 0.0);
+  double worst = 0;
+  for (double kappa : kappa) {
+    const StabilityMatrix S = stability_matrix(method, c, V, h * h * kappa);
+    const double excess =
+        S.finite() ? std::abs(S.trace()) - 2 : std::numeric_limits<double>::infinity();
+    if (excess > o.trace_tolerance && excess > worst) {
+      worst = excess;
+      f.hazard = Hazard::unstable, f.z = h * h * kappa, f.trace = S.trace();
+    }
+  }
+  if (worst > 0) return true;
+  if (erkn && lambda > 0) {
+    // The band: resonance_width * pi, or the phase h sqrt(kappa_max) that the slowest-to-fastest
+    // mode of the linearised U advances per step, if wider (coupling_factor times: 3, the harmonics of a cubic force).
+    const double x = h * std::sqrt(lambda), k = std::round(x / std::numbers::pi);
+    const double band = std::max(o.resonance_width * std::numbers::pi,
+                                 o.coupling_factor * h * std::sqrt(std::max(kappa.back(), 0.0)));
+    if (k >= 1 && std::abs(x - k * std::numbers::pi) < band) {
+      f.hazard = Hazard::resonance, f.trace = 2 * std::cos(x), f.pole = k * std::numbers::pi;
+      return true;
+    }
+  }
+  return false;
+}
+
+// True when no eigenvalue gives a finding at h (stops at the first).
+bool clean(const Method& method, double h, const Eigen::VectorXd& lambdas,
+           const std::vector<double>& kappa, const AdvisorOptions& o) {
+  AdvisorFinding f;
+  for (double lambda : lambdas)
+    if (check(method, h, lambda, kappa, o, f)) return false;
+  return true;
+}
+
+}  // namespace
+
+std::string_view to_string(Hazard hazard) {
+  switch (hazard) {
+    case Hazard::unstable:
+      return "unstable";
+    case Hazard::resonance:
+      return "resonance";
+    case Hazard::pole:
+      return "pole";
+  }
+  return "?";
+}
+
+StepSizeAdvice advise_step_size(const Method& method, const Eigen::VectorXd& eigenvalues, double h,
+                                HessianBounds hessian, const AdvisorOptions& o) {
+  validate(eigenvalues, h, hessian, o);
+  const std::vector<double> kappa = kappa_samples(hessian, o.z_samples);
+  StepSizeAdvice advice;
+  advice.h = h, advice.hessian = hessian;
+  for (Eigen::Index i = 0; i < eigenvalues.size(); ++i) {
+    AdvisorFinding f;
+    f.index = i;
+    if (check(method, h, eigenvalues[i], kappa, o, f)) advice.findings.push_back(f);
+  }
+  if (advice.safe()) {
+    advice.suggested_h = h;
+    return advice;
+  }
+  // Distinct eigenvalues are enough for the search.
+  std::vector<double> distinct(eigenvalues.begin(), eigenvalues.end());
+  std::sort(distinct.begin(), distinct.end());
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+  const Eigen::VectorXd lambdas =
+      Eigen::Map<const Eigen::VectorXd>(distinct.data(), distinct.size());
+  advice.suggested_h = std::numeric_limits<double>::quiet_NaN();
+  for (long j = 1; j * o.search_step <= o.max_change; ++j)
+    for (double sign : {-1.0, 1.0}) {
+      const double candidate = h * (1 + sign * double(j) * o.search_step);
+      if (candidate > 0 && clean(method, candidate, lambdas, kappa, o)) {
+        advice.suggested_h = candidate;
+        return advice;
+      }
+    }
+  return advice;
+}
+
+std::string StepSizeAdvice::report(const Method& method) const {
+  std::ostringstream s;
+  s << method.name() << ", h = " << format(h, 12) << ", Hessian of U in [" << format(hessian.lo)
+    << ", " << format(hessian.hi) << "]: ";
+  if (safe()) {
+    s << "no eigenvalue of M in an unstable band, at a resonance or near a pole\n";
+    return s.str();
+  }
+  s << findings.size() << " eigenvalue(s) of M flagged\n";
+  for (const AdvisorFinding& f : findings) {
+    s << "  eigenvalue " << f.index << ": lambda = " << format(f.lambda)
+      << ", V = h^2 lambda = " << format(f.V) << ": " << to_string(f.hazard);
+    if (f.hazard == Hazard::unstable)
+      s << " (|tr S(V, z)| = " << format(std::abs(f.trace), 15) << " > 2 at z = " << format(f.z)
+        << ")";
+    else if (f.hazard == Hazard::resonance)
+      s << " (h sqrt(lambda) = " << format(std::sqrt(f.V)) << " near "
+        << format(f.pole / std::numbers::pi, 3) << " pi; tr S(V, 0) = " << format(f.trace) << ")";
+    else
+      s << " (pole v = " << format(f.pole) << ")";
+    s << "\n";
+  }
+  if (std::isnan(suggested_h))
+    s << "no step size within the searched range avoids them\n";
+  else
+    s << "nearest step size without findings: h = " << format(suggested_h, 12) << "\n";
+  return s.str();
+}
+
+HessianBounds hessian_bounds_at(const System& system, const Eigen::VectorXd& q) {
+  const Eigen::Index d = q.size();
+  if (d == 0 || !q.allFinite()) throw Error("hessian_bounds_at: q is empty or not finite");
+  if (d > 2000)
+    throw Error("hessian_bounds_at: d = " + std::to_string(d) +
+                " > 2000; give the Hessian bounds of U instead");
+  Eigen::MatrixXd K(d, d);
+  if (system.hessian) {
+    system.hessian(q, K);
+  } else {
+    if (!system.gradient) throw Error("hessian_bounds_at: System::gradient is not set");
+    Eigen::VectorXd g0(d), g(d), x = q;
+    system.gradient(q, g0);
+    for (Eigen::Index j = 0; j < d; ++j) {
+      const double step = 1e-6 * std::max(1.0, std::abs(q[j]));
+      x[j] = q[j] + step;
+      system.gradient(x, g);
+      x[j] = q[j];
+      K.col(j) = (g - g0) / step;
+    }
+  }
+  if (K.rows() != d || K.cols() != d || !K.allFinite())
+    throw Error("hessian_bounds_at: the Hessian at q is not a finite " + std::to_string(d) + "x" +
+                std::to_string(d) + " matrix");
+  const Eigen::MatrixXd sym = 0.5 * (K + K.transpose());
+  const Eigen::VectorXd kappa =
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(sym, Eigen::EigenvaluesOnly).eigenvalues();
+  return {kappa.minCoeff(), kappa.maxCoeff()};
+}
+
+StepSizeAdvice advise_step_size(const Method& method, const System& system, double h,
+                                const Eigen::VectorXd& q0, const AdvisorOptions& options) {
+  return advise_step_size(method, system.M.eigenvalues(), h, hessian_bounds_at(system, q0),
+                          options);
+}
+
+}  // namespace erkn
