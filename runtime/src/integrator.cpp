@@ -185,7 +185,7 @@ void Integrator::set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p, d
 
 void Integrator::set_step_size(double h) {
   require_step_size(h);
-  if (options_.check_stability) require_advised(method_, system(), h, q_);
+  if (options_.check_stability) require_advised(method_, system(), h, q());
   auto fresh = make_stepper(method_, system(), h, options_, q_.size());
   fresh->set_state(q(), p());  // (the summation errors are dropped)
   t_base_ = t();
