@@ -73,7 +73,9 @@ bool check(const Method& method, double h, double lambda, const std::vector<doub
   if (worst > 0) return true;
   if (erkn && lambda > 0) {
     // The band: resonance_width * pi, or the phase h sqrt(kappa_max) that the slowest-to-fastest
-    // mode of the linearised U advances per step, if wider (coupling_factor times: 3, the harmonics of a cubic force).
+    // mode of the linearised U advances per step, if wider (coupling_factor times: the harmonics of
+    // a cubic force and a Hessian that grows along the solution; 3 left SERKN2s3 at 3 pi -> 1.65 pi
+    // unbounded).
     const double x = h * std::sqrt(lambda), k = std::round(x / std::numbers::pi);
     const double band = std::max(o.resonance_width * std::numbers::pi,
                                  o.coupling_factor * h * std::sqrt(std::max(kappa.back(), 0.0)));

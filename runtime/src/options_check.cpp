@@ -20,8 +20,8 @@ void require(bool ok, const char* field, double value, const char* range) {
 
 void validate(const Options& o) {
   const auto finite = [](double x) { return std::isfinite(x); };
-  require(finite(o.tolerance) && o.tolerance > 0 && o.tolerance < 1, "tolerance", o.tolerance,
-          "finite and in (0, 1)");
+  require(finite(o.tolerance) && o.tolerance >= 0 && o.tolerance < 1, "tolerance", o.tolerance,
+          "finite and in [0, 1) (0: iterate until the updates stagnate at round-off)");
   require(finite(o.roundoff_level) && o.roundoff_level > 0 && o.roundoff_level < 1,
           "roundoff_level", o.roundoff_level, "finite and in (0, 1)");
   require(o.max_fixed_point_iterations >= 1, "max_fixed_point_iterations",

@@ -37,7 +37,7 @@ TEST(Reliability, EveryOptionsFieldIsValidated) {
     std::function<void(Options&)> set;
   };
   const std::vector<Case> cases = {
-      {"tolerance", [](Options& o) { o.tolerance = 0; }},
+      {"tolerance", [](Options& o) { o.tolerance = -1e-14; }},
       {"tolerance", [](Options& o) { o.tolerance = kNaN; }},
       {"roundoff_level", [](Options& o) { o.roundoff_level = -1e-12; }},
       {"roundoff_level", [](Options& o) { o.roundoff_level = kInf; }},

@@ -39,9 +39,10 @@ struct HessianBounds {
 
 struct AdvisorOptions {
   /// Flags h sqrt(lambda) within max(resonance_width * pi, coupling_factor * h sqrt(hi)) of a
-  /// multiple k pi, k >= 1 (hi: the upper Hessian bound).
+  /// multiple k pi, k >= 1 (hi: the upper Hessian bound). 4 is the smallest whole factor whose
+  /// suggestions ran bounded in every FPU test of tests/runtime/advisor_test.cpp.
   double resonance_width = 0.01;
-  double coupling_factor = 3;
+  double coupling_factor = 4;
   /// Flags V within this relative distance of a pole (wider than the integrator's refusal).
   double pole_margin = 1e-3;
   /// |tr S| > 2 + trace_tolerance is unstable.
