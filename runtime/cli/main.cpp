@@ -3,9 +3,11 @@
 //   erkn tableau NAME ...          coefficients at a v, Taylor series, or poles (JSON)
 //   erkn run ...                   the paper's problems against peers: charts, docs/results.md
 //   erkn stability NAME|all ...    stability regions of S(V, z) (CSV and charts)
+//   erkn advise NAME --h H ...     step sizes the stability analysis warns against, and why
 #include <iostream>
 #include <string>
 
+#include "advise_command.hpp"
 #include "erkn/error.hpp"
 #include "run_command.hpp"
 #include "stability_command.hpp"
@@ -22,6 +24,7 @@ int main(int argc, char** argv) {
     if (command == "tableau") return erkn::cli::tableau_command(argc - 1, argv + 1);
     if (command == "run") return erkn::cli::run_command(argc - 1, argv + 1);
     if (command == "stability") return erkn::cli::stability_command(argc - 1, argv + 1);
+    if (command == "advise") return erkn::cli::advise_command(argc - 1, argv + 1);
   } catch (const std::exception& e) {
     std::cerr << e.what() << "\n";
     return 1;
@@ -29,6 +32,8 @@ int main(int argc, char** argv) {
   std::cerr << "usage: erkn list [--json] | --version\n"
                "       erkn tableau NAME (--v X | --series K | --poles VMAX)\n"
                "       erkn run [--quick | --full] [experiment options; erkn run --help]\n"
-               "       erkn stability NAME|all [--vmax V --zmin Z --zmax Z --grid N --out DIR]\n";
+               "       erkn stability NAME|all [--vmax V --zmin Z --zmax Z --grid N --out DIR]\n"
+               "       erkn advise NAME --h H (--spectrum L1,... | --problem P1|P2|P3)"
+               " [--hessian LO,HI]\n";
   return 2;
 }

@@ -8,6 +8,7 @@
 // Charts need gnuplot on PATH; without it the CSVs and .gp scripts are still written.
 #include "stability_command.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -41,7 +42,7 @@ int usage() {
 double number(const std::string& option, const char* text) {
   char* end = nullptr;
   const double x = std::strtod(text, &end);
-  if (end == text || *end != '\0' || !std::isfinite(x))
+  if (end == text || *end != '\0' || !std::isfinite(x) || std::isspace((unsigned char)text[0]))
     throw Error(option + " expects a finite number, got '" + text + "'");
   return x;
 }

@@ -1,5 +1,6 @@
 #include "tableau_command.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -46,7 +47,7 @@ int usage() {
 double parse_number(const char* option, const char* text) {
   char* end = nullptr;
   double x = std::strtod(text, &end);
-  if (end == text || *end != '\0' || !std::isfinite(x))
+  if (end == text || *end != '\0' || !std::isfinite(x) || std::isspace((unsigned char)text[0]))
     throw Error(std::string(option) + " expects a finite number, got '" + text + "'");
   return x;
 }

@@ -3,6 +3,7 @@
 // no signal, no hang, never exit 0 on junk.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <erkn/method.hpp>
 #include <filesystem>
 #include <random>
@@ -65,6 +66,35 @@ TEST(Cli, RefusesTheInputsOfIssue12) {
                  "not a finite number");
 }
 
+TEST(Cli, AdviseFlagsPolesAndResonancesAndAcceptsTheRest) {
+  for (const erkn::Method& m : erkn::Method::all()) {
+    const std::string name(m.name());
+    for (double P : m.poles()) {
+      const erkn::process::Result r =
+          erkn_cli({"advise", name, "--h", std::to_string(std::sqrt(P)), "--spectrum", "1"});
+      EXPECT_EQ(r.exit_code, 3) << name << r.out << r.err;
+      EXPECT_NE(r.out.find("pole"), std::string::npos) << r.out;
+    }
+    // A small h far from every band and pole (negative control).
+    const erkn::process::Result ok =
+        erkn_cli({"advise", name, "--h", "0.01", "--spectrum", "1,4", "--hessian", "0,1"});
+    EXPECT_EQ(ok.exit_code, 0) << name << ok.out << ok.err;
+    EXPECT_NE(ok.out.find("no eigenvalue of M"), std::string::npos) << ok.out;
+    if (m.kind() != erkn::Kind::erkn) continue;
+    // h sqrt(lambda) = pi exactly: the resonance band, with a suggestion.
+    const erkn::process::Result r = erkn_cli({"advise", name, "--h", "0.06283185307179587",
+                                              "--spectrum", "0,2500", "--hessian", "0,12"});
+    EXPECT_EQ(r.exit_code, 3) << name << r.out << r.err;
+    EXPECT_NE(r.out.find("resonance"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("nearest step size without findings"), std::string::npos) << r.out;
+  }
+  const erkn::process::Result p = erkn_cli({"advise", "SERKN2s4", "--h", "0.1", "--problem", "P2"});
+  EXPECT_TRUE(p.exit_code == 0 || p.exit_code == 3) << p.err;
+  EXPECT_NE(p.out.find("Hessian of U in"), std::string::npos) << p.out << p.err;
+  expect_refusal({"advise", "SERKN2s4", "--h", "0.1", "--problem", "P9"}, "unknown problem");
+  expect_refusal({"advise", "SERKN2s4", "--h", "0.1", "--spectrum", "1,,2"}, "finite numbers");
+}
+
 TEST(Cli, NoShellBetweenErknAndGnuplot) {
   const fs::path cwd = fresh_directory("injection");
   const std::string out = "d'; touch INJECTED; echo '";
@@ -95,6 +125,10 @@ const std::vector<std::pair<std::string, Args>> kJunk = {
     {"--steps", {"1/0", "abc", "", "0", "-1", "nan", "1/", "/3", "1e-300", "20", "0.1,", ",0.1"}},
     {"--methods", {"", ",", "SERKN2s4,,RKN2s4", "NOPE", "'; touch X"}},
     {"--problems", {"", "P9", ",P1", "P1,"}},
+    {"--h", {"0", "-1", "nan", "inf", "abc", "", "1e999"}},
+    {"--spectrum", {"", ",", "1,,2", "-1", "nan", "abc", "1e999"}},
+    {"--problem", {"", "P9", "p1", "'; touch X"}},
+    {"--hessian", {"", "1", "2,1", "0,nan", "0,1,2", "abc,1"}},
 };
 
 const Args& junk_for(const std::string& option) {
@@ -121,7 +155,10 @@ struct Generator {
 
   // A valid command line (option, value pairs after the command words); never a real `run`.
   Args valid() {
-    switch (index(4)) {
+    switch (index(5)) {
+      case 4:
+        return {"advise",     method(),        "--h",       number(0.001, 0.5),
+                "--spectrum", number(0, 3000), "--hessian", "0," + number(0, 20)};
       case 0:
         return {"tableau", method(), "--v", number(0, 5)};
       case 1:
@@ -188,7 +225,9 @@ TEST(Cli, FuzzedArgumentListsNeverCrashHangOrAcceptJunk) {
       EXPECT_FALSE(r.err.empty()) << "refused without a word: " << joined(args);
     } else {
       ++valid;
-      EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1) << joined(args) << "\n" << r.err;
+      EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1 || (args[0] == "advise" && r.exit_code == 3))
+          << joined(args) << "\n"
+          << r.err;
     }
   }
   EXPECT_FALSE(fs::exists(dir / "X"));
