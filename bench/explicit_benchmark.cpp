@@ -115,13 +115,18 @@ auto make_peer(const erkn::Method& m) {
 }
 
 template <class P>
-erkn::Integrator make_erkn(const erkn::Method& m, bool compensated) {
+erkn::System make_system() {
   erkn::System sys;
   sys.M = P::M();
   sys.gradient = &P::grad;
+  return sys;
+}
+
+template <class P>
+erkn::Integrator make_erkn(const erkn::Method& m, bool compensated) {
   erkn::Options o;
   o.compensated_summation = compensated;
-  return erkn::Integrator(m, std::move(sys), P::h, P::q0(), P::p0(), o);
+  return erkn::Integrator(m, make_system<P>(), P::h, P::q0(), P::p0(), o);
 }
 
 template <class F>
@@ -174,14 +179,24 @@ void per_evaluation(benchmark::State& state) {
   benchmark::DoNotOptimize(peer.q().data());
 }
 
-// Setup: constructing the integrator (default options) against constructing the peer.
+// Setup: constructing the integrator (default options) against constructing the peer, each
+// from the problem's definition (erkn: System and Stiffness included); and the Integrator's
+// constructor alone, from a System and initial state built beforehand.
 template <class P>
 void setup(benchmark::State& state) {
   const erkn::Method m = explicit_methods().at(size_t(state.range(0)));
   state.SetLabel(std::string(m.name()));
   const int batch = 16;
-  double t_erkn = 0, t_peer = 0;
+  const erkn::System system = make_system<P>();
+  const Eigen::VectorXd q0 = P::q0(), p0 = P::p0();
+  double t_erkn = 0, t_peer = 0, t_ctor = 0;
   for (auto _ : state) {
+    t_ctor += seconds([&] {
+      for (int k = 0; k < batch; ++k) {
+        erkn::Integrator run(m, system, P::h, q0, p0);
+        benchmark::DoNotOptimize(&run);
+      }
+    });
     t_erkn += seconds([&] {
       for (int k = 0; k < batch; ++k) {
         erkn::Integrator run = make_erkn<P>(m, true);
@@ -199,6 +214,8 @@ void setup(benchmark::State& state) {
   state.counters["erkn_us"] = 1e6 * t_erkn / n;
   state.counters["peer_us"] = 1e6 * t_peer / n;
   state.counters["ratio"] = t_erkn / t_peer;
+  state.counters["erkn_ctor_us"] = 1e6 * t_ctor / n;
+  state.counters["ratio_ctor"] = t_ctor / t_peer;
 }
 
 }  // namespace

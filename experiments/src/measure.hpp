@@ -11,7 +11,8 @@ struct Measurement {
   long steps = 0;
   double h = 0;
   double error = 0;  ///< max-norm of q(t_end) - reference; +inf when the run failed or blew up
-  double cpu = 0;    ///< seconds, best of the repeats, coefficient setup included
+  double cpu =
+      0;  ///< seconds, best of the repeats (runs under 1 ms: per run of a batch), setup included
   RunStats stats;
   std::string failure;  ///< empty when the run succeeded
   bool ok() const { return failure.empty(); }

@@ -56,6 +56,30 @@ std::string ratio_cell(const Best& group, const Best& peer) {
   return q ? fmt("%.2f×", *q) + " (" + group.name + ")" : "—";
 }
 
+// The CPU ratio of the best paper method to the best peer as a product of measured factors:
+// steps to the tolerance (order and error constant), grad U evaluations per step (stages and
+// stage iterations) and CPU time per evaluation (overhead). Rows where either is missing are left
+// out.
+void breakdown_section(std::ostream& md, const std::vector<ProblemResult>& problems) {
+  md << "\n### Where the best paper method's time goes, against the best peer\n\n"
+     << "CPU ratio = steps ratio × ∇U-per-step ratio × CPU-per-∇U ratio, each read off the "
+        "measured curves at the tolerance (steps: order and error constant; ∇U per step: "
+        "stages × stage iterations; CPU per ∇U: the integrator's own work and setup).\n\n"
+     << "| scene | tolerance | paper method | peer | CPU | steps | ∇U per step | CPU per ∇U |\n"
+     << "|---|--:|---|---|--:|--:|--:|--:|\n";
+  for (const ProblemResult& r : problems)
+    for (double tol : kTolerances) {
+      const Best a = best_of(r, Group::paper, tol), b = best_of(r, Group::peer, tol);
+      const Cost &x = a.cost, &y = b.cost;
+      if (!x.cpu || !x.evals || !x.steps || !y.cpu || !y.evals || !y.steps) continue;
+      const double steps = *x.steps / *y.steps, evals = *x.evals / *y.evals;
+      md << "| " << r.key << " | " << sci(tol) << " | " << a.name << " | " << b.name << " | "
+         << fmt("%.2f×", *x.cpu / *y.cpu) << " | " << fmt("%.2f×", steps) << " | "
+         << fmt("%.2f×", evals / steps) << " | "
+         << fmt("%.2f×", (*x.cpu / *x.evals) / (*y.cpu / *y.evals)) << " |\n";
+    }
+}
+
 std::string peer_cell(const Best& peer) {
   return peer.cpu ? fmt("%.3g ms", *peer.cpu * 1e3) + " (" + peer.name + ")" : "—";
 }
@@ -232,7 +256,9 @@ void write_report(const std::filesystem::path& file, const RunInfo& info,
         "iteration of the implicit stages; for the peers, every evaluation of the full force "
         "−Mq − ∇U(q).\n"
      << "- **CPU time** is process CPU time, the best of up to " << info.repeats
-     << " repeats, coefficient setup included.\n"
+     << " repeats (a run shorter than 1 ms is timed in a batch of runs of at least 1 ms, divided "
+        "by "
+        "the batch size), coefficient setup included.\n"
      << "- **To 1e-6 / 1e-9**: interpolated linearly on the log–log error curve between the two "
         "measured step sizes that first bracket the tolerance; “—” when no measured pair brackets "
         "it (never extrapolated). If the coarser run of the pair failed (unstable, or a step size "
@@ -253,6 +279,7 @@ void write_report(const std::filesystem::path& file, const RunInfo& info,
         "and the mollified impulse method of García-Archilla, Sanz-Serna & Skeel (filter sinc, "
         "order 2). All peers are written in experiments/, independently of the runtime.\n";
   md << "\n" << targets_markdown(problems, scaling);
+  breakdown_section(md, problems);
   for (const ProblemResult& r : problems) problem_section(md, r);
   if (scaling) scaling_section(md, *scaling);
   if (!stiff.empty()) stiff_section(md, stiff);

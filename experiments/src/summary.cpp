@@ -11,18 +11,24 @@ std::optional<double> min_opt(const std::optional<double>& a, const std::optiona
   return std::min(*a, *b);
 }
 
-std::vector<CurvePoint> curve(const std::vector<Measurement>& ms, bool cpu) {
+enum class Axis { evals, cpu, steps };
+
+std::vector<CurvePoint> curve(const std::vector<Measurement>& ms, Axis axis) {
   std::vector<CurvePoint> pts;
   for (const Measurement& m : ms)
-    pts.push_back({cpu ? m.cpu : double(m.stats.grad_evals), m.error});
+    pts.push_back({axis == Axis::cpu     ? m.cpu
+                   : axis == Axis::evals ? double(m.stats.grad_evals)
+                                         : double(m.steps),
+                   m.error});
   return pts;
 }
 
 }  // namespace
 
 Cost cost_to_tolerance(const std::vector<Measurement>& sweep, double tolerance) {
-  return {ex::cost_to_tolerance(curve(sweep, false), tolerance),
-          ex::cost_to_tolerance(curve(sweep, true), tolerance)};
+  return {ex::cost_to_tolerance(curve(sweep, Axis::evals), tolerance),
+          ex::cost_to_tolerance(curve(sweep, Axis::cpu), tolerance),
+          ex::cost_to_tolerance(curve(sweep, Axis::steps), tolerance)};
 }
 
 Cost best_peer(const ProblemResult& result, double tolerance) {
@@ -52,8 +58,8 @@ Best best_of(const ProblemResult& result, Group group, double tolerance) {
   Best best;
   for (const MethodResult& m : result.methods) {
     if (!in_group(m.family, m.from_paper, group)) continue;
-    const auto c = cost_to_tolerance(m.sweep, tolerance).cpu;
-    if (c && (!best.cpu || *c < *best.cpu)) best = {c, m.name};
+    const Cost cost = cost_to_tolerance(m.sweep, tolerance);
+    if (cost.cpu && (!best.cpu || *cost.cpu < *best.cpu)) best = {cost.cpu, m.name, cost};
   }
   return best;
 }
@@ -63,7 +69,7 @@ Best best_of(const ScalingResult& result, Group group, size_t i) {
   for (size_t l = 0; l < result.lines.size(); ++l) {
     if (!in_group(result.lines[l].family, result.lines[l].from_paper, group)) continue;
     const auto c = scaling_cpu(result, l, i);
-    if (c && (!best.cpu || *c < *best.cpu)) best = {c, result.lines[l].name};
+    if (c && (!best.cpu || *c < *best.cpu)) best = {c, result.lines[l].name, {}};
   }
   return best;
 }
@@ -75,7 +81,7 @@ std::optional<double> mean_stage_iterations(const RunStats& stats) {
 
 std::optional<double> scaling_cpu(const ScalingResult& result, size_t line, size_t i) {
   const auto& ms = result.lines[line].brackets[i];
-  return ex::cost_to_tolerance(curve(ms, true), result.tolerance);
+  return ex::cost_to_tolerance(curve(ms, Axis::cpu), result.tolerance);
 }
 
 std::optional<size_t> best_erkn_line(const ScalingResult& result) {

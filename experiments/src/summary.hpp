@@ -11,6 +11,7 @@ namespace ex {
 
 struct Cost {
   std::optional<double> evals, cpu;  ///< empty: tolerance not bracketed by the measurements
+  std::optional<double> steps;       ///< step count to the tolerance, read off the same way
 };
 
 Cost cost_to_tolerance(const std::vector<Measurement>& sweep, double tolerance);
@@ -27,6 +28,7 @@ bool in_group(Family family, bool from_paper, Group group);
 struct Best {
   std::optional<double> cpu;
   std::string name;
+  Cost cost;  ///< of that method at the tolerance
 };
 Best best_of(const ProblemResult& result, Group group, double tolerance);
 /// The same for the scaling scene at size index i.

@@ -23,9 +23,9 @@ Eigen::Index aligned_stride(Eigen::Index m) {
 }
 
 /// Coefficient slots evaluated at every eigen coordinate: Coef double holds one value per slot
-/// (one eigenvalue: scalar M, RKN methods), Eigen::ArrayXd an array per slot, all in one
-/// allocation; at() returns the value or a read-only map.
-template <class Coef>
+/// (one eigenvalue: scalar M, RKN methods; at most kMax slots, no allocation), Eigen::ArrayXd an
+/// array per slot, all in one allocation; at() returns the value or a read-only map.
+template <class Coef, int kMax>
 class CoefficientSlots {
  public:
   static constexpr bool kScalar = std::is_same_v<Coef, double>;
@@ -33,7 +33,9 @@ class CoefficientSlots {
       std::conditional_t<kScalar, double, Eigen::Map<const Eigen::ArrayXd, Eigen::AlignedMax>>;
 
   CoefficientSlots(int slots, Eigen::Index m)
-      : m_(m), stride_(kScalar ? 1 : aligned_stride<double>(m)), values_(slots * stride_) {}
+      : m_(m), stride_(kScalar ? 1 : aligned_stride<double>(m)) {
+    if constexpr (!kScalar) values_.resize(slots * stride_);
+  }
   void set(int slot, Eigen::Index e, double x) { values_[slot * stride_ + e] = x; }
   Value at(int slot) const {
     if constexpr (kScalar)
@@ -44,7 +46,7 @@ class CoefficientSlots {
 
  private:
   Eigen::Index m_, stride_;
-  Eigen::ArrayXd values_;
+  std::conditional_t<kScalar, std::array<double, kMax>, Eigen::ArrayXd> values_{};
 };
 
 /// The exact flow of q'' + M q = 0 over tau_k = h (c_k - c_{k-1}), k = 0..s (c_{-1} = 0,
@@ -52,8 +54,10 @@ class CoefficientSlots {
 /// p -= h d_k grad U(Q_k) (DESIGN.md section 1, the explicit family).
 template <class Coef>
 class FlowCoefficients {
+  using Slots = CoefficientSlots<Coef, 3 * (kMaxStages + 1)>;
+
  public:
-  using Value = typename CoefficientSlots<Coef>::Value;
+  using Value = typename Slots::Value;
 
   FlowCoefficients(const Method& method, double h, const Eigen::VectorXd& lambda)
       : s_(method.stages()), slots_(3 * (s_ + 1), lambda.size()) {
@@ -78,17 +82,18 @@ class FlowCoefficients {
  private:
   int s_;
   std::array<bool, kMaxStages + 1> moves_{};
-  CoefficientSlots<Coef> slots_;
+  Slots slots_;
 };
 
 template <class Coef>
 class StepCoefficients {
-  using Value = typename CoefficientSlots<Coef>::Value;
   // Slots of the flat layout, per stage i (and j <= i).
   static constexpr int kPhi0c = 0, kHcphi1c = kMaxStages, kH2bbar = 2 * kMaxStages,
                        kHb = 3 * kMaxStages, kH2abar = 4 * kMaxStages,
                        kPhi0m1 = kH2abar + kMaxStages * (kMaxStages + 1) / 2, kHphi1 = kPhi0m1 + 1,
                        kMhMphi1 = kPhi0m1 + 2, kSlots = kPhi0m1 + 3;
+  using Slots = CoefficientSlots<Coef, kSlots>;
+  using Value = typename Slots::Value;
 
  public:
   /// v_k = h^2 lambda_k; lambda must have one entry when Coef is double. The caller has checked
@@ -129,7 +134,7 @@ class StepCoefficients {
  private:
   Value at(int slot) const { return slots_.at(slot); }
 
-  CoefficientSlots<Coef> slots_;
+  Slots slots_;
 };
 
 }  // namespace erkn::detail
