@@ -354,7 +354,7 @@ GridSceneConfig grid_scene_config(bool full, const SweepPolicy& sweep) {
   GridSceneConfig c;
   c.sweep = sweep;
   c.sweep.timing.repeats = std::min(c.sweep.timing.repeats, 3);
-  c.sweep.max_steps = full ? 16384 : 1024;  // (order-2 methods and Verlet are the costly lines)
+  c.sweep.max_steps = full ? 16384 : 256;  // (order-2 methods and Verlet are the costly lines)
   if (full) {
     c.sg_sizes = {128, 256, 512, 1024}, c.kg_sizes = {32, 64, 128};
     c.sg_step_sizes = {64, 128, 256, 512, 1024}, c.kg_step_sizes = {16, 32, 64, 128};  // (<= sizes)
