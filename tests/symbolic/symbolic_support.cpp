@@ -86,7 +86,11 @@ Series raw_series(const ex& e, int K) {
 
 }  // namespace
 
-std::string abar_name(int i, int j) { return "abar" + std::to_string(i) + std::to_string(j); }
+std::string abar_name(int i, int j) {
+  // abar21 as the paper writes it; from 10 stages on the indices need a separator (abar11_1).
+  const std::string sep = i >= 10 || j >= 10 ? "_" : "";
+  return "abar" + std::to_string(i) + sep + std::to_string(j);
+}
 
 namespace {
 // A decimal literal in a table's text: [begin, end) of "123.456e-7", its digits without the point
