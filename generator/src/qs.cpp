@@ -172,12 +172,56 @@ numeric Qs::to_float(int digits) const {
 
 double Qs::to_double() const { return to_float(40).to_double(); }
 
+namespace {
+// x to `digits` significant digits in plain decimal notation. The digits of a kApproxDigits-digit
+// float beyond that carry the roundoff of its computation, which depends on the order GiNaC
+// evaluates terms in; printing them would make regeneration irreproducible.
+std::string rounded(const numeric& x, int digits) {
+  std::ostringstream os;
+  os << GiNaC::abs(x);
+  std::string t = os.str(), mantissa;
+  long exponent = 0;  // value = 0.mantissa * 10^exponent
+  const size_t e = t.find_first_of("eE");
+  if (e != std::string::npos) exponent = std::stol(t.substr(e + 1)), t = t.substr(0, e);
+  const size_t dot = t.find('.');
+  exponent += long(dot == std::string::npos ? t.size() : dot);
+  for (char ch : t)
+    if (ch != '.') mantissa += ch;
+  const size_t first = mantissa.find_first_not_of('0');
+  if (first == std::string::npos) return "0";
+  exponent -= long(first);
+  mantissa = mantissa.substr(first);
+  if (mantissa.size() > size_t(digits)) {
+    const bool up = mantissa[digits] >= '5';
+    mantissa.resize(digits);
+    for (long i = digits - 1; up && i >= -1; --i) {
+      if (i < 0) {
+        mantissa.insert(mantissa.begin(), '1'), ++exponent, mantissa.pop_back();
+        break;
+      }
+      if (mantissa[i] == '9') {
+        mantissa[i] = '0';
+        continue;
+      }
+      ++mantissa[i];
+      break;
+    }
+  }
+  while (mantissa.size() > 1 && mantissa.back() == '0') mantissa.pop_back();
+  std::string out = x.is_negative() ? "-" : "";
+  if (exponent <= 0)
+    out += "0." + std::string(size_t(-exponent), '0') + mantissa;
+  else if (size_t(exponent) >= mantissa.size())
+    out += mantissa + std::string(size_t(exponent) - mantissa.size(), '0');
+  else
+    out += mantissa.substr(0, size_t(exponent)) + "." + mantissa.substr(size_t(exponent));
+  return out;
+}
+}  // namespace
+
 std::string Qs::to_string() const {
   std::ostringstream os;
-  if (approx_) {
-    os << a_;
-    return os.str();
-  }
+  if (approx_) return rounded(a_, kPrintDigits);
   if (b_.is_zero()) {
     os << a_;
     return os.str();

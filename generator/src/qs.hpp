@@ -16,6 +16,9 @@ namespace erkn::gen {
 class Qs {
  public:
   static constexpr int kApproxDigits = 60;
+  /// Significant digits an approximate constant is printed with (to_string): below the working
+  /// precision, so that the printed digits do not depend on the order of evaluation.
+  static constexpr int kPrintDigits = 50;
   static const GiNaC::numeric& approx_zero();  ///< 1e-45
   Qs() = default;
   Qs(long n) : a_(n) {}  // NOLINT: integers convert implicitly, like GiNaC::numeric
