@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Finds SERKN4s6 of generator/methods.spec: a 4-stage diagonal implicit symplectic ERKN method of
-order 6 with constant diagonal abar_ii (entire coefficients, no poles).
+"""Finds SERKN4s6, a 4-stage diagonal implicit symplectic ERKN method of order 6 with constant
+diagonal abar_ii (entire coefficients, no poles). The generator certifies it (order 6); it is not
+in methods.spec yet because the runtime order test cannot resolve order 6 (issue 8 notes).
 
 Its V -> 0 limit is a symplectic diagonally implicit RKN method: b = d, bbar = d (1 - c),
 a_ij = d_j (c_i - c_j) (j < i), a_ii free. This script solves the classical order conditions of

@@ -31,6 +31,7 @@ TEST(NewtonKrylov, SolvesStagesFixedPointCannotAndAgreesWithDenseNewtonPerCoordi
     p0[k] = std::cos(0.07 * k);
   }
   for (const Method& method : Method::all()) {
+    if (method.is_explicit()) continue;  // abar_ii = 0: no stage equation
     SCOPED_TRACE(std::string(method.name()));
     Integrator big(method, decoupled(m, kappa), h, q0, p0);
     for (int n = 0; n < 5; ++n) big.step();
@@ -66,6 +67,7 @@ TEST(NewtonKrylov, StageWithoutSolutionIsAnError) {
   s.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = 1e5 * q.array().sign(); };
   const Eigen::VectorXd q0 = Eigen::VectorXd::Constant(kD, 0.01), p0 = Eigen::VectorXd::Zero(kD);
   for (const Method& m : methods_of(Kind::erkn)) {
+    if (m.is_explicit()) continue;  // abar_ii = 0: no stage equation
     SCOPED_TRACE(std::string(m.name()));
     Integrator run(m, s, 0.1, q0, p0);
     try {
