@@ -19,7 +19,7 @@ class ErknSolver : public Solver {
   // The paper's methods are its diagonal implicit ERKN methods and their V -> 0 limits; the
   // registry marks the explicit (splitting) family, which the paper does not contain. (An implicit
   // method from another source would need a registry flag of its own: there is none yet.)
-  bool from_paper() const override { return !method_.is_explicit(); }
+  bool from_paper() const override { return method_.from_paper(); }
   std::optional<double> first_unstable_z() const override {
     return ex::first_unstable_z([this](double z) {
       const erkn::StabilityClass c = erkn::classify(erkn::stability_matrix(method_, 0, z));

@@ -232,7 +232,8 @@ std::string table_entry(const Derived& m, bool rkn) {
   std::ostringstream os;
   os << "    {" << quoted(name) << ", " << quoted(id) << ", " << m.stages() << ", " << cert.order
      << ", " << (rkn ? "true" : "false") << ", "
-     << (m.spec.kind == SpecKind::explicit_erkn ? "true" : "false") << ",\n     " << quoted(ref)
+     << (m.spec.kind == SpecKind::explicit_erkn ? "true" : "false") << ", "
+     << (m.spec.paper ? "true" : "false") << ",\n     " << quoted(ref)
      << ",\n     "
      << (rkn ? std::string("nullptr, 0")
              : id + "::generalized_order, std::size(" + id + "::generalized_order)")

@@ -83,6 +83,7 @@ std::vector<MethodSpec> read_specs(std::istream& in) {
       m.rkn = value;
     } else if (key == "source" || key == "section") {
       m.source = value;
+      m.paper = key == "section";
     } else if (key == "stages") {
       m.stages = std::stoi(value);
     } else if (key == "order") {

@@ -15,6 +15,7 @@ struct MethodSpec {
   SpecKind kind = SpecKind::erkn;
   std::string rkn;     ///< the name of its V -> 0 limit (empty: none emitted)
   std::string source;  ///< where the method comes from (paper section, article and table)
+  bool paper = false;  ///< given by `section`: a method of the source paper (Shi, Zhang & Wang)
   int stages = 0;
   int order = 0;  ///< claimed; erkn-generate refuses the spec unless it certifies it
   /// Claimed generalized order for H = A + eps B: order in h of the eps^K terms, K = 1, 2, ...

@@ -53,7 +53,7 @@ double parse_number(const char* option, const char* text) {
 }
 
 // One JSON object per method: name, kind, stages, certified order, generalized order, poles,
-// source.
+// source, and whether it is one of the paper's methods.
 void list_json() {
   std::cout << "[";
   bool first = true;
@@ -65,7 +65,8 @@ void list_json() {
               << ", \"stages\": " << m.stages() << ", \"order\": " << m.order()
               << ", \"generalized_order\": " << json_list(generalized)
               << ", \"poles\": " << json_list(poles)
-              << ", \"source\": " << json_string(std::string(m.reference())) << "}";
+              << ", \"source\": " << json_string(std::string(m.reference()))
+              << ", \"paper\": " << (m.from_paper() ? "true" : "false") << "}";
     first = false;
   }
   std::cout << "\n]\n";

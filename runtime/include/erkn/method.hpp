@@ -46,6 +46,8 @@ class Method {
   Kind kind() const { return table_->rkn ? Kind::rkn : Kind::erkn; }
   /// abar_ii = 0: every stage is explicit (a splitting method: exact linear flow and kicks).
   bool is_explicit() const { return table_->explicit_method; }
+  /// A method of the source paper (Shi, Zhang & Wang) or its V -> 0 limit: the spec's `section`.
+  bool from_paper() const { return table_->paper; }
   /// "erkn", "explicit" or "rkn" (the spec's kind; explicit methods are erkn methods).
   std::string_view kind_name() const;
   /// Certified order in h of the eps^K terms (index K-1) for H = A + eps B; empty for RKN

@@ -15,6 +15,7 @@ struct Table {
   int order;
   bool rkn;               ///< true: V -> 0 limit (constant coefficients, force -Mq - grad U)
   bool explicit_method;   ///< abar_ii = 0: a splitting method (exact linear flow and kicks)
+  bool paper;             ///< a method of the source paper (or its V -> 0 limit)
   const char* reference;  ///< where the method comes from
   /// For H = A + eps B: generalized_order[K-1] is the order in h of the eps^K terms of the
   /// local error (certified, capped at the powers checked); empty for RKN limits.
