@@ -66,13 +66,19 @@ double energy_error(const Method& m, double h, long n) {
   return worst;
 }
 
-// Issue 12's resonant step sizes h omega: flagged for every ERKN method; their 2e4-step run's
-// energy error is at least 10 times that of a 1e5-step run at the suggested h, which stays
-// below 0.5 (a bounded, if coarse, run: errors at flagged h reach 1e1 .. 1e17).
+// Issue 12's resonant step sizes h omega: flagged for every implicit ERKN method; their
+// 2e4-step run's energy error is at least 10 times that of a 1e5-step run at the suggested h,
+// which stays below 0.5 (a bounded, if coarse, run: errors at flagged h reach 1e1 .. 1e17).
+// Explicit (splitting) methods are flagged too, but their runs at h omega = k pi need not blow
+// up (SABA4 at pi: energy error 5e-4), so the run comparison is made for implicit methods only.
 void expect_predicted(double h_omega) {
   Eigen::VectorXd q, p;
   fpu_initial(q, p);
   for (const Method& m : methods_of(Kind::erkn)) {
+    if (m.is_explicit()) {
+      EXPECT_FALSE(advise_step_size(m, fpu(), h_omega / kOmega, q).safe()) << m.name();
+      continue;
+    }
     SCOPED_TRACE(std::string(m.name()) + " at h omega / pi = " + std::to_string(h_omega / kPi));
     const double h = h_omega / kOmega;
     const StepSizeAdvice advice = advise_step_size(m, fpu(), h, q);

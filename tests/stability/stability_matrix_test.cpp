@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "support.hpp"
@@ -105,11 +106,14 @@ TEST(StabilityMatrix, RknDependsOnlyOnTheTotalForce) {
 }
 
 // Symplectic: det S = 1 up to round-off relative to |s11 s22| + |s12 s21|, everywhere on the
-// charted grid (also next to poles and singular lines, where S is huge).
+// charted grid (also next to poles and singular lines, where S is huge). The bound is 1e4 ulp:
+// S's entries are themselves sums of larger terms (the pole-free SERKN2s4pf, with constant
+// abar_ii, reaches 1.03e-12 on this grid); a perturbed weight gives 1e-6 (next test).
 TEST(StabilityMatrix, DeterminantIsOneOverTheChartedGrid) {
   for (const Method& m : Method::all()) {
     const StabilityGrid g = stability_grid(m, 100, -50, 50, 201, 201);
-    EXPECT_LE(g.max_det_relative_deviation, 1e-12) << m.name();
+    EXPECT_LE(g.max_det_relative_deviation, 1e4 * std::numeric_limits<double>::epsilon())
+        << m.name();
     RecordProperty(std::string(m.id_name()) + "_max_det_dev_bounded",
                    std::to_string(g.max_det_deviation_bounded));
   }
