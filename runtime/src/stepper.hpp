@@ -381,9 +381,7 @@ class Stepper final : public StepperBase {
       ++stats.newton_iterations, ++stats.stage_iterations;
       const double delta = Q_new_.norm() / std::max(Q_.norm(), 1e-300);
       if (!std::isfinite(delta)) break;  // the Jacobian is singular
-      const double theta = it > 1 ? delta / delta_old : 1;
-      if (delta == 0 || (theta < 1 && theta / (1 - theta) * delta <= options_.tolerance) ||
-          (it > 1 && theta >= 1 && delta <= options_.roundoff_level)) {
+      if (newton_converged(delta, delta_old, it)) {
         // h^2 abar_ii |Hessian| may be large here, so G(i) must be the gradient at the final Q.
         force(Q_, i, stats);
         transform_.forward(g_, G(i));
@@ -392,6 +390,15 @@ class Stepper final : public StepperBase {
       delta_old = delta;
     }
     not_converged(i, residual, it);
+  }
+
+  // The stop of both Newton solvers: iteration it (1-based) changed Q by delta (relative), the
+  // one before by delta_old; converged when the contraction theta proves the tolerance or the
+  // iteration stagnates at round-off.
+  bool newton_converged(double delta, double delta_old, int it) const {
+    const double theta = it > 1 ? delta / delta_old : 1;
+    return delta == 0 || (theta < 1 && theta / (1 - theta) * delta <= options_.tolerance) ||
+           (it > 1 && theta >= 1 && delta <= options_.roundoff_level);
   }
 
   [[noreturn]] void not_converged(int i, double residual, int iterations) const {
@@ -441,9 +448,7 @@ class Stepper final : public StepperBase {
       ++stats.newton_iterations, ++stats.stage_iterations;
       const double delta = Q_new_.norm() / std::max(Q_.norm(), 1e-300);
       if (!std::isfinite(delta)) break;
-      const double theta = it > 1 ? delta / delta_old : 1;
-      if (delta == 0 || (theta < 1 && theta / (1 - theta) * delta <= options_.tolerance) ||
-          (it > 1 && theta >= 1 && delta <= options_.roundoff_level)) {
+      if (newton_converged(delta, delta_old, it)) {
         force(Q_, i, stats);
         transform_.forward(g_, G(i));
         return;
