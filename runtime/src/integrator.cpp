@@ -4,9 +4,11 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "erkn/advisor.hpp"
 #include "erkn/error.hpp"
+#include "explicit_stepper.hpp"
 #include "format.hpp"
 #include "options_check.hpp"
 #include "step_size_check.hpp"
@@ -49,40 +51,50 @@ double grid_tolerance(double t, double t_end, double h) {
 // N = 128 35 vs 24 us, N = 256 113 vs 55 us.
 constexpr Eigen::Index kFourierBasisMaxN = 64;
 
+// The stepper of the method's kind over the eigenbasis Transform with coefficients Coef.
+template <class Transform, class Coef, class... Args>
+std::unique_ptr<detail::StepperBase> stepper_of(bool explicit_method, Args&&... args) {
+  if (explicit_method)
+    return std::make_unique<detail::ExplicitStepper<Transform, Coef>>(std::forward<Args>(args)...);
+  return std::make_unique<detail::Stepper<Transform, Coef>>(std::forward<Args>(args)...);
+}
+
 std::unique_ptr<detail::StepperBase> make_stepper(const Method& method, System system, double h,
                                                   const Options& options, Eigen::Index d) {
   using namespace detail;
   check_step_size(method, h, system.M.eigenvalues(), options.pole_tolerance);
   const Stiffness M = system.M;  // (system is moved into the stepper)
   const Eigen::VectorXd& lambda = M.eigenvalues();
+  const bool x = explicit_stages(method);
   if (method.kind() == Kind::rkn)
-    return std::make_unique<Stepper<IdentityTransform, double>>(
-        method, std::move(system), h, options, IdentityTransform{}, Eigen::VectorXd::Zero(1), d);
+    return stepper_of<IdentityTransform, double>(x, method, std::move(system), h, options,
+                                                 IdentityTransform{}, Eigen::VectorXd::Zero(1), d);
   switch (M.structure()) {
     case Stiffness::Structure::scalar:
-      return std::make_unique<Stepper<IdentityTransform, double>>(
-          method, std::move(system), h, options, IdentityTransform{}, lambda, d);
+      return stepper_of<IdentityTransform, double>(x, method, std::move(system), h, options,
+                                                   IdentityTransform{}, lambda, d);
     case Stiffness::Structure::diagonal:
-      return std::make_unique<Stepper<IdentityTransform, Eigen::ArrayXd>>(
-          method, std::move(system), h, options, IdentityTransform{}, lambda, d);
+      return stepper_of<IdentityTransform, Eigen::ArrayXd>(x, method, std::move(system), h, options,
+                                                           IdentityTransform{}, lambda, d);
     case Stiffness::Structure::dense:
-      return std::make_unique<Stepper<OrthogonalTransform, Eigen::ArrayXd>>(
-          method, std::move(system), h, options, OrthogonalTransform{&M.eigenvectors()}, lambda, d);
+      return stepper_of<OrthogonalTransform, Eigen::ArrayXd>(
+          x, method, std::move(system), h, options, OrthogonalTransform{&M.eigenvectors()}, lambda,
+          d);
     case Stiffness::Structure::circulant:
       if (d <= kFourierBasisMaxN)
-        return std::make_unique<Stepper<FourierBasisTransform, Eigen::ArrayXd>>(
-            method, std::move(system), h, options, FourierBasisTransform(d),
+        return stepper_of<FourierBasisTransform, Eigen::ArrayXd>(
+            x, method, std::move(system), h, options, FourierBasisTransform(d),
             FourierBasisTransform::coordinate_eigenvalues(lambda, d), d);
       if (grid_backend_is_fftw())
-        return std::make_unique<Stepper<GridTransform, Eigen::ArrayXd>>(
-            method, std::move(system), h, options,
+        return stepper_of<GridTransform, Eigen::ArrayXd>(
+            x, method, std::move(system), h, options,
             GridTransform({{d, 1.0, GridAxis::Boundary::periodic}}),
             GridTransform::halfcomplex_eigenvalues(lambda, d), d);
-      return std::make_unique<Stepper<RealFftTransform, Eigen::ArrayXd>>(
-          method, std::move(system), h, options, RealFftTransform(d), lambda, d);
+      return stepper_of<RealFftTransform, Eigen::ArrayXd>(x, method, std::move(system), h, options,
+                                                          RealFftTransform(d), lambda, d);
     case Stiffness::Structure::grid:
-      return std::make_unique<Stepper<GridTransform, Eigen::ArrayXd>>(
-          method, std::move(system), h, options, GridTransform(M.axes()), lambda, d);
+      return stepper_of<GridTransform, Eigen::ArrayXd>(x, method, std::move(system), h, options,
+                                                       GridTransform(M.axes()), lambda, d);
   }
   throw Error("unknown structure of M");
 }

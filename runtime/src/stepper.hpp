@@ -1,5 +1,6 @@
-// The step of eq. (d), generic over M's eigenbasis (Transform) and the coefficient type (Coef).
-// Stages run in eigen coordinates; gradients are evaluated in physical coordinates.
+// The step of eq. (d) for methods with implicit stages, generic over M's eigenbasis (Transform)
+// and the coefficient type (Coef). Stages run in eigen coordinates; gradients are evaluated in
+// physical coordinates. Explicit methods step in explicit_stepper.hpp.
 #pragma once
 
 #include <Eigen/Core>
@@ -19,36 +20,11 @@
 #include "format.hpp"
 #include "gmres.hpp"
 #include "m_operator.hpp"
+#include "stage_checks.hpp"
 #include "step_coefficients.hpp"
+#include "stepper_base.hpp"
 
 namespace erkn::detail {
-
-/// True when every diagonal coefficient abar_ii is identically zero (the generator's closed form
-/// is "0"): the stages are explicit and the method is a splitting of the exact linear flow and
-/// kicks (DESIGN.md section 1).
-inline bool explicit_stages(const Method& method) {
-  const int s = method.stages();
-  for (int i = 0; i < s; ++i)
-    if (std::string_view(method.table().closed_forms[2 * s + i * (i + 1) / 2 + i]) != "0")
-      return false;
-  return true;
-}
-
-/// Advances (q, p), held in M's eigen coordinates between steps (with their compensated-summation
-/// errors); physical coordinates only where grad U is evaluated and when asked for.
-class StepperBase {
- public:
-  virtual ~StepperBase() = default;
-  /// Replaces the state; forgets the stage history and the summation errors.
-  virtual void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p) = 0;
-  /// Writes the state in physical coordinates.
-  virtual void get_state(Eigen::VectorXd& q, Eigen::VectorXd& p) = 0;
-  /// One step (step_number 1-based and t at its start, for messages); on error the state is
-  /// unchanged.
-  virtual void step(long step_number, double t, Statistics& stats) = 0;
-  virtual void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) = 0;
-  virtual System& system() = 0;
-};
 
 template <class Transform, class Coef>
 class Stepper final : public StepperBase {
@@ -64,9 +40,6 @@ class Stepper final : public StepperBase {
         system_(std::move(system)),
         options_(options),
         rkn_(method.kind() == Kind::rkn),
-        explicit_(explicit_stages(method)),
-        fsal_(explicit_ && method.stages() > 1 && method.table().c[0] == 0 &&
-              method.table().c[method.stages() - 1] == 1),
         h_(h),
         d_(d),
         s_(method.stages()),
@@ -81,20 +54,14 @@ class Stepper final : public StepperBase {
         ep_hat_(slot(3), m_),
         qw_hat_(slot(4), m_),
         pw_hat_(slot(5), m_),
-        eqw_hat_(slot(6), m_),
-        epw_hat_(slot(7), m_),
-        r_hat_(slot(8), m_),
-        Q_hat_(slot(9), m_),
-        Q_hat_new_(slot(10), m_),
-        guess_hat_(slot(11), m_),
+        r_hat_(slot(6), m_),
+        Q_hat_(slot(7), m_),
+        Q_hat_new_(slot(8), m_),
+        guess_hat_(slot(9), m_),
         G_(slot(kSlots)),
         G_old_(slot(kSlots + s_)) {
     for (Eigen::VectorXd* x : {&Q_, &g_}) x->setZero(d);
     if (rkn_) Mq_.setZero(d);
-    if (explicit_) {
-      flows_.emplace(method, h, lambda);
-      return;
-    }
     k_.emplace(method, h, lambda);
     for (int i = 0; i < s_; ++i) {
       const auto ratio = [&](const auto& num) {
@@ -140,10 +107,7 @@ class Stepper final : public StepperBase {
   void step(long step_number, double t, Statistics& stats) override {
     step_number_ = step_number;
     t_ = t;
-    if (explicit_)
-      explicit_step(stats);
-    else
-      implicit_step(stats);
+    implicit_step(stats);
     std::swap(G_, G_old_);  // (the pointers)
     have_history_ = true;
     ++stats.steps;
@@ -154,7 +118,7 @@ class Stepper final : public StepperBase {
 
  private:
   // Slots of spectral_ before the stage gradients.
-  static constexpr int kSlots = 12;
+  static constexpr int kSlots = 10;
 
   // Eq. (d): the stages one by one, then the update, added to the state only at the end.
   void implicit_step(Statistics& stats) {
@@ -177,85 +141,12 @@ class Stepper final : public StepperBase {
       dq -= k.h2bbar(i) * G(i);
       dp -= k.hb(i) * G(i);
     }
-    require_finite_result(q_hat_ + dq, p_hat_ + dp);
+    require_finite_result(q_hat_ + dq, p_hat_ + dp, place());
     add(q_hat_, eq_hat_, dq);
     add(p_hat_, ep_hat_, dp);
   }
 
-  // A step whose q_{n+1} or p_{n+1} would not be finite fails before it changes the state.
-  template <class Q, class P>
-  void require_finite_result(const Q& q_new, const P& p_new) const {
-    const bool q_ok = q_new.allFinite();
-    if (q_ok && p_new.allFinite()) return;
-    throw Error("step " + std::to_string(step_number_) + " (t = " + format(t_) + ") of " +
-                std::string(method_.name()) + " gives a non-finite " + (q_ok ? "p" : "q") +
-                " (is h unstable for this problem? see erkn::advise_step_size); the state "
-                "before the step is kept");
-  }
-
-  // An explicit method as the flows over tau_k and the kicks p -= h d_k g_k it is, on a copy
-  // of the state that replaces it once every gradient has been evaluated. With c_1 = 0 and
-  // c_s = 1 the first kick reuses the last gradient of the previous step (FSAL).
-  void explicit_step(Statistics& stats) {
-    const double* d = method_.table().d;
-    qw_hat_ = q_hat_;
-    pw_hat_ = p_hat_;
-    if (options_.compensated_summation) eqw_hat_ = eq_hat_, epw_hat_ = ep_hat_;
-    for (int i = 0; i < s_; ++i) {
-      flow(i);
-      if (i == 0 && fsal_ && have_history_) {
-        kick(h_ * d[0], G_old(s_ - 1));
-        continue;
-      }
-      transform_.inverse(qw_hat_, Q_);
-      force(Q_, i, stats);
-      transform_.forward(g_, G(i));
-      ++stats.stage_iterations;
-      kick(h_ * d[i], G(i));
-    }
-    flow(s_);
-    require_finite_result(qw_hat_, pw_hat_);
-    for (auto [a, b] : {std::pair{&q_hat_, &qw_hat_},
-                        {&p_hat_, &pw_hat_},
-                        {&eq_hat_, &eqw_hat_},
-                        {&ep_hat_, &epw_hat_}})
-      swap_views(*a, *b);
-  }
-
-  // (q, p) <- exact flow over tau_k, as increments (compensated when enabled): one pass.
-  void flow(int k) {
-    const FlowCoefficients<Coef>& f = *flows_;
-    if (!f.moves(k)) return;
-    const auto cm1 = f.cm1(k), sinc = f.sinc(k), msinc = f.msinc(k);
-    const bool kahan = options_.compensated_summation;
-    for (Eigen::Index e = 0; e < m_; ++e) {
-      const Scalar q = qw_hat_[e], p = pw_hat_[e];
-      const double c = at(cm1, e);
-      add(qw_hat_[e], eqw_hat_[e], c * q + at(sinc, e) * p, kahan);
-      add(pw_hat_[e], epw_hat_[e], at(msinc, e) * q + c * p, kahan);
-    }
-  }
-
-  void kick(double hd, const SpectralMap& g) {
-    const bool kahan = options_.compensated_summation;
-    for (Eigen::Index e = 0; e < m_; ++e) add(pw_hat_[e], epw_hat_[e], -hd * g[e], kahan);
-  }
-
-  // x += dx for one entry, Kahan-compensated when kahan (error: the low-order bits lost).
-  static void add(Scalar& x, Scalar& error, Scalar dx, bool kahan) {
-    if (!kahan) {
-      x += dx;
-      return;
-    }
-    const Scalar y = dx + error, t = x + y;
-    error = (x - t) + y;
-    x = t;
-  }
-  static double at(double value, Eigen::Index) { return value; }
-  template <class Map>
-  static double at(const Map& values, Eigen::Index e) {
-    return values[e];
-  }
+  StepPlace place() const { return {&method_, step_number_, t_}; }
 
   // r_i = phi0(c_i^2 V) q + h c_i phi1(c_i^2 V) p - h^2 sum_{j<i} abar_ij g_j, and the starting
   // guess Q = r_i - h^2 abar_ii g_pred with g_pred extrapolated from the previous step.
@@ -536,25 +427,7 @@ class Stepper final : public StepperBase {
   }
 
   void gradient(const Eigen::VectorXd& Q, Eigen::VectorXd& g, int i, Statistics& stats) {
-    if (!Q.allFinite())
-      throw Error("step " + std::to_string(step_number_) + " (t = " + format(t_) + "): stage " +
-                  std::to_string(i + 1) + " of " + std::string(method_.name()) +
-                  " is not finite (is h unstable for this problem? see erkn::advise_step_size); "
-                  "the state is unchanged");
-    system_.gradient(Q, g);
-    ++stats.gradient_evaluations;
-    if (g.size() != d_) {
-      const Eigen::Index got = g.size();
-      g.resize(d_);
-      throw Error("the gradient callback returned a vector of size " + std::to_string(got) +
-                  " for q of size " + std::to_string(d_) + " (step " +
-                  std::to_string(step_number_) + ", stage " + std::to_string(i + 1) +
-                  "); the state is unchanged");
-    }
-    if (!g.allFinite())
-      throw Error("the gradient callback returned a non-finite value at step " +
-                  std::to_string(step_number_) + " (t = " + format(t_) + "), stage " +
-                  std::to_string(i + 1) + "; the state is unchanged");
+    checked_gradient(system_, Q, g, d_, i, place(), stats.gradient_evaluations);
   }
 
   // x += dx in eigen coordinates, Kahan-compensated when enabled (error carries the lost
@@ -597,12 +470,11 @@ class Stepper final : public StepperBase {
   Method method_;
   System system_;
   Options options_;
-  bool rkn_, explicit_, fsal_;
+  bool rkn_;
   double h_;
   Eigen::Index d_;
   int s_;
-  std::optional<StepCoefficients<Coef>> k_;      // implicit methods
-  std::optional<FlowCoefficients<Coef>> flows_;  // explicit methods
+  std::optional<StepCoefficients<Coef>> k_;
   Transform transform_;
   MOperator M_;
   long step_number_ = 0;  // of the step being taken, and its t, for messages
@@ -614,12 +486,11 @@ class Stepper final : public StepperBase {
   std::array<double, kMaxStages> weight_{};
   std::array<double, kMaxStages> newton_cost_{};  // evaluations of its last Newton solve; 0: none
   // The arrays in eigen coordinates, m_ entries each and stride_ apart in spectral_ (one
-  // allocation): the state (q, p) and its summation errors, a working copy of them (the explicit
-  // step; the implicit one keeps its increments dq, dp there), four stage arrays, then the s
-  // stage gradients of this step (G_) and of the last (G_old_).
+  // allocation): the state (q, p) and its summation errors, the increments dq, dp of a step,
+  // four stage arrays, then the s stage gradients of this step (G_) and of the last (G_old_).
   Eigen::Index m_, stride_;
   Spectral spectral_;
-  SpectralMap q_hat_, p_hat_, eq_hat_, ep_hat_, qw_hat_, pw_hat_, eqw_hat_, epw_hat_;
+  SpectralMap q_hat_, p_hat_, eq_hat_, ep_hat_, qw_hat_, pw_hat_;
   SpectralMap r_hat_, Q_hat_, Q_hat_new_, guess_hat_;
   Scalar *G_, *G_old_;
   Eigen::VectorXd Q_, g_, Mq_;  // (Q_, g_ go to the callbacks)

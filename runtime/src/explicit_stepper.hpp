@@ -1,0 +1,198 @@
+// The step of an explicit method (every abar_ii identically 0), generic over M's eigenbasis
+// (Transform) and the coefficient type (Coef). Such a method is a splitting (DESIGN.md section 1,
+// the explicit family) and steps as one: exact flows of q'' + M q = 0 over tau_k =
+// h (c_k - c_{k-1}) (c_0 = 0 before the first node, c_{s+1} = 1 after the last) alternated with
+// kicks p -= h d_k g_k, g_k = grad U(Q_k) (+ M Q_k for RKN methods), each one pass over the
+// eigen coordinates (Kahan-compensated when enabled). The first pass reads the state and every
+// pass writes a second copy of it, which replaces the state once every gradient has been
+// evaluated: a failed step leaves the state unchanged. With c_1 = 0 and c_s = 1 the first kick
+// reuses the previous step's last gradient (FSAL).
+#pragma once
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <utility>
+
+#include "erkn/integrator.hpp"
+#include "m_operator.hpp"
+#include "stage_checks.hpp"
+#include "step_coefficients.hpp"
+#include "stepper_base.hpp"
+
+namespace erkn::detail {
+
+template <class Transform, class Coef>
+class ExplicitStepper final : public StepperBase {
+  using Spectral = typename Transform::Spectral;
+  using Scalar = typename Spectral::Scalar;
+  using SpectralMap = Eigen::Map<Spectral, Eigen::AlignedMax>;
+
+  /// One copy of the state in eigen coordinates: q, p and their summation errors.
+  struct State {
+    Scalar *q, *p, *eq, *ep;
+  };
+
+ public:
+  /// lambda: M's eigenvalue of each eigen coordinate ({0} for RKN methods, whose force then
+  /// includes M q).
+  ExplicitStepper(const Method& method, System system, double h, const Options& options,
+                  Transform transform, const Eigen::VectorXd& lambda, Eigen::Index d)
+      : method_(method),
+        system_(std::move(system)),
+        kahan_(options.compensated_summation),
+        rkn_(method.kind() == Kind::rkn),
+        s_(method.stages()),
+        fsal_(s_ > 1 && method.table().c[0] == 0 && method.table().c[s_ - 1] == 1),
+        d_(d),
+        flows_(method, h, lambda),
+        transform_(std::move(transform)),
+        M_(system_.M, d),
+        m_(transform_.spectral_size(d)),
+        stride_(aligned_stride<Scalar>(m_)),
+        spectral_(Spectral::Zero(kArrays * stride_)),
+        state_{slot(0), slot(1), slot(2), slot(3)},
+        work_{slot(4), slot(5), slot(6), slot(7)},
+        G_(slot(8)),
+        G_last_(slot(9)),
+        Q_(Eigen::VectorXd::Zero(d)),
+        g_(Eigen::VectorXd::Zero(d)) {
+    for (int i = 0; i < s_; ++i) hd_[i] = h * method.table().d[i];
+    if (rkn_) Mq_.setZero(d);
+  }
+
+  ExplicitStepper(const ExplicitStepper&) = delete;  // (the pointers view its own buffer)
+  ExplicitStepper& operator=(const ExplicitStepper&) = delete;
+
+  void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p) override {
+    transform_.forward(q, map(state_.q));
+    transform_.forward(p, map(state_.p));
+    map(state_.eq).setZero();
+    map(state_.ep).setZero();
+    have_history_ = false;
+  }
+
+  void get_state(Eigen::VectorXd& q, Eigen::VectorXd& p) override {
+    transform_.inverse(map(state_.q), q);
+    transform_.inverse(map(state_.p), p);
+  }
+
+  void step(long step_number, double t, Statistics& stats) override {
+    place_.step = step_number;
+    place_.t = t;
+    if (kahan_)
+      passes<true>(stats);
+    else
+      passes<false>(stats);
+    std::swap(state_, work_);
+    std::swap(G_, G_last_);  // (FSAL: the last stage's gradient)
+    have_history_ = true;
+    ++stats.steps;
+  }
+
+  void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) override { M_.apply(x, y); }
+  System& system() override { return system_; }
+
+ private:
+  // The state and its copy (4 arrays each), the gradient of the current stage and the last
+  // stage's gradient of the previous step.
+  static constexpr int kArrays = 10;
+
+  // The flows and kicks from state_ into work_ (without summation errors when !kKahan: they
+  // then stay zero).
+  template <bool kKahan>
+  void passes(Statistics& stats) {
+    State from = state_;
+    for (int i = 0; i < s_; ++i) {
+      if (flows_.moves(i)) {
+        flow<kKahan>(i, from);
+        from = work_;
+      }
+      if (i == 0 && fsal_ && have_history_) {
+        kick<kKahan>(hd_[0], G_last_, from);
+      } else {
+        evaluate(from.q, i, stats);
+        kick<kKahan>(hd_[i], G_, from);
+      }
+      from = work_;
+    }
+    if (flows_.moves(s_)) flow<kKahan>(s_, work_);
+    require_finite_result(map(work_.q), map(work_.p), place_);
+  }
+
+  // work_ = the exact flow over tau_k of `from` (which may be work_ itself).
+  template <bool kKahan>
+  void flow(int k, const State& from) {
+    const auto cm1 = flows_.cm1(k), sinc = flows_.sinc(k), msinc = flows_.msinc(k);
+    for (Eigen::Index e = 0; e < m_; ++e) {
+      const Scalar q = from.q[e], p = from.p[e];
+      const double c = at(cm1, e);
+      add<kKahan>(q, from.eq[e], c * q + at(sinc, e) * p, work_.q[e], work_.eq[e]);
+      add<kKahan>(p, from.ep[e], at(msinc, e) * q + c * p, work_.p[e], work_.ep[e]);
+    }
+  }
+
+  // work_ = `from` with p -= hd g.
+  template <bool kKahan>
+  void kick(double hd, const Scalar* g, const State& from) {
+    for (Eigen::Index e = 0; e < m_; ++e)
+      add<kKahan>(from.p[e], from.ep[e], -hd * g[e], work_.p[e], work_.ep[e]);
+    if (from.q == work_.q) return;
+    std::copy_n(from.q, m_, work_.q);
+    if (kKahan) std::copy_n(from.eq, m_, work_.eq);
+  }
+
+  // x_out = x + dx, Kahan-compensated when kKahan (error: the low-order bits lost so far).
+  template <bool kKahan>
+  static void add(Scalar x, Scalar error, Scalar dx, Scalar& x_out, Scalar& error_out) {
+    if constexpr (kKahan) {
+      const Scalar y = dx + error, t = x + y;
+      error_out = (x - t) + y;
+      x_out = t;
+    } else {
+      x_out = x + dx;
+    }
+  }
+
+  // G_ = the force at the stage q (eigen coordinates), evaluated in physical coordinates.
+  void evaluate(Scalar* q, int i, Statistics& stats) {
+    transform_.inverse(map(q), Q_);
+    checked_gradient(system_, Q_, g_, d_, i, place_, stats.gradient_evaluations);
+    if (rkn_) {
+      M_.apply(Q_, Mq_);
+      g_ += Mq_;
+    }
+    transform_.forward(g_, map(G_));
+    ++stats.stage_iterations;
+  }
+
+  static double at(double value, Eigen::Index) { return value; }
+  template <class Map>
+  static double at(const Map& values, Eigen::Index e) {
+    return values[e];
+  }
+
+  Scalar* slot(int k) { return spectral_.data() + k * stride_; }
+  SpectralMap map(Scalar* x) const { return {x, m_}; }
+
+  Method method_;
+  System system_;
+  bool kahan_, rkn_;
+  int s_;
+  bool fsal_;
+  Eigen::Index d_;
+  std::array<double, kMaxStages> hd_{};  // h d_i
+  FlowCoefficients<Coef> flows_;
+  Transform transform_;
+  MOperator M_;
+  // kArrays arrays in eigen coordinates, m_ entries each and stride_ apart (one allocation).
+  Eigen::Index m_, stride_;
+  Spectral spectral_;
+  State state_, work_;
+  Scalar *G_, *G_last_;
+  Eigen::VectorXd Q_, g_, Mq_;  // physical coordinates (Q_, g_ go to the callback)
+  bool have_history_ = false;
+  StepPlace place_{&method_, 0, 0};
+};
+
+}  // namespace erkn::detail

@@ -1,0 +1,39 @@
+// The interface of a stepper (one method, one step size, one System) and the choice between the
+// two kinds: Stepper (stepper.hpp, implicit stages) and ExplicitStepper (explicit_stepper.hpp).
+#pragma once
+
+#include <Eigen/Core>
+#include <string_view>
+
+#include "erkn/integrator.hpp"
+
+namespace erkn::detail {
+
+/// True when every diagonal coefficient abar_ii is identically zero (the generator's closed form
+/// is "0"): the stages are explicit and the method is a splitting of the exact linear flow and
+/// kicks (DESIGN.md section 1).
+inline bool explicit_stages(const Method& method) {
+  const int s = method.stages();
+  for (int i = 0; i < s; ++i)
+    if (std::string_view(method.table().closed_forms[2 * s + i * (i + 1) / 2 + i]) != "0")
+      return false;
+  return true;
+}
+
+/// Advances (q, p), held in M's eigen coordinates between steps (with their compensated-summation
+/// errors); physical coordinates only where grad U is evaluated and when asked for.
+class StepperBase {
+ public:
+  virtual ~StepperBase() = default;
+  /// Replaces the state; forgets the stage history and the summation errors.
+  virtual void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p) = 0;
+  /// Writes the state in physical coordinates.
+  virtual void get_state(Eigen::VectorXd& q, Eigen::VectorXd& p) = 0;
+  /// One step (step_number 1-based and t at its start, for messages); on error the state is
+  /// unchanged.
+  virtual void step(long step_number, double t, Statistics& stats) = 0;
+  virtual void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) = 0;
+  virtual System& system() = 0;
+};
+
+}  // namespace erkn::detail
