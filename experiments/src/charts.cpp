@@ -82,13 +82,6 @@ void write_outputs(std::ostream& gp, const std::string& stem, const std::string&
      << plot << "\nunset output\n";
 }
 
-void run_gnuplot(const fs::path& charts_dir, const std::string& script) {
-  erkn::process::Request gnuplot;
-  gnuplot.argv = {"gnuplot", script};
-  gnuplot.working_directory = charts_dir.string();
-  erkn::process::run_checked(gnuplot);
-}
-
 std::ofstream open(const fs::path& p) {
   std::ofstream f(p);
   if (!f) throw std::runtime_error("cannot write " + p.string());
@@ -97,6 +90,13 @@ std::ofstream open(const fs::path& p) {
 }
 
 }  // namespace
+
+void run_gnuplot(const fs::path& charts_dir, const std::string& script) {
+  erkn::process::Request gnuplot;
+  gnuplot.argv = {"gnuplot", script};
+  gnuplot.working_directory = charts_dir.string();
+  erkn::process::run_checked(gnuplot);
+}
 
 void chart_problem(const ProblemResult& r, const fs::path& charts_dir) {
   fs::create_directories(charts_dir / "data");

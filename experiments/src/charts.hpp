@@ -17,6 +17,9 @@ void chart_scaling(const ScalingResult& result, const std::filesystem::path& cha
 /// with each method's failed runs drawn as crosses on the top edge: where it becomes unstable).
 void chart_stiff(const ProblemResult& result, const std::filesystem::path& charts_dir);
 
+/// Runs `gnuplot <script>` in charts_dir (no shell); throws when gnuplot fails.
+void run_gnuplot(const std::filesystem::path& charts_dir, const std::string& script);
+
 /// Lower-case file-name form of a method or problem name ("SERKN3s4(1)" -> "serkn3s4_1").
 std::string slug(const std::string& name);
 

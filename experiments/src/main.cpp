@@ -88,18 +88,24 @@ int run(const Options& o, const std::string& command) {
   if (stiff) stiff_results = run_stiff(solvers, stiff_config, o.config, progress);
   for (const StiffResult& s : stiff_results) chart_stiff(s.result, charts);
   progress.finish();
-  if (grids)
-    run_grid_scenes(grid_scene_config(o.mode == "full", o.config.sweep), select(o.methods), o.out,
-                    command);
-  const double wall =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::vector<ProblemResult> raw = results;  // the raw files list the stiff scene's sweeps too
-  for (const StiffResult& s : stiff_results) raw.push_back(s.result);
-  write_raw_results(charts, raw, scaled);
-  write_report(o.out / "results.md", {command, o.mode, wall, o.config.sweep.timing.repeats},
-               results, scaled, stiff_results);
-  std::printf("%s\nwrote %s and %s/ in %.0f s\n", targets_markdown(results, scaled).c_str(),
-              (o.out / "results.md").c_str(), charts.c_str(), wall);
+  // results.md first: the grid scenes run last, and a failure there must not lose it.
+  if (!keys.empty() || scaling || stiff) {
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::vector<ProblemResult> raw = results;  // the raw files list the stiff scene's sweeps too
+    for (const StiffResult& s : stiff_results) raw.push_back(s.result);
+    write_raw_results(charts, raw, scaled);
+    write_report(o.out / "results.md", {command, o.mode, wall, o.config.sweep.timing.repeats},
+                 results, scaled, stiff_results);
+    std::printf("%s\nwrote %s and %s/ in %.0f s\n", targets_markdown(results, scaled).c_str(),
+                (o.out / "results.md").c_str(), charts.c_str(), wall);
+  }
+  if (grids && !run_grid_scenes(grid_scene_config(o.mode == "full", o.config.sweep),
+                                select(o.methods), o.out, command)) {
+    std::fprintf(stderr, "erkn-experiments: the grid scenes failed in part (see %s)\n",
+                 (o.out / "grids.md").c_str());
+    return 1;
+  }
   return 0;
 }
 

@@ -69,7 +69,7 @@ std::string usage() {
          "                        [--methods NAME,...] [--steps H,...] [--out DIR] [--list]\n"
          "  --quick      small sweep (default): step factor 2, best of up to 5 timings\n"
          "  --full       fine sweep: step factor sqrt 2, up to 2e6 steps, best of 7 timings\n"
-         "  --problems   which scenes to run (default: all but grids; grids writes docs/grids.md)\n"
+         "  --problems   which scenes to run (default: all; grids writes DIR/grids.md)\n"
          "  --methods    the paper's names, e.g. SERKN3s4(1),RKN3s4(1),Gauss2 (default: all)\n"
          "  --steps      fixed step sizes on [0, 10], e.g. 1/40,1/80 (no extension)\n"
          "  --out DIR    writes DIR/results.md and DIR/charts/ (default: docs)\n"
