@@ -6,12 +6,14 @@
 // eigen coordinates (Kahan-compensated when enabled). The first pass reads the state and every
 // pass writes a second copy of it, which replaces the state once every gradient has been
 // evaluated: a failed step leaves the state unchanged. With c_1 = 0 and c_s = 1 the first kick
-// reuses the previous step's last gradient (FSAL).
+// reuses the previous step's last gradient (FSAL). D: the dimension when it is a compile-time
+// constant (tiny systems with M's identity eigenbasis: every pass then unrolls).
 #pragma once
 
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
+#include <type_traits>
 #include <utility>
 
 #include "erkn/integrator.hpp"
@@ -22,11 +24,13 @@
 
 namespace erkn::detail {
 
-template <class Transform, class Coef>
+template <class Transform, class Coef, int D = Eigen::Dynamic>
 class ExplicitStepper final : public StepperBase {
   using Spectral = typename Transform::Spectral;
   using Scalar = typename Spectral::Scalar;
   using SpectralMap = Eigen::Map<Spectral, Eigen::AlignedMax>;
+  static constexpr bool kIdentity = std::is_same_v<Transform, IdentityTransform>;
+  static_assert(D == Eigen::Dynamic || kIdentity, "a fixed dimension needs the identity basis");
 
   /// One copy of the state in eigen coordinates: q, p and their summation errors.
   struct State {
@@ -80,14 +84,17 @@ class ExplicitStepper final : public StepperBase {
   void step(long step_number, double t, Statistics& stats) override {
     place_.step = step_number;
     place_.t = t;
+    long evaluations = 0;  // (counted into stats once the step has succeeded)
     if (kahan_)
-      passes<true>(stats);
+      passes<true>(evaluations);
     else
-      passes<false>(stats);
+      passes<false>(evaluations);
     std::swap(state_, work_);
     std::swap(G_, G_last_);  // (FSAL: the last stage's gradient)
     have_history_ = true;
     ++stats.steps;
+    stats.gradient_evaluations += evaluations;
+    stats.stage_iterations += evaluations;
   }
 
   void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) override { M_.apply(x, y); }
@@ -101,45 +108,57 @@ class ExplicitStepper final : public StepperBase {
   // The flows and kicks from state_ into work_ (without summation errors when !kKahan: they
   // then stay zero).
   template <bool kKahan>
-  void passes(Statistics& stats) {
+  void passes(long& evaluations) {
     State from = state_;
     for (int i = 0; i < s_; ++i) {
+      const bool reuse = i == 0 && fsal_ && have_history_;
+      // In the identity basis the flow writes the stage's Q_ as it goes and the kick saves the
+      // gradient to G_ (for FSAL): no pass reloads what the last one stored.
+      double* const Q = kIdentity && !reuse ? Q_.data() : nullptr;
+      bool have_Q = false;
       if (flows_.moves(i)) {
-        flow<kKahan>(i, from);
+        flow<kKahan>(i, from, Q);
         from = work_;
+        have_Q = Q != nullptr;
       }
-      if (i == 0 && fsal_ && have_history_) {
-        kick<kKahan>(hd_[0], G_last_, from);
-      } else {
-        evaluate(from.q, i, stats);
-        kick<kKahan>(hd_[i], G_, from);
-      }
+      if (reuse)
+        kick<kKahan>(hd_[0], G_last_, from, nullptr);
+      else
+        kick<kKahan>(hd_[i], evaluate(from.q, have_Q, i, evaluations), from,
+                     kIdentity ? G_ : nullptr);
       from = work_;
     }
-    if (flows_.moves(s_)) flow<kKahan>(s_, work_);
-    require_finite_result(map(work_.q), map(work_.p), place_);
+    if (flows_.moves(s_)) flow<kKahan>(s_, work_, nullptr);
+    const bool q_ok = all_finite(work_.q, n());
+    if (!q_ok || !all_finite(work_.p, n())) non_finite_result(q_ok, place_);
   }
 
-  // work_ = the exact flow over tau_k of `from` (which may be work_ itself).
+  // work_ = the exact flow over tau_k of `from` (which may be work_ itself); its q also to Q
+  // when given (identity basis only).
   template <bool kKahan>
-  void flow(int k, const State& from) {
+  void flow(int k, const State& from, double* Q) {
     const auto cm1 = flows_.cm1(k), sinc = flows_.sinc(k), msinc = flows_.msinc(k);
-    for (Eigen::Index e = 0; e < m_; ++e) {
+    for (Eigen::Index e = 0; e < n(); ++e) {
       const Scalar q = from.q[e], p = from.p[e];
       const double c = at(cm1, e);
       add<kKahan>(q, from.eq[e], c * q + at(sinc, e) * p, work_.q[e], work_.eq[e]);
       add<kKahan>(p, from.ep[e], at(msinc, e) * q + c * p, work_.p[e], work_.ep[e]);
+      if constexpr (kIdentity)
+        if (Q) Q[e] = work_.q[e];
     }
   }
 
-  // work_ = `from` with p -= hd g.
+  // work_ = `from` with p -= hd g; g also to save when given.
   template <bool kKahan>
-  void kick(double hd, const Scalar* g, const State& from) {
-    for (Eigen::Index e = 0; e < m_; ++e)
-      add<kKahan>(from.p[e], from.ep[e], -hd * g[e], work_.p[e], work_.ep[e]);
+  void kick(double hd, const Scalar* g, const State& from, Scalar* save) {
+    for (Eigen::Index e = 0; e < n(); ++e) {
+      const Scalar ge = g[e];
+      add<kKahan>(from.p[e], from.ep[e], -hd * ge, work_.p[e], work_.ep[e]);
+      if (save) save[e] = ge;
+    }
     if (from.q == work_.q) return;
-    std::copy_n(from.q, m_, work_.q);
-    if (kKahan) std::copy_n(from.eq, m_, work_.eq);
+    std::copy_n(from.q, n(), work_.q);
+    if (kKahan) std::copy_n(from.eq, n(), work_.eq);
   }
 
   // x_out = x + dx, Kahan-compensated when kKahan (error: the low-order bits lost so far).
@@ -154,16 +173,33 @@ class ExplicitStepper final : public StepperBase {
     }
   }
 
-  // G_ = the force at the stage q (eigen coordinates), evaluated in physical coordinates.
-  void evaluate(Scalar* q, int i, Statistics& stats) {
-    transform_.inverse(map(q), Q_);
-    checked_gradient(system_, Q_, g_, d_, i, place_, stats.gradient_evaluations);
+  // The force at the stage q (eigen coordinates; already in Q_ when have_Q), evaluated in
+  // physical coordinates: in eigen coordinates in G_, or (identity basis) in g_.
+  const Scalar* evaluate(Scalar* q, bool have_Q, int i, long& evaluations) {
+    if constexpr (kIdentity) {
+      if (!have_Q) std::copy_n(q, n(), Q_.data());
+    } else {
+      transform_.inverse(map(q), Q_);
+    }
+    checked_gradient<D>(system_, Q_, g_, d_, i, place_, evaluations);
     if (rkn_) {
       M_.apply(Q_, Mq_);
       g_ += Mq_;
     }
-    transform_.forward(g_, map(G_));
-    ++stats.stage_iterations;
+    if constexpr (kIdentity) {
+      return g_.data();
+    } else {
+      transform_.forward(g_, map(G_));
+      return G_;
+    }
+  }
+
+  // The number of eigen coordinates (a constant when D is).
+  Eigen::Index n() const {
+    if constexpr (D == Eigen::Dynamic)
+      return m_;
+    else
+      return D;
   }
 
   static double at(double value, Eigen::Index) { return value; }

@@ -4,6 +4,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
+#include <complex>
+#include <limits>
 #include <string>
 
 #include "erkn/error.hpp"
@@ -20,11 +23,24 @@ struct StepPlace {
   double t = 0;
 };
 
+/// True when x[0..n) are all finite: one pass without early exit (vectorises; n may be a constant).
+inline bool all_finite(const double* x, Eigen::Index n) {
+  bool ok = true;
+  for (Eigen::Index k = 0; k < n; ++k) ok &= std::abs(x[k]) <= std::numeric_limits<double>::max();
+  return ok;
+}
+inline bool all_finite(const std::complex<double>* x, Eigen::Index n) {
+  return all_finite(reinterpret_cast<const double*>(x), 2 * n);
+}
+
 /// g = grad U(Q) (0-based stage i) through System::gradient, counted in evaluations, refusing a
 /// non-finite Q before the call, and a g of a size other than d or with a non-finite entry after.
-inline void checked_gradient(const System& system, const Eigen::VectorXd& Q, Eigen::VectorXd& g,
-                             Eigen::Index d, int i, const StepPlace& at, long& evaluations) {
-  if (!Q.allFinite())
+/// D: d when it is a compile-time constant.
+template <int D = Eigen::Dynamic>
+void checked_gradient(const System& system, const Eigen::VectorXd& Q, Eigen::VectorXd& g,
+                      Eigen::Index d, int i, const StepPlace& at, long& evaluations) {
+  const Eigen::Index n = D == Eigen::Dynamic ? d : D;
+  if (!all_finite(Q.data(), n))
     throw Error("step " + std::to_string(at.step) + " (t = " + format(at.t) + "): stage " +
                 std::to_string(i + 1) + " of " + std::string(at.method->name()) +
                 " is not finite (is h unstable for this problem? see erkn::advise_step_size); "
@@ -38,21 +54,25 @@ inline void checked_gradient(const System& system, const Eigen::VectorXd& Q, Eig
                 " for q of size " + std::to_string(d) + " (step " + std::to_string(at.step) +
                 ", stage " + std::to_string(i + 1) + "); the state is unchanged");
   }
-  if (!g.allFinite())
+  if (!all_finite(g.data(), n))
     throw Error("the gradient callback returned a non-finite value at step " +
                 std::to_string(at.step) + " (t = " + format(at.t) + "), stage " +
                 std::to_string(i + 1) + "; the state is unchanged");
+}
+
+/// The error of a step whose q_{n+1} (or else p_{n+1}) is not finite.
+[[noreturn]] inline void non_finite_result(bool q_ok, const StepPlace& at) {
+  throw Error("step " + std::to_string(at.step) + " (t = " + format(at.t) + ") of " +
+              std::string(at.method->name()) + " gives a non-finite " + (q_ok ? "p" : "q") +
+              " (is h unstable for this problem? see erkn::advise_step_size); the state "
+              "before the step is kept");
 }
 
 /// A step whose q_{n+1} or p_{n+1} would not be finite fails before it changes the state.
 template <class Q, class P>
 void require_finite_result(const Q& q_new, const P& p_new, const StepPlace& at) {
   const bool q_ok = q_new.allFinite();
-  if (q_ok && p_new.allFinite()) return;
-  throw Error("step " + std::to_string(at.step) + " (t = " + format(at.t) + ") of " +
-              std::string(at.method->name()) + " gives a non-finite " + (q_ok ? "p" : "q") +
-              " (is h unstable for this problem? see erkn::advise_step_size); the state "
-              "before the step is kept");
+  if (!q_ok || !p_new.allFinite()) non_finite_result(q_ok, at);
 }
 
 }  // namespace erkn::detail

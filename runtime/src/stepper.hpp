@@ -107,7 +107,13 @@ class Stepper final : public StepperBase {
   void step(long step_number, double t, Statistics& stats) override {
     step_number_ = step_number;
     t_ = t;
-    implicit_step(stats);
+    const Statistics before = stats;  // a failed step counts nothing
+    try {
+      implicit_step(stats);
+    } catch (...) {
+      stats = before;
+      throw;
+    }
     std::swap(G_, G_old_);  // (the pointers)
     have_history_ = true;
     ++stats.steps;

@@ -29,8 +29,8 @@ class StepperBase {
   virtual void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p) = 0;
   /// Writes the state in physical coordinates.
   virtual void get_state(Eigen::VectorXd& q, Eigen::VectorXd& p) = 0;
-  /// One step (step_number 1-based and t at its start, for messages); on error the state is
-  /// unchanged.
+  /// One step (step_number 1-based and t at its start, for messages), counted into stats; on
+  /// error the state and stats are unchanged.
   virtual void step(long step_number, double t, Statistics& stats) = 0;
   virtual void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) = 0;
   virtual System& system() = 0;
