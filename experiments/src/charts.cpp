@@ -1,5 +1,6 @@
 #include "charts.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <fstream>
@@ -27,8 +28,9 @@ std::string slug(const std::string& name) {
 
 namespace {
 
-const char* const kColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
-                               "#8c564b", "#e377c2", "#17becf", "#7f7f7f", "#bcbd22"};
+const char* const kColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b",
+                               "#e377c2", "#17becf", "#7f7f7f", "#bcbd22", "#393b79", "#637939",
+                               "#8c6d31", "#843c39", "#7b4173", "#000000"};
 
 // An ERKN method and its RKN limit share a colour; the family sets dash type and point shape.
 class Styles {
@@ -98,11 +100,32 @@ void run_gnuplot(const fs::path& charts_dir, const std::string& script) {
   erkn::process::run_checked(gnuplot);
 }
 
-void chart_problem(const ProblemResult& r, const fs::path& charts_dir) {
-  fs::create_directories(charts_dir / "data");
+std::vector<ChartGroup> chart_groups(const std::vector<MethodResult>& methods) {
+  const ChartGroup all[] = {{Group::paper, "", "the paper's methods"},
+                            {Group::shipped_explicit, "_explicit", "erkn's explicit methods"},
+                            {Group::shipped_other, "_other", "erkn's other implicit methods"}};
+  std::vector<ChartGroup> out;
+  for (const ChartGroup& g : all)
+    if (g.group == Group::paper ||
+        std::any_of(methods.begin(), methods.end(),
+                    [&g](const MethodResult& m) { return in_group(m, g.group); }))
+      out.push_back(g);
+  return out;
+}
+
+namespace {
+
+// The methods of a chart group: its registry methods and every peer.
+bool on_chart(const SolverTraits& m, const ChartGroup& g) {
+  return m.family == Family::peer || in_group(m, g.group);
+}
+
+std::string chart_title(const std::string& scene, const ChartGroup& g, const std::string& what) {
+  return scene + ": " + g.title + " + peers — " + what;
+}
+
+void write_problem_data(const ProblemResult& r, const fs::path& charts_dir) {
   const std::string key = slug(r.key);
-  Styles style;
-  std::string cost_plot = "plot ", cpu_plot = "plot ", energy_plot = "plot ";
   for (const MethodResult& m : r.methods) {
     const std::string stem = "data/" + key + "_" + slug(m.name);
     std::ofstream sweep = open(charts_dir / (stem + ".dat"));
@@ -115,36 +138,58 @@ void chart_problem(const ProblemResult& r, const fs::path& charts_dir) {
     energy << "# t_end max|H_n-H_0| (h = " << m.energy.h << ")\n";
     for (size_t i = 0; i < m.energy.max_error.size() && m.energy.failure.empty(); ++i)
       energy << m.energy.t_end[i] << ' ' << m.energy.max_error[i] << '\n';
-    const std::string s = style(m.name, m.family);
-    const std::string sep = &m == &r.methods.front() ? "" : ", \\\n  ";
-    cost_plot += sep + quoted(stem + ".dat") + " u 4:3 w lp " + s + " t " + quoted(m.name);
-    cpu_plot += sep + quoted(stem + ".dat") + " u 5:3 w lp " + s + " t " + quoted(m.name);
-    energy_plot += sep + quoted(stem + "_energy.dat") + " u 1:2 w lp " + s + " t " + quoted(m.name);
   }
-  std::ofstream gp = open(charts_dir / "data" / (key + ".gp"));
-  std::ostringstream t;
-  t << r.key << ": " << r.title;
-  std::ostringstream err;
+}
+
+}  // namespace
+
+void chart_problem(const ProblemResult& r, const fs::path& charts_dir) {
+  fs::create_directories(charts_dir / "data");
+  write_problem_data(r, charts_dir);
+  const std::string key = slug(r.key);
+  std::ostringstream scene, err, energy;
+  scene << r.key << ": " << r.title;
   err << "max-norm error of q at t = " << r.t_error;
-  write_header(gp, t.str() + " — error vs cost", "∇U evaluations (count)", err.str());
-  write_outputs(gp, key + "_evals", cost_plot);
-  write_header(gp, t.str() + " — error vs CPU time", "CPU time (s)", err.str());
-  write_outputs(gp, key + "_cpu", cpu_plot);
-  std::ostringstream h;
-  h << t.str() << " — energy error, h = 1/" << std::lround(1 / r.methods.front().energy.h);
-  write_header(gp, h.str(), "t_{end} (time units)", "max_n |H_n − H_0|");
-  write_outputs(gp, key + "_energy", energy_plot);
-  gp.close();
-  run_gnuplot(charts_dir, "data/" + key + ".gp");
+  energy << "energy error, h = 1/" << std::lround(1 / r.methods.front().energy.h);
+  for (const ChartGroup& g : chart_groups(r.methods)) {
+    Styles style;
+    std::string cost_plot = "plot ", cpu_plot = "plot ", energy_plot = "plot ";
+    for (const MethodResult& m : r.methods) {
+      if (!on_chart(m, g)) continue;
+      const std::string stem = "data/" + key + "_" + slug(m.name);
+      const std::string s = style(m.name, m.family);
+      const std::string sep = cost_plot == "plot " ? "" : ", \\\n  ";
+      cost_plot += sep + quoted(stem + ".dat") + " u 4:3 w lp " + s + " t " + quoted(m.name);
+      cpu_plot += sep + quoted(stem + ".dat") + " u 5:3 w lp " + s + " t " + quoted(m.name);
+      energy_plot +=
+          sep + quoted(stem + "_energy.dat") + " u 1:2 w lp " + s + " t " + quoted(m.name);
+    }
+    const std::string stem = key + g.suffix;
+    std::ofstream gp = open(charts_dir / "data" / (stem + ".gp"));
+    write_header(gp, chart_title(scene.str(), g, "error vs cost"), "∇U evaluations (count)",
+                 err.str());
+    write_outputs(gp, stem + "_evals", cost_plot);
+    write_header(gp, chart_title(scene.str(), g, "error vs CPU time"), "CPU time (s)", err.str());
+    write_outputs(gp, stem + "_cpu", cpu_plot);
+    write_header(gp, chart_title(scene.str(), g, energy.str()), "t_{end} (time units)",
+                 "max_n |H_n − H_0|");
+    write_outputs(gp, stem + "_energy", energy_plot);
+    gp.close();
+    run_gnuplot(charts_dir, "data/" + stem + ".gp");
+  }
 }
 
 void chart_scaling(const ScalingResult& r, const fs::path& charts_dir) {
   fs::create_directories(charts_dir / "data");
   Styles style;
   std::string plot = "plot ";
-  const auto best = best_erkn_line(r);
+  // Every peer, and of each group of registry methods the one cheapest at the largest size.
+  std::vector<size_t> best;
+  for (Group g : {Group::paper, Group::shipped_explicit, Group::shipped_other})
+    if (const auto l = best_line(r, g)) best.push_back(*l);
   for (size_t l = 0; l < r.lines.size(); ++l) {
-    if (r.lines[l].family == Family::erkn && l != best) continue;
+    if (r.lines[l].family != Family::peer && std::find(best.begin(), best.end(), l) == best.end())
+      continue;
     const std::string stem = "data/scaling_" + slug(r.lines[l].name);
     std::ofstream dat = open(charts_dir / (stem + ".dat"));
     dat << "# N cpu_seconds_to_" << r.tolerance << "\n# runs: N steps error grad_evals cpu\n";
@@ -170,8 +215,6 @@ void chart_scaling(const ScalingResult& r, const fs::path& charts_dir) {
 void chart_stiff(const ProblemResult& r, const fs::path& charts_dir) {
   fs::create_directories(charts_dir / "data");
   const std::string key = slug(r.key);
-  Styles style;
-  std::string cpu_plot = "plot ", h_plot = "plot ";
   for (const MethodResult& m : r.methods) {
     const std::string stem = "data/" + key + "_" + slug(m.name);
     std::ofstream ok = open(charts_dir / (stem + ".dat"));
@@ -185,24 +228,33 @@ void chart_stiff(const ProblemResult& r, const fs::path& charts_dir) {
       else if (!x.ok())
         failed << x.steps << ' ' << x.h << " # " << x.failure << '\n';
     }
-    const std::string s = style(m.name, m.family);
-    const std::string sep = &m == &r.methods.front() ? "" : ", \\\n  ";
-    cpu_plot += sep + quoted(stem + ".dat") + " u 5:3 w lp " + s + " t " + quoted(m.name);
-    const std::string color = s.substr(0, s.find('\'', s.find('\'') + 1) + 1);  // "lc rgb '#..'"
-    h_plot += sep + quoted(stem + ".dat") + " u 2:3 w lp " + s + " t " + quoted(m.name) + ", " +
-              quoted(stem + "_failed.dat") + " u 2:(1) w p " + color + " pt 2 ps 2 lw 2 notitle";
   }
-  std::ofstream gp = open(charts_dir / "data" / (key + ".gp"));
   std::ostringstream err;
   err << "max-norm error of q at t = " << r.t_error;
-  write_header(gp, r.title + " — error vs CPU time", "CPU time (s)", err.str());
-  write_outputs(gp, key + "_cpu", cpu_plot);
-  write_header(gp, r.title + " — error vs step size (x at the top: the run failed)", "step size h",
-               err.str());
-  gp << "set yrange [:3]\n";
-  write_outputs(gp, key + "_h", h_plot);
-  gp.close();
-  run_gnuplot(charts_dir, "data/" + key + ".gp");
+  for (const ChartGroup& g : chart_groups(r.methods)) {
+    Styles style;
+    std::string cpu_plot = "plot ", h_plot = "plot ";
+    for (const MethodResult& m : r.methods) {
+      if (!on_chart(m, g)) continue;
+      const std::string stem = "data/" + key + "_" + slug(m.name);
+      const std::string s = style(m.name, m.family);
+      const std::string sep = cpu_plot == "plot " ? "" : ", \\\n  ";
+      cpu_plot += sep + quoted(stem + ".dat") + " u 5:3 w lp " + s + " t " + quoted(m.name);
+      const std::string color = s.substr(0, s.find('\'', s.find('\'') + 1) + 1);  // "lc rgb '#..'"
+      h_plot += sep + quoted(stem + ".dat") + " u 2:3 w lp " + s + " t " + quoted(m.name) + ", " +
+                quoted(stem + "_failed.dat") + " u 2:(1) w p " + color + " pt 2 ps 2 lw 2 notitle";
+    }
+    const std::string stem = key + g.suffix;
+    std::ofstream gp = open(charts_dir / "data" / (stem + ".gp"));
+    write_header(gp, chart_title(r.title, g, "error vs CPU time"), "CPU time (s)", err.str());
+    write_outputs(gp, stem + "_cpu", cpu_plot);
+    write_header(gp, chart_title(r.title, g, "error vs h (x: failed runs)"), "step size h",
+                 err.str());
+    gp << "set yrange [:3]\n";
+    write_outputs(gp, stem + "_h", h_plot);
+    gp.close();
+    run_gnuplot(charts_dir, "data/" + stem + ".gp");
+  }
 }
 
 }  // namespace ex

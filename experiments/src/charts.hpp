@@ -1,5 +1,6 @@
 // gnuplot charts (PNG and SVG): per problem (i) error vs grad U evaluations, (ii) error vs CPU
-// time, (iii) max|H_n - H_0| vs t_end; and the scaling scene. Data and scripts go to
+// time, (iii) max|H_n - H_0| vs t_end, each once per group of methods (ChartGroup) so that no
+// chart holds every method; and the scaling scene. Data and scripts go to
 // <charts>/data/, so `cd <charts> && gnuplot data/<name>.gp` redraws one set.
 #pragma once
 
@@ -7,14 +8,27 @@
 #include <string>
 
 #include "experiment.hpp"
+#include "summary.hpp"
 
 namespace ex {
 
-/// Writes data and script for one problem and runs gnuplot: <key>_{evals,cpu,energy}.{png,svg}.
+/// The registry's methods of one set of charts, drawn with every peer: the paper's methods
+/// (file suffix "", e.g. p1_cpu.png), erkn's explicit methods ("_explicit") and its other
+/// implicit methods ("_other").
+struct ChartGroup {
+  Group group;
+  std::string suffix, title;
+};
+/// The groups with at least one of `methods` (the paper's group always, so its files exist).
+std::vector<ChartGroup> chart_groups(const std::vector<MethodResult>& methods);
+
+/// Writes data and script for one problem and runs gnuplot: per chart group,
+/// <key><suffix>_{evals,cpu,energy}.{png,svg}.
 void chart_problem(const ProblemResult& result, const std::filesystem::path& charts_dir);
 void chart_scaling(const ScalingResult& result, const std::filesystem::path& charts_dir);
-/// The stiff scene at one kappa: <key>_cpu (error vs CPU time) and <key>_h (error vs step size,
-/// with each method's failed runs drawn as crosses on the top edge: where it becomes unstable).
+/// The stiff scene at one kappa, per chart group: <key><suffix>_cpu (error vs CPU time) and
+/// <key><suffix>_h (error vs step size, with each method's failed runs drawn as crosses on the
+/// top edge: where it becomes unstable).
 void chart_stiff(const ProblemResult& result, const std::filesystem::path& charts_dir);
 
 /// Runs `gnuplot <script>` in charts_dir (no shell); throws when gnuplot fails.

@@ -1,7 +1,9 @@
 // The adapter to the ERKN runtime: every method of erkn::Method::all() as an ex::Solver.
+#include <cmath>
 #include <erkn/integrator.hpp>
 #include <erkn/method.hpp>
 #include <erkn/stability.hpp>
+#include <vector>
 
 #include "solver.hpp"
 
@@ -27,6 +29,7 @@ class ErknSolver : public Solver {
     });
   }
   bool exact_for_linear_part() const override { return method_.kind() != erkn::Kind::rkn; }
+  bool is_explicit() const override { return method_.is_explicit(); }
 
   RunResult run(const Problem& pr, double h, long steps, const Observer* obs) const override {
     erkn::Integrator integrator(method_, erkn::problems::system(pr), h, pr.q0, pr.p0);
@@ -38,7 +41,7 @@ class ErknSolver : public Solver {
     RunResult r{integrator.q(), integrator.p(), {}};
     r.stats.grad_evals = s.gradient_evaluations;
     r.stats.stage_iterations = s.stage_iterations;
-    r.stats.stage_solves = s.steps * method_.stages();
+    r.stats.stage_solves = method_.is_explicit() ? 0 : s.steps * method_.stages();
     r.stats.steps = s.steps;
     return r;
   }
@@ -47,12 +50,50 @@ class ErknSolver : public Solver {
   const erkn::Method& method_;
 };
 
+// Two registry methods are the same method when they are integrated the same way and their
+// coefficients agree at several v (the RKN limits use only v = 0): e.g. the RKN limits of the
+// pole-free variants are the paper's RKN limits, since the variants keep c, d and abar_ii(0).
+bool same_method(const erkn::Method& a, const erkn::Method& b) {
+  if (a.kind() != b.kind() || a.stages() != b.stages() || a.is_explicit() != b.is_explicit())
+    return false;
+  const std::vector<double> vs =
+      a.kind() == erkn::Kind::rkn ? std::vector<double>{0} : std::vector<double>{0, 0.37, 2.9};
+  for (double v : vs) {
+    if (a.pole_within(v, 1e-3) >= 0 || b.pole_within(v, 1e-3) >= 0) return false;
+    const erkn::Coefficients x = a.at(v), y = b.at(v);
+    auto near = [](double p, double q) { return std::abs(p - q) <= 1e-14 * (1 + std::abs(q)); };
+    for (int i = 0; i < x.s; ++i) {
+      if (!near(x.c[i], y.c[i]) || !near(x.b[i], y.b[i]) || !near(x.bbar[i], y.bbar[i]))
+        return false;
+      for (int j = 0; j <= i; ++j)
+        if (!near(x.abar(i, j), y.abar(i, j))) return false;
+    }
+  }
+  return true;
+}
+
+// The registry's first method identical to m, or m itself.
+const erkn::Method& first_twin(const erkn::Method& m) {
+  for (const erkn::Method& other : erkn::Method::all())
+    if (&other == &m || same_method(other, m)) return other;
+  return m;
+}
+
 }  // namespace
 
 SolverList make_erkn_solvers() {
   SolverList list;
-  for (const erkn::Method& m : erkn::Method::all()) list.push_back(std::make_unique<ErknSolver>(m));
+  for (const erkn::Method& m : erkn::Method::all())
+    if (&first_twin(m) == &m) list.push_back(std::make_unique<ErknSolver>(m));
   return list;
+}
+
+std::vector<Twin> identical_registry_methods() {
+  std::vector<Twin> twins;
+  for (const erkn::Method& m : erkn::Method::all())
+    if (const erkn::Method& t = first_twin(m); &t != &m)
+      twins.push_back({std::string(m.name()), std::string(t.name())});
+  return twins;
 }
 
 }  // namespace ex

@@ -4,20 +4,20 @@
 
 namespace ex {
 
+SolverTraits traits_of(const Solver& s) {
+  return {s.name(), s.family(), s.from_paper(), s.is_explicit(), s.exact_for_linear_part(),
+          s.order()};
+}
+
 ProblemResult run_problem(const Problem& problem, const SolverList& solvers,
                           const RunConfig& config, Progress& progress) {
   ProblemResult out{problem.key, problem.title, problem.t_error, {}, {}};
   progress.label(problem.key + " reference");
   out.reference = reference_solution(problem, problem.t_error, config.reference_tolerance);
+  progress.record(problem.key + " reference");
   for (const auto& solver : solvers) {
     progress.label(problem.key + " " + solver->name() + " sweep");
-    MethodResult m{solver->name(),
-                   solver->family(),
-                   solver->from_paper(),
-                   solver->order(),
-                   solver->first_unstable_z(),
-                   {},
-                   {}};
+    MethodResult m{traits_of(*solver), solver->first_unstable_z(), {}, {}};
     m.sweep = sweep(*solver, problem, problem.t_error, out.reference.q, config.sweep, config.steps);
     progress.label(problem.key + " " + solver->name() + " energy");
     m.energy = energy_errors(*solver, problem, problem.h_energy, config.energy_t_ends);
@@ -29,14 +29,14 @@ ProblemResult run_problem(const Problem& problem, const SolverList& solvers,
 
 ScalingResult run_scaling(const SolverList& solvers, const RunConfig& config, Progress& progress) {
   ScalingResult out{config.scaling_tolerance, config.scaling_t_end, config.scaling_sizes, {}, {}};
-  for (const auto& solver : solvers)
-    out.lines.push_back({solver->name(), solver->family(), solver->from_paper(), {}});
+  for (const auto& solver : solvers) out.lines.push_back({traits_of(*solver), {}});
   for (int n : config.scaling_sizes) {
     Problem problem = sine_gordon(n);
     problem.t_error = config.scaling_t_end;
     progress.label("scaling N=" + std::to_string(n) + " reference");
     out.references.push_back(reference_solution(
         problem, config.scaling_t_end, config.scaling_reference_tolerance, Precision::double_));
+    progress.record("scaling N=" + std::to_string(n) + " reference");
     for (size_t i = 0; i < solvers.size(); ++i) {
       progress.label("scaling N=" + std::to_string(n) + " " + solvers[i]->name());
       // Peers that resolve M's frequencies start at their stability limit h = 2/omega_max ~ 2/N;
@@ -47,7 +47,7 @@ ScalingResult run_scaling(const SolverList& solvers, const RunConfig& config, Pr
       out.lines[i].brackets.push_back(bracket(*solvers[i], problem, config.scaling_t_end,
                                               out.references.back().q, config.scaling_tolerance,
                                               start, config.sweep));
-      progress.advance("scaling N=" + std::to_string(n));
+      progress.advance("scaling N=" + std::to_string(n) + " " + solvers[i]->name());
     }
   }
   return out;

@@ -13,11 +13,18 @@
 
 namespace ex {
 
-struct MethodResult {
+/// What the report needs to know of a solver besides its runs.
+struct SolverTraits {
   std::string name;
   Family family;
-  bool from_paper;
+  bool from_paper;    ///< Solver::from_paper
+  bool is_explicit;   ///< Solver::is_explicit
+  bool exact_linear;  ///< Solver::exact_for_linear_part
   int order;
+};
+SolverTraits traits_of(const Solver& solver);
+
+struct MethodResult : SolverTraits {
   std::optional<double> first_unstable_z;  ///< Solver::first_unstable_z
   std::vector<Measurement> sweep;
   EnergyCurve energy;
@@ -34,10 +41,7 @@ struct ScalingResult {
   double tolerance, t_end;
   std::vector<int> sizes;
   std::vector<Reference> references;  ///< per size
-  struct Line {
-    std::string name;
-    Family family;
-    bool from_paper;
+  struct Line : SolverTraits {
     std::vector<std::vector<Measurement>> brackets;  ///< per size
   };
   std::vector<Line> lines;

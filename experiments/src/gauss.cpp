@@ -20,6 +20,7 @@ class Gauss2 : public Solver {
  public:
   std::string name() const override { return "Gauss2 (order 4)"; }
   Family family() const override { return Family::peer; }
+  bool is_explicit() const override { return false; }
   int order() const override { return 4; }
 
   RunResult run(const Problem& pr, double h, long steps, const Observer* obs) const override {

@@ -10,6 +10,7 @@
 #include "options.hpp"
 #include "raw_results.hpp"
 #include "report.hpp"
+#include "targets.hpp"
 
 namespace {
 
@@ -21,13 +22,19 @@ bool matches(const std::string& wanted, const std::string& name) {
          (n.size() > w.size() && n.compare(n.size() - w.size() - 1, w.size() + 1, "_" + w) == 0);
 }
 
+// A wanted name picks the solvers it matches; a registry method that is run under the name of an
+// identical one (identical_registry_methods) picks that one.
 SolverList select(const std::vector<std::string>& wanted) {
   SolverList all = all_solvers(), chosen;
   std::set<std::string> used;
+  const std::vector<Twin> twins = identical_registry_methods();
   for (auto& s : all) {
     bool take = wanted.empty();
-    for (const std::string& w : wanted)
-      if (matches(w, s->name())) take = true, used.insert(w);
+    for (const std::string& w : wanted) {
+      bool hit = matches(w, s->name());
+      for (const Twin& t : twins) hit = hit || (matches(w, t.name) && t.same_as == s->name());
+      if (hit) take = true, used.insert(w);
+    }
     if (take) chosen.push_back(std::move(s));
   }
   for (const std::string& w : wanted)
@@ -42,6 +49,9 @@ void list() {
   std::printf("methods:\n");
   for (const auto& s : all_solvers())
     std::printf("  %s  (order %d)\n", s->name().c_str(), s->order());
+  for (const Twin& t : identical_registry_methods())
+    std::printf("  %s  (identical to %s: run under that name)\n", t.name.c_str(),
+                t.same_as.c_str());
 }
 
 std::string command_line(int argc, char** argv) {
@@ -90,6 +100,8 @@ int run(const Options& o, const std::string& command) {
   progress.finish();
   // results.md first: the grid scenes run last, and a failure there must not lose it.
   if (!keys.empty() || scaling || stiff) {
+    std::filesystem::create_directories(charts);
+    progress.write_unit_seconds(charts / "run_seconds.csv");
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::vector<ProblemResult> raw = results;  // the raw files list the stiff scene's sweeps too
@@ -97,7 +109,8 @@ int run(const Options& o, const std::string& command) {
     write_raw_results(charts, raw, scaled);
     write_report(o.out / "results.md", {command, o.mode, wall, o.config.sweep.timing.repeats},
                  results, scaled, stiff_results);
-    std::printf("%s\nwrote %s and %s/ in %.0f s\n", targets_markdown(results, scaled).c_str(),
+    std::printf("%s\nwrote %s and %s/ in %.0f s\n",
+                targets_markdown(target_scenes(results, scaled)).c_str(),
                 (o.out / "results.md").c_str(), charts.c_str(), wall);
   }
   if (grids && !run_grid_scenes(grid_scene_config(o.mode == "full", o.config.sweep),

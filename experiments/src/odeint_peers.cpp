@@ -23,6 +23,7 @@ class OdeintPeer : public Solver {
   explicit OdeintPeer(std::string name) : name_(std::move(name)) {}
   std::string name() const override { return name_; }
   Family family() const override { return Family::peer; }
+  bool is_explicit() const override { return true; }
   int order() const override { return 4; }
 
   RunResult run(const Problem& pr, double h, long steps, const Observer* obs) const override {

@@ -8,80 +8,19 @@
 #include <thread>
 
 #include "charts.hpp"
+#include "markdown.hpp"
 #include "summary.hpp"
+#include "targets.hpp"
+#include "verdict.hpp"
 
 namespace ex {
 namespace {
-
-constexpr double kTolerances[] = {1e-6, 1e-9};
-
-std::string fmt(const char* format, double x) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, x);
-  return buf;
-}
-
-std::string sci(double x) { return std::isfinite(x) ? fmt("%.2e", x) : "failed"; }
-
-std::string with_ratio(const std::optional<double>& v, const std::optional<double>& peer,
-                       const char* format) {
-  if (!v) return "—";
-  std::string s = fmt(format, *v);
-  if (const auto r = ratio(v, peer)) s += " (" + fmt("%.2f", *r) + "×)";
-  return s;
-}
 
 std::string cpu_model() {
   std::ifstream f("/proc/cpuinfo");
   for (std::string line; std::getline(f, line);)
     if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
   return "unknown CPU";
-}
-
-std::string family_name(Family f) {
-  switch (f) {
-    case Family::erkn:
-      return "ERKN";
-    case Family::rkn:
-      return "RKN limit";
-    case Family::peer:
-      return "peer";
-  }
-  return "";
-}
-
-// "ratio (method)" of the best of a group against the best peer, or "—".
-std::string ratio_cell(const Best& group, const Best& peer) {
-  const auto q = ratio(group.cpu, peer.cpu);
-  return q ? fmt("%.2f×", *q) + " (" + group.name + ")" : "—";
-}
-
-// The CPU ratio of the best paper method to the best peer as a product of measured factors:
-// steps to the tolerance (order and error constant), grad U evaluations per step (stages and
-// stage iterations) and CPU time per evaluation (overhead). Rows where either is missing are left
-// out.
-void breakdown_section(std::ostream& md, const std::vector<ProblemResult>& problems) {
-  md << "\n### Where the best paper method's time goes, against the best peer\n\n"
-     << "CPU ratio = steps ratio × ∇U-per-step ratio × CPU-per-∇U ratio, each read off the "
-        "measured curves at the tolerance (steps: order and error constant; ∇U per step: "
-        "stages × stage iterations; CPU per ∇U: the integrator's own work and setup).\n\n"
-     << "| scene | tolerance | paper method | peer | CPU | steps | ∇U per step | CPU per ∇U |\n"
-     << "|---|--:|---|---|--:|--:|--:|--:|\n";
-  for (const ProblemResult& r : problems)
-    for (double tol : kTolerances) {
-      const Best a = best_of(r, Group::paper, tol), b = best_of(r, Group::peer, tol);
-      const Cost &x = a.cost, &y = b.cost;
-      if (!x.cpu || !x.evals || !x.steps || !y.cpu || !y.evals || !y.steps) continue;
-      const double steps = *x.steps / *y.steps, evals = *x.evals / *y.evals;
-      md << "| " << r.key << " | " << sci(tol) << " | " << a.name << " | " << b.name << " | "
-         << fmt("%.2f×", *x.cpu / *y.cpu) << " | " << fmt("%.2f×", steps) << " | "
-         << fmt("%.2f×", evals / steps) << " | "
-         << fmt("%.2f×", (*x.cpu / *x.evals) / (*y.cpu / *y.evals)) << " |\n";
-    }
-}
-
-std::string peer_cell(const Best& peer) {
-  return peer.cpu ? fmt("%.3g ms", *peer.cpu * 1e3) + " (" + peer.name + ")" : "—";
 }
 
 void problem_section(std::ostream& md, const ProblemResult& r) {
@@ -92,10 +31,14 @@ void problem_section(std::ostream& md, const ProblemResult& r) {
   if (r.reference.steps > 0)
     md << "; it agrees with the run at twice the step to " << sci(r.reference.accuracy)
        << " (max-norm)";
-  md << ".\n\n"
-     << "![error vs ∇U evaluations](charts/" << key << "_evals.png)\n"
-     << "![error vs CPU time](charts/" << key << "_cpu.png)\n"
-     << "![energy error vs t_end](charts/" << key << "_energy.png)\n\n";
+  md << ".\n\n| methods with the peers | error vs ∇U evaluations | error vs CPU time | energy "
+        "error vs t_end |\n|---|---|---|---|\n";
+  for (const ChartGroup& g : chart_groups(r.methods)) {
+    const std::string stem = "charts/" + key + g.suffix;
+    md << "| " << g.title << " | ![](" << stem << "_evals.png) | ![](" << stem << "_cpu.png) | ![]("
+       << stem << "_energy.png) |\n";
+  }
+  md << "\n";
   const double h = r.methods.empty() ? 0 : r.methods.front().energy.h;
   md << "| method | kind | ∇U evals to 1e-6 | CPU ms to 1e-6 | ∇U evals to 1e-9 | CPU ms to 1e-9 "
         "| mean stage iterations (h = 1/"
@@ -103,7 +46,7 @@ void problem_section(std::ostream& md, const ProblemResult& r) {
      << "|---|---|--:|--:|--:|--:|--:|--:|\n";
   Cost peer[2] = {best_peer(r, kTolerances[0]), best_peer(r, kTolerances[1])};
   for (const MethodResult& m : r.methods) {
-    md << "| " << m.name << " | " << family_name(m.family);
+    md << "| " << m.name << " | " << kind_name(m);
     for (int t = 0; t < 2; ++t) {
       const Cost c = cost_to_tolerance(m.sweep, kTolerances[t]);
       std::optional<double> ms = c.cpu ? std::optional<double>(*c.cpu * 1e3) : std::nullopt;
@@ -185,19 +128,23 @@ void stiff_section(std::ostream& md, const std::vector<StiffResult>& stiff) {
         "(S singular included), for the registry's methods from erkn::stability_matrix and for "
         "the splitting peers from the product of their flow and kick matrices (the other peers: "
         "—). With ∇²U = κ cos u, a run is linearly unstable once h²κ passes it.\n";
-  for (const auto& [kappa, r] : stiff) {
+  for (const auto& [kappa, tolerances, r] : stiff) {
     const std::string key = slug(r.key);
     md << "\n### " << r.title << "\n\nReference: " << r.reference.method << "; agreement "
        << sci(r.reference.accuracy) << ".\n\n"
-       << "![error vs CPU time](charts/" << key << "_cpu.png)\n"
-       << "![error vs step size](charts/" << key << "_h.png)\n\n"
+       << "| methods with the peers | error vs CPU time | error vs step size |\n|---|---|---|\n";
+    for (const ChartGroup& g : chart_groups(r.methods)) {
+      const std::string stem = "charts/" + key + g.suffix;
+      md << "| " << g.title << " | ![](" << stem << "_cpu.png) | ![](" << stem << "_h.png) |\n";
+    }
+    md << "\n"
        << "| method | kind | S(0, z) unstable from z = | fails at h (h²κ) | runs at h | failure "
-          "| CPU ms to 1e-3 | CPU ms to 1e-6 |\n"
+          "| CPU ms to "
+       << fmt("%.0e", tolerances[0]) << " | CPU ms to " << fmt("%.0e", tolerances[1]) << " |\n"
        << "|---|---|--:|--:|--:|---|--:|--:|\n";
-    const double tolerances[] = {1e-3, 1e-6};
     for (const MethodResult& m : r.methods) {
       const Limit l = stability_limit(m.sweep);
-      md << "| " << m.name << " | " << family_name(m.family) << " | "
+      md << "| " << m.name << " | " << kind_name(m) << " | "
          << (m.first_unstable_z ? fmt("%.3g", *m.first_unstable_z) : "—") << " | "
          << (l.failed_h ? fmt("%.3g", *l.failed_h) + " (" +
                               fmt("%.3g", *l.failed_h * *l.failed_h * kappa) + ")"
@@ -215,31 +162,6 @@ void stiff_section(std::ostream& md, const std::vector<StiffResult>& stiff) {
 }
 
 }  // namespace
-
-std::string targets_markdown(const std::vector<ProblemResult>& problems,
-                             const std::optional<ScalingResult>& scaling) {
-  std::ostringstream md;
-  md << "## Targets (issue 9): CPU time to the tolerance, setup included, same run\n\n"
-     << "(a) the best method erkn ships (every method of its registry) and (b) the best method "
-        "of the source paper (the registry's methods whose source is the paper) against the best "
-        "peer.\n\n"
-     << "| scene | tolerance | best peer | (a) best erkn / best peer | (b) best paper / best peer "
-        "|\n|---|--:|---|---|---|\n";
-  auto row = [&md](const std::string& scene, double tol, const Best& shipped, const Best& paper,
-                   const Best& peer) {
-    md << "| " << scene << " | " << sci(tol) << " | " << peer_cell(peer) << " | "
-       << ratio_cell(shipped, peer) << " | " << ratio_cell(paper, peer) << " |\n";
-  };
-  for (const ProblemResult& r : problems)
-    for (double tol : kTolerances)
-      row(r.key, tol, best_of(r, Group::shipped, tol), best_of(r, Group::paper, tol),
-          best_of(r, Group::peer, tol));
-  for (size_t i = 0; scaling && i < scaling->sizes.size(); ++i)
-    row("P1 scaling, N = " + std::to_string(scaling->sizes[i]), scaling->tolerance,
-        best_of(*scaling, Group::shipped, i), best_of(*scaling, Group::paper, i),
-        best_of(*scaling, Group::peer, i));
-  return md.str();
-}
 
 void write_report(const std::filesystem::path& file, const RunInfo& info,
                   const std::vector<ProblemResult>& problems,
@@ -278,8 +200,16 @@ void write_report(const std::filesystem::path& file, const RunInfo& info,
         "Laskar, Makazaga & Murua (8; error O(εh¹⁰ + ε²h⁶ + ε³h⁴) for a perturbation of size ε) "
         "and the mollified impulse method of García-Archilla, Sanz-Serna & Skeel (filter sinc, "
         "order 2). All peers are written in experiments/, independently of the runtime.\n";
-  md << "\n" << targets_markdown(problems, scaling);
-  breakdown_section(md, problems);
+  const std::vector<SceneRuns> scenes = target_scenes(problems, scaling);
+  const std::string verdict = verdict_markdown(scenes, stiff);
+  md << "\n" << verdict << "\n" << targets_markdown(scenes) << breakdown_markdown(scenes);
+  const std::filesystem::path summary = file.parent_path() / "summary.md";
+  std::ofstream sm(summary);
+  if (!sm) throw std::runtime_error("cannot write " + summary.string());
+  sm << "# erkn — summary of the measured results\n\nWritten by `" << info.command << "` ("
+     << info.mode << " sweep) with [results.md](results.md), which holds every number behind it. "
+     << "Do not edit.\n\n"
+     << verdict;
   for (const ProblemResult& r : problems) problem_section(md, r);
   if (scaling) scaling_section(md, *scaling);
   if (!stiff.empty()) stiff_section(md, stiff);

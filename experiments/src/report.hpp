@@ -1,4 +1,4 @@
-// docs/results.md: the summary table of every run, written by the run.
+// docs/results.md (every table of a run) and docs/summary.md (its verdict), written by the run.
 #pragma once
 
 #include <filesystem>
@@ -18,10 +18,7 @@ struct RunInfo {
   int repeats = 0;
 };
 
-/// The target ratios as a markdown table (also printed at the end of a run).
-std::string targets_markdown(const std::vector<ProblemResult>& problems,
-                             const std::optional<ScalingResult>& scaling);
-
+/// Writes `file` (results.md) and summary.md beside it (the verdict alone).
 /// `stiff`: the stiff scene, one result per kappa (may be empty).
 void write_report(const std::filesystem::path& file, const RunInfo& info,
                   const std::vector<ProblemResult>& problems,

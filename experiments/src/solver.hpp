@@ -37,6 +37,8 @@ class Solver {
   virtual int order() const = 0;
   /// True when q'' + Mq = 0 is integrated exactly (no step-size limit from M's frequencies).
   virtual bool exact_for_linear_part() const { return false; }
+  /// True when no stage needs solving: every force evaluation is at a known point.
+  virtual bool is_explicit() const = 0;
   /// Linear stability on y'' = -eps y (the V = 0 line of the (V, z) charts): the smallest z = h^2
   /// eps > 0 at which |tr S(0, z)| > 2 (or S is singular), found on a geometric grid z = 0.01 ..
   /// 1e4 and refined by bisection; empty when none there or the solver cannot tell.
@@ -61,8 +63,15 @@ std::unique_ptr<Solver> make_gauss2();             ///< 2-stage Gauss-Legendre, 
 /// The exact-flow splitting peers (splitting.hpp): Strang, SRKN6b, SRKN14a, ABA(10,6,4),
 /// mollified impulse.
 SolverList make_splitting_peers();
-/// Every ERKN method and RKN limit of the runtime's registry, in its order.
+/// Every ERKN method and RKN limit of the runtime's registry, in its order, each method once:
+/// a method identical to an earlier one (identical_registry_methods) is left out.
 SolverList make_erkn_solvers();
+/// A registry method left out of make_erkn_solvers and the earlier one it is identical to (same
+/// kind, stages and coefficients).
+struct Twin {
+  std::string name, same_as;
+};
+std::vector<Twin> identical_registry_methods();
 /// The ERKN/RKN methods followed by the peers.
 SolverList all_solvers();
 

@@ -63,6 +63,7 @@ class SplittingPeer : public Solver {
   }
   std::string name() const override { return c_.name; }
   Family family() const override { return Family::peer; }
+  bool is_explicit() const override { return true; }
   int order() const override { return c_.order; }
   bool exact_for_linear_part() const override { return true; }
   std::optional<double> first_unstable_z() const override {

@@ -13,6 +13,9 @@ namespace ex {
 struct StiffConfig {
   std::vector<double> kappas{1e2, 1e3, 1e4};
   double t_end = 1;
+  /// The report's costs are read at these errors; a sweep stops refining a decade below the
+  /// smallest.
+  std::vector<double> tolerances{1e-3, 1e-6};
 };
 
 /// The scene's problem for one kappa: u(0) = sin(2 pi i / N) (amplitude 1: sin u is far from
@@ -21,7 +24,8 @@ Problem stiff_sine_gordon(double kappa, double t_end);
 
 struct StiffResult {
   double kappa;
-  ProblemResult result;  ///< sweeps only, no energy runs
+  std::vector<double> tolerances;  ///< StiffConfig::tolerances
+  ProblemResult result;            ///< sweeps only, no energy runs
 };
 
 std::vector<StiffResult> run_stiff(const SolverList& solvers, const StiffConfig& stiff,

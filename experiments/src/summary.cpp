@@ -42,34 +42,66 @@ Cost best_peer(const ProblemResult& result, double tolerance) {
   return best;
 }
 
-bool in_group(Family family, bool from_paper, Group group) {
+bool in_group(const SolverTraits& t, Group group) {
+  const bool peer = t.family == Family::peer;
   switch (group) {
     case Group::shipped:
-      return family != Family::peer;
+      return !peer;
     case Group::paper:
-      return family != Family::peer && from_paper;
+      return !peer && t.from_paper;
+    case Group::shipped_explicit:
+      return !peer && !t.from_paper && t.is_explicit;
+    case Group::shipped_other:
+      return !peer && !t.from_paper && !t.is_explicit;
     case Group::peer:
-      return family == Family::peer;
+      return peer;
+    case Group::exact_peer:
+      return peer && t.exact_linear;
+    case Group::other_peer:
+      return peer && !t.exact_linear;
   }
   return false;
 }
 
-Best best_of(const ProblemResult& result, Group group, double tolerance) {
-  Best best;
-  for (const MethodResult& m : result.methods) {
-    if (!in_group(m.family, m.from_paper, group)) continue;
-    const Cost cost = cost_to_tolerance(m.sweep, tolerance);
-    if (cost.cpu && (!best.cpu || *cost.cpu < *best.cpu)) best = {cost.cpu, m.name, cost};
+std::string group_phrase(Group group) {
+  switch (group) {
+    case Group::shipped:
+      return "the best method erkn ships";
+    case Group::paper:
+      return "the best method of the paper";
+    case Group::shipped_explicit:
+      return "the best explicit method erkn ships";
+    case Group::shipped_other:
+      return "the best of erkn's other implicit methods";
+    case Group::peer:
+      return "the best peer";
+    case Group::exact_peer:
+      return "the best exact-flow peer";
+    case Group::other_peer:
+      return "the best peer without an exact linear flow";
   }
-  return best;
+  return "";
 }
 
-Best best_of(const ScalingResult& result, Group group, size_t i) {
+SceneRuns scene_runs(const ProblemResult& result, double tolerance) {
+  SceneRuns s{result.key, tolerance, {}};
+  for (const MethodResult& m : result.methods) s.runs.push_back({&m, &m.sweep});
+  return s;
+}
+
+SceneRuns scene_runs(const ScalingResult& result, size_t i) {
+  SceneRuns s{"P1 scaling, N = " + std::to_string(result.sizes[i]), result.tolerance, {}};
+  for (const ScalingResult::Line& l : result.lines) s.runs.push_back({&l, &l.brackets[i]});
+  return s;
+}
+
+Best best_of(const SceneRuns& scene, Group group) {
   Best best;
-  for (size_t l = 0; l < result.lines.size(); ++l) {
-    if (!in_group(result.lines[l].family, result.lines[l].from_paper, group)) continue;
-    const auto c = scaling_cpu(result, l, i);
-    if (c && (!best.cpu || *c < *best.cpu)) best = {c, result.lines[l].name, {}};
+  for (const SceneRuns::Run& r : scene.runs) {
+    if (!in_group(*r.traits, group)) continue;
+    const Cost cost = cost_to_tolerance(*r.measurements, scene.tolerance);
+    if (cost.cpu && (!best.cpu || *cost.cpu < *best.cpu))
+      best = {cost.cpu, r.traits->name, cost, r};
   }
   return best;
 }
@@ -79,21 +111,32 @@ std::optional<double> mean_stage_iterations(const RunStats& stats) {
   return double(stats.stage_iterations) / double(stats.stage_solves);
 }
 
+std::optional<double> implicit_stages(const std::vector<Measurement>& runs) {
+  for (const Measurement& m : runs)
+    if (m.ok() && m.stats.steps > 0 && m.stats.stage_solves > 0)
+      return double(m.stats.stage_solves) / double(m.stats.steps);
+  return std::nullopt;
+}
+
 std::optional<double> scaling_cpu(const ScalingResult& result, size_t line, size_t i) {
   const auto& ms = result.lines[line].brackets[i];
   return ex::cost_to_tolerance(curve(ms, Axis::cpu), result.tolerance);
 }
 
-std::optional<size_t> best_erkn_line(const ScalingResult& result) {
-  std::optional<size_t> best;
-  std::optional<double> best_cpu;
-  const size_t last = result.sizes.size() - 1;
-  for (size_t l = 0; l < result.lines.size(); ++l) {
-    if (result.lines[l].family != Family::erkn) continue;
-    const auto c = scaling_cpu(result, l, last);
-    if (!best || (c && (!best_cpu || *c < *best_cpu))) best = l, best_cpu = c;
+std::optional<size_t> best_line(const ScalingResult& result, Group group) {
+  std::optional<size_t> first;
+  for (size_t i = result.sizes.size(); i-- > 0;) {
+    std::optional<size_t> best;
+    std::optional<double> best_cpu;
+    for (size_t l = 0; l < result.lines.size(); ++l) {
+      if (!in_group(result.lines[l], group)) continue;
+      if (!first) first = l;
+      if (const auto c = scaling_cpu(result, l, i); c && (!best_cpu || *c < *best_cpu))
+        best = l, best_cpu = c;
+    }
+    if (best) return best;
   }
-  return best;
+  return first;
 }
 
 std::optional<double> ratio(const std::optional<double>& a, const std::optional<double>& b) {

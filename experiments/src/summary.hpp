@@ -1,8 +1,9 @@
-// Numbers derived from the measurements: cost to reach a tolerance and the ratio to the best
-// peer of the same run.
+// Numbers derived from the measurements: cost to reach a tolerance, the best method of a group,
+// and the ratio to the best peer of the same run.
 #pragma once
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "experiment.hpp"
@@ -19,29 +20,48 @@ Cost cost_to_tolerance(const std::vector<Measurement>& sweep, double tolerance);
 /// The cheapest peer cost at `tolerance` (evaluations and CPU time taken separately).
 Cost best_peer(const ProblemResult& result, double tolerance);
 
-/// The methods a target compares: every method erkn ships (the registry's), the source paper's
-/// methods only, or the peers.
-enum class Group { shipped, paper, peer };
-bool in_group(Family family, bool from_paper, Group group);
+/// The methods a comparison takes: every method erkn ships (the registry's), the source paper's
+/// methods only, the registry's explicit methods, its other (implicit) methods, the peers, the
+/// peers that integrate q'' + Mq = 0 exactly (exact-flow), or the other peers.
+enum class Group { shipped, paper, shipped_explicit, shipped_other, peer, exact_peer, other_peer };
+bool in_group(const SolverTraits& traits, Group group);
+/// "the best method erkn ships", "the best paper method", ... for sentences.
+std::string group_phrase(Group group);
+
+/// One scene at one tolerance: every solver's measurements there.
+struct SceneRuns {
+  std::string scene;  ///< "P1", "P1 scaling, N = 512", ...
+  double tolerance;
+  struct Run {
+    const SolverTraits* traits;
+    const std::vector<Measurement>* measurements;
+  };
+  std::vector<Run> runs;
+};
+SceneRuns scene_runs(const ProblemResult& result, double tolerance);
+SceneRuns scene_runs(const ScalingResult& result, size_t size_index);
 
 /// The cheapest method of a group in CPU time; empty cpu when none reaches the tolerance.
 struct Best {
   std::optional<double> cpu;
   std::string name;
-  Cost cost;  ///< of that method at the tolerance
+  Cost cost;             ///< of that method at the tolerance
+  SceneRuns::Run run{};  ///< that method's traits and runs (null when cpu is empty)
 };
-Best best_of(const ProblemResult& result, Group group, double tolerance);
-/// The same for the scaling scene at size index i.
-Best best_of(const ScalingResult& result, Group group, size_t i);
+Best best_of(const SceneRuns& scene, Group group);
 
 /// Mean fixed-point/Newton iterations per stage solve of a run; empty for explicit methods.
 std::optional<double> mean_stage_iterations(const RunStats& stats);
+/// Implicit stages per step of a method, from its runs (stage solves / steps); empty for
+/// explicit methods or when no run completed.
+std::optional<double> implicit_stages(const std::vector<Measurement>& runs);
 
 /// CPU time to the scaling tolerance of one line at size index i.
 std::optional<double> scaling_cpu(const ScalingResult& result, size_t line, size_t i);
 
-/// Index of the ERKN line cheapest at the largest size (first ERKN line if none reached).
-std::optional<size_t> best_erkn_line(const ScalingResult& result);
+/// Index of the line of `group` cheapest at the largest size that any of them reached (the first
+/// line of the group if none did); empty if the group has no line.
+std::optional<size_t> best_line(const ScalingResult& result, Group group);
 
 /// a / b when both are known.
 std::optional<double> ratio(const std::optional<double>& a, const std::optional<double>& b);

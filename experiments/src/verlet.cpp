@@ -8,6 +8,7 @@ class StormerVerlet : public Solver {
  public:
   std::string name() const override { return "Störmer–Verlet"; }
   Family family() const override { return Family::peer; }
+  bool is_explicit() const override { return true; }
   int order() const override { return 2; }
 
   RunResult run(const Problem& pr, double h, long steps, const Observer* obs) const override {

@@ -3,8 +3,9 @@
 // For each method: DIR/stability_<id>.csv (the grid: V, z, tr S, det S, rho(S), class) and a
 // chart DIR/stability_<id>.{png,svg} (region rho(S) <= 1 shaded, poles of the coefficients as
 // vertical lines, the line V + z = 0 below which the test equation itself is unbounded). With
-// "all": every method's CSV and chart plus the pages DIR/stability.{png,svg} (the six ERKN
-// methods, like the paper's figure 1) and DIR/stability_rkn.{png,svg} (their RKN limits).
+// "all": every method's CSV and chart plus the pages DIR/stability.{png,svg} (the paper's ERKN
+// methods, like its figure 1), DIR/stability_explicit (the explicit splitting methods),
+// DIR/stability_other (the other implicit ERKN methods) and DIR/stability_rkn (the RKN limits).
 // Charts need gnuplot on PATH; without it the CSVs and .gp scripts are still written.
 #include "stability_command.hpp"
 
@@ -156,13 +157,16 @@ void render(const Args& a, const std::string& stem, const std::string& body, int
   std::cout << "chart: " << (a.out / (stem + ".png")).string() << " (+ .svg)\n";
 }
 
+// One page of panels, three columns up to six panels and four beyond.
 void page(const Args& a, const std::vector<Written>& ws, const std::string& stem,
           const std::string& title) {
+  if (ws.empty()) return;
+  const int cols = ws.size() <= 6 ? 3 : 4, rows = int((ws.size() + cols - 1) / cols);
   std::ostringstream s;
-  s << "set multiplot layout 2,3 title \"" << title << "\" noenhanced\n";
+  s << "set multiplot layout " << rows << "," << cols << " title \"" << title << "\" noenhanced\n";
   for (size_t i = 0; i < ws.size(); ++i) s << panel(ws[i], a, false);
   s << "unset multiplot\n";
-  render(a, stem, s.str(), 1500, 900);
+  render(a, stem, s.str(), 500 * cols, 450 * rows);
 }
 
 }  // namespace
@@ -206,18 +210,27 @@ int stability_command(int argc, char** argv) {
     render(a, w.csv.substr(0, w.csv.size() - 4), panel(w, a, true), 800, 600);
     return 0;
   }
-  std::vector<Written> erkn_panels, rkn_panels;
+  // Pages: the paper's ERKN methods (as in its figure 1), the explicit (splitting) methods, the
+  // other implicit ERKN methods, and the RKN limits.
+  std::vector<Written> paper_panels, explicit_panels, other_panels, rkn_panels;
   for (const Method& m : Method::all()) {
     const Written w = write_csv(m, a);
     render(a, w.csv.substr(0, w.csv.size() - 4), panel(w, a, true), 800, 600);
-    (m.kind() == Kind::erkn ? erkn_panels : rkn_panels).push_back(w);
+    (m.kind() == Kind::rkn ? rkn_panels
+     : m.is_explicit()     ? explicit_panels
+     : m.from_paper()      ? paper_panels
+                           : other_panels)
+        .push_back(w);
   }
   const std::string legend =
       "   [blue: periodic |tr S| < 2 (rho = 1); white: unstable rho > 1; red dashed: poles; "
       "dotted: V + z = 0; tau = " +
       fmt(kTraceTolerance) + "]";
-  page(a, erkn_panels, "stability",
-       "ERKN methods: stability of y''+w^2y=-ey, V=h^2w^2, z=h^2e" + legend);
+  const std::string test = ": stability of y''+w^2y=-ey, V=h^2w^2, z=h^2e";
+  page(a, paper_panels, "stability", "The paper's ERKN methods" + test + legend);
+  page(a, explicit_panels, "stability_explicit",
+       "Explicit ERKN (splitting) methods" + test + legend);
+  page(a, other_panels, "stability_other", "Other implicit ERKN methods" + test + legend);
   page(a, rkn_panels, "stability_rkn",
        "RKN limits (force -(w^2+e)y, S depends on V+z only)" + legend);
   return 0;
