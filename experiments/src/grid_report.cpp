@@ -30,7 +30,8 @@ std::string cell_text(const GridCell& c) {
   if (!c.failure.empty()) return "✗";
   if (!c.ran) return "·";
   if (c.cpu) return number(*c.cpu);
-  if (c.predicted_steps > 0) return "— (≈" + number(c.predicted_steps, 2) + " steps)";
+  if (c.predicted_steps > 0)
+    return "— (≈" + std::to_string(std::lround(c.predicted_steps)) + " steps)";
   return "—";
 }
 
@@ -134,11 +135,11 @@ bool write_cpu_data(const fs::path& dat, const GridScene& sc, const GridLine& l,
   return any;
 }
 
-std::string step_plot(const GridScene& sc, const fs::path& data) {
+std::string step_plot(const GridScene& sc, const fs::path& charts) {
   std::string plot;
   for (const StepTimes& st : sc.step_times) {
-    const fs::path dat = data / (stem(sc) + "_step_" + slug(st.solver->name()) + ".dat");
-    std::ofstream f(dat);
+    const std::string dat = "data/" + stem(sc) + "_step_" + slug(st.solver->name()) + ".dat";
+    std::ofstream f(charts / dat);
     f << "# d seconds_per_step fit_c_d_log2_d\n";
     for (size_t i = 0; i < st.seconds.size(); ++i) {
       if (!st.seconds[i]) continue;
@@ -146,8 +147,8 @@ std::string step_plot(const GridScene& sc, const fs::path& data) {
       f << sc.step_dims[i] << ' ' << *st.seconds[i] << ' ' << st.c * d * std::log2(d) << '\n';
     }
     if (st.c <= 0) continue;
-    plot += std::string(plot.empty() ? "plot " : ", \\\n  ") + quoted(dat.string()) +
-            " u 1:2 w p pt 7 ps 1.3 t " + quoted(st.solver->name()) + ", " + quoted(dat.string()) +
+    plot += std::string(plot.empty() ? "plot " : ", \\\n  ") + quoted(dat) +
+            " u 1:2 w p pt 7 ps 1.3 t " + quoted(st.solver->name()) + ", " + quoted(dat) +
             " u 1:3 w l lw 1.5 t " + quoted(st.solver->name() + ": fit c d log2 d");
   }
   return plot;
@@ -160,13 +161,12 @@ void chart_grid_scene(const GridScene& sc, const fs::path& charts, double tolera
   fs::create_directories(data);
   std::string plot;
   for (const GridLine& l : sc.lines) {
-    const fs::path dat = data / (stem(sc) + "_" + slug(l.solver->name()) + ".dat");
-    if (!write_cpu_data(dat, sc, l, tolerance)) continue;
-    plot += std::string(plot.empty() ? "plot " : ", \\\n  ") + quoted(dat.string()) +
-            " u 1:2 w lp lw 2 " + (is_peer(*l.solver) ? "dt (2,4) pt 4" : "dt 1 pt 7") + " t " +
-            quoted(l.solver->name());
+    const std::string dat = "data/" + stem(sc) + "_" + slug(l.solver->name()) + ".dat";
+    if (!write_cpu_data(charts / dat, sc, l, tolerance)) continue;
+    plot += std::string(plot.empty() ? "plot " : ", \\\n  ") + quoted(dat) + " u 1:2 w lp lw 2 " +
+            (is_peer(*l.solver) ? "dt (2,4) pt 4" : "dt 1 pt 7") + " t " + quoted(l.solver->name());
   }
-  const std::string steps = step_plot(sc, data);
+  const std::string steps = step_plot(sc, charts);
   const fs::path gp = data / (stem(sc) + ".gp");
   std::ofstream g(gp);
   const auto outputs = [&](const std::string& name, const std::string& body) {
@@ -175,7 +175,7 @@ void chart_grid_scene(const GridScene& sc, const fs::path& charts, double tolera
       g << (std::string(ext) == "png"
                 ? "set terminal pngcairo size 1000,620 font 'DejaVu Sans,11'\n"
                 : "set terminal svg size 1000,620 dynamic font 'DejaVu Sans,11'\n")
-        << "set output " << quoted((charts / (name + "." + ext)).string()) << "\n"
+        << "set output " << quoted(name + "." + ext) << "\n"
         << body << "\n";
     g << "unset output\n";
   };
@@ -188,7 +188,7 @@ void chart_grid_scene(const GridScene& sc, const fs::path& charts, double tolera
     << "set xlabel 'd (unknowns)'\nset ylabel 'seconds per step'\nset logscale x 10\n";
   outputs(stem(sc) + "_step", steps);
   g.close();
-  run_gnuplot(charts, gp.string());
+  run_gnuplot(charts, "data/" + stem(sc) + ".gp");  // (paths in it are relative to charts)
 }
 
 void write_grid_report(const fs::path& out, const std::vector<GridScene>& scenes,

@@ -8,7 +8,9 @@
 #include <cstdio>
 #include <erkn/integrator.hpp>
 #include <erkn/stiffness.hpp>
+#include <fstream>
 #include <stdexcept>
+#include <thread>
 
 #include "grid_problems.hpp"
 #include "grid_scene_data.hpp"
@@ -186,6 +188,13 @@ double dense_setup_seconds(int d) {
   return seconds;
 }
 
+// The 1-minute load average (timings on a shared machine depend on it), "?" when unknown.
+std::string load_average() {
+  std::ifstream f("/proc/loadavg");
+  std::string first;
+  return f >> first ? first : "?";
+}
+
 using Save = std::function<void()>;
 
 void run_sizes(GridScene& sc, const GridSceneConfig& cfg, Progress& progress, const Save& save) {
@@ -302,6 +311,9 @@ GridSceneConfig grid_scene_config(bool full, const SweepPolicy& sweep) {
 
 bool run_grid_scenes(const GridSceneConfig& cfg, const SolverList& solvers, const fs::path& out,
                      const std::string& command) {
+  const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = cpu_seconds();
+  const std::string load_start = load_average();
   fs::create_directories(out / "charts");
   std::vector<GridScene> scenes = make_scenes(cfg, solvers);
   std::vector<std::pair<int, double>> dense;
@@ -336,7 +348,14 @@ bool run_grid_scenes(const GridSceneConfig& cfg, const SolverList& solvers, cons
     ok = false;
     std::fprintf(stderr, "dense path: %s\n", e.what());
   }
-  status = ok ? "finished" : "finished with failures (recorded below)";
+  char spent[200];
+  std::snprintf(spent, sizeof spent,
+                " in %.0f s wall time, %.0f s CPU time of this process (load average %s at the "
+                "start, %s at the end, on %u hardware threads)",
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                cpu_seconds() - cpu_start, load_start.c_str(), load_average().c_str(),
+                std::thread::hardware_concurrency());
+  status = (ok ? "finished" : "finished with failures (recorded below)") + std::string(spent);
   save();
   std::printf("wrote %s (%s)\n", (out / "grids.md").c_str(), status.c_str());
   return ok;
