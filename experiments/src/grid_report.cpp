@@ -1,4 +1,5 @@
 // docs/grids.md and the grid charts, from the scenes as far as they got.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -72,7 +73,8 @@ void cpu_table(std::ostream& md, const GridScene& sc, const GridSceneConfig& cfg
   for (size_t i = 0; i < sc.references.size(); ++i)
     md << (i ? "; " : "") << "N = " << sc.sizes[i] << ": " << sc.references[i].method
        << " (agreement with half the steps " << number(sc.references[i].accuracy, 2) << ")";
-  md << ".\n\n![CPU time to tolerance](charts/" << stem(sc) << "_cpu.png)\n\n";
+  md << ".\n\n![CPU time to tolerance (the methods run at more than one N)](charts/" << stem(sc)
+     << "_cpu.png)\n\n";
 }
 
 void step_table(std::ostream& md, const GridScene& sc) {
@@ -125,14 +127,14 @@ void dense_table(std::ostream& md, const std::vector<std::pair<int, double>>& de
        << number(2.0 * 8 * double(d) * double(d) / 1e6) << " |\n";
 }
 
-// The data file of one CPU-time line; false when it has no point (gnuplot would warn).
-bool write_cpu_data(const fs::path& dat, const GridScene& sc, const GridLine& l, double tol) {
+// The data file of one CPU-time line; its number of points.
+int write_cpu_data(const fs::path& dat, const GridScene& sc, const GridLine& l, double tol) {
   std::ofstream f(dat);
   f << "# N cpu_seconds_to_" << tol << "\n";
-  bool any = false;
+  int points = 0;
   for (size_t i = 0; i < l.cells.size(); ++i)
-    if (l.cells[i].cpu) f << sc.sizes[i] << ' ' << *l.cells[i].cpu << '\n', any = true;
-  return any;
+    if (l.cells[i].cpu) f << sc.sizes[i] << ' ' << *l.cells[i].cpu << '\n', ++points;
+  return points;
 }
 
 std::string step_plot(const GridScene& sc, const fs::path& charts) {
@@ -162,7 +164,8 @@ void chart_grid_scene(const GridScene& sc, const fs::path& charts, double tolera
   std::string plot;
   for (const GridLine& l : sc.lines) {
     const std::string dat = "data/" + stem(sc) + "_" + slug(l.solver->name()) + ".dat";
-    if (!write_cpu_data(charts / dat, sc, l, tolerance)) continue;
+    // Lines measured at one N only are in the table, not in the chart (a single point each).
+    if (write_cpu_data(charts / dat, sc, l, tolerance) < std::min<int>(2, sc.dims.size())) continue;
     plot += std::string(plot.empty() ? "plot " : ", \\\n  ") + quoted(dat) + " u 1:2 w lp lw 2 " +
             (is_peer(*l.solver) ? "dt (2,4) pt 4" : "dt 1 pt 7") + " t " + quoted(l.solver->name());
   }
