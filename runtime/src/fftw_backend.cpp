@@ -1,12 +1,17 @@
 // The grid transforms through FFTW (compiled when erkn is built with ERKN_WITH_FFTW): one
-// multi-dimensional r2r plan each way, made once per Integrator. FFTW's planner is not
-// thread-safe (ensembles construct integrators on threads), so planning and destroying plans
-// holds one mutex; executing a plan on new arrays (fftw_execute_r2r) is thread-safe.
+// multi-dimensional r2r plan each way, made once per grid and process and shared by every
+// Integrator on that grid (setup then plans nothing: at N = 32 planning from wisdom cost ~6 us,
+// more than the rest of the setup). FFTW's planner is not thread-safe (ensembles construct
+// integrators on threads), so planning holds one mutex; executing a plan on new arrays of the
+// planned alignment (fftw_execute_r2r; every buffer here is fftw_alloc'ed) is thread-safe.
 #include <fftw3.h>
 
 #include <limits>
+#include <map>
 #include <mutex>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "erkn/error.hpp"
 #include "grid_backend.hpp"
@@ -56,6 +61,33 @@ double logical_size(const GridAxis& axis) {
   return 1;
 }
 
+struct Plans {
+  fftw_plan forward = nullptr, inverse = nullptr;
+};
+
+// The plans of a grid (sizes n, forward kinds fk, inverse kinds ik), planned on in/out at the
+// first request and kept for the process (a handful of grids: they are never destroyed).
+Plans shared_plans(const std::vector<int>& n, const std::vector<fftw_r2r_kind>& fk,
+                   const std::vector<fftw_r2r_kind>& ik, double* in, double* out) {
+  static std::map<std::pair<std::vector<int>, std::vector<int>>, Plans> cache;
+  std::pair<std::vector<int>, std::vector<int>> key{n, std::vector<int>(fk.begin(), fk.end())};
+  std::lock_guard lock(planner_mutex());
+  if (auto it = cache.find(key); it != cache.end()) return it->second;
+  // Out of place; the input is a private copy, so FFTW may destroy it (faster for HC2R).
+  // FFTW_MEASURE: erkn_fftw_planner_benchmark measured a transform pair 1.2-3.0x faster than
+  // with FFTW_ESTIMATE at 256^2..128^3, for 0.2-1.9 s of planning once per grid and process.
+  const unsigned flags = FFTW_MEASURE | FFTW_DESTROY_INPUT;
+  Plans plans;
+  plans.forward = fftw_plan_r2r(int(n.size()), n.data(), in, out, fk.data(), flags);
+  plans.inverse = fftw_plan_r2r(int(n.size()), n.data(), in, out, ik.data(), flags);
+  if (!plans.forward || !plans.inverse) {
+    if (plans.forward) fftw_destroy_plan(plans.forward);
+    if (plans.inverse) fftw_destroy_plan(plans.inverse);
+    throw Error("FFTW could not plan the grid transforms");
+  }
+  return cache.emplace(std::move(key), plans).first->second;
+}
+
 struct Buffer {
   explicit Buffer(Eigen::Index d) : data(fftw_alloc_real(std::size_t(d))) {
     if (!data)
@@ -80,26 +112,11 @@ class FftwBackend final : public GridBackend {
       ik.push_back(inverse_kind(axis.boundary));
       scale_ /= logical_size(axis);
     }
-    // Out of place; the input is a private copy, so FFTW may destroy it (faster for HC2R).
-    // FFTW_MEASURE: erkn_fftw_planner_benchmark measured a transform pair 1.2-3.0x faster than
-    // with FFTW_ESTIMATE at 256^2..128^3, for 0.2-1.9 s of planning once per grid and process
-    // (later plans reuse FFTW's wisdom); a run needs a few hundred pairs to pay it back.
-    const unsigned flags = FFTW_MEASURE | FFTW_DESTROY_INPUT;
-    std::lock_guard lock(planner_mutex());
-    forward_ = fftw_plan_r2r(int(n.size()), n.data(), in_.data, out_.data, fk.data(), flags);
-    inverse_ = fftw_plan_r2r(int(n.size()), n.data(), in_.data, out_.data, ik.data(), flags);
-    if (!forward_ || !inverse_) {
-      destroy();
-      throw Error("FFTW could not plan the grid transforms");
-    }
-  }
-  ~FftwBackend() override {
-    std::lock_guard lock(planner_mutex());
-    destroy();
+    plans_ = shared_plans(n, fk, ik, in_.data, out_.data);
   }
 
-  void forward(const double* x, double* y) override { run(forward_, x, y, 1.0); }
-  void inverse(const double* y, double* x) override { run(inverse_, y, x, scale_); }
+  void forward(const double* x, double* y) override { run(plans_.forward, x, y, 1.0); }
+  void inverse(const double* y, double* x) override { run(plans_.inverse, y, x, scale_); }
 
  private:
   static Eigen::Index size(const std::vector<GridAxis>& axes) {
@@ -122,16 +139,10 @@ class FftwBackend final : public GridBackend {
     }
   }
 
-  void destroy() {
-    if (forward_) fftw_destroy_plan(forward_);
-    if (inverse_) fftw_destroy_plan(inverse_);
-    forward_ = inverse_ = nullptr;
-  }
-
   Eigen::Index d_;
   Buffer in_, out_;
   double scale_ = 1;
-  fftw_plan forward_ = nullptr, inverse_ = nullptr;
+  Plans plans_;
 };
 
 }  // namespace

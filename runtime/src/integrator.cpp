@@ -46,11 +46,16 @@ double grid_tolerance(double t, double t_end, double h) {
   return 4 * std::numeric_limits<double>::epsilon() * std::max({std::abs(t), std::abs(t_end), h});
 }
 
-// Circulant M up to this N uses the explicit Fourier basis (folded matrix-vector products,
-// O(N^2)), beyond it the FFT (O(N log N)). Measured with erkn_step_benchmark, BM_StepCirculant
-// (SERKN3s4(1), time per step, basis vs FFT): N = 32 5.9 vs 6.1 us, N = 64 12.5 vs 13.3 us,
-// N = 128 35 vs 24 us, N = 256 113 vs 55 us.
-constexpr Eigen::Index kFourierBasisMaxN = 64;
+// Circulant M: the explicit Fourier basis (folded matrix-vector products, O(N^2)) up to N =
+// kFourierBasisMaxN, beyond it FFTW's real transform (GridTransform) or else Eigen's FFT; explicit
+// methods built with FFTW use it from N = kFftwMinN on. Thread CPU time per step (median of 15 x
+// 2000 steps, sine-Gordon, h = 0.8/N), basis vs FFTW: SABA2 N = 4 289 vs 217 ns, N = 32 1415 vs
+// 1139 ns, N = 64 3064 vs 2276 ns; SERKN3s4(1) N = 4 1025 vs 775 ns, N = 32 2573 vs 2091 ns,
+// N = 64 5560 vs 4066 ns (implicit methods keep the basis for now: their circulant and dense
+// trajectories then agree to 1e-13 over 50 steps, with FFTW SERKN3s4pf(1) reached 1.5e-13).
+// Basis vs Eigen's FFT (erkn_step_benchmark, BM_StepCirculant, SERKN3s4(1)): N = 32 5.9 vs
+// 6.1 us, N = 64 12.5 vs 13.3 us, N = 128 35 vs 24 us.
+constexpr Eigen::Index kFftwMinN = 4, kFourierBasisMaxN = 64;
 
 // Explicit methods in dimensions up to this with M's identity eigenbasis (scalar, diagonal M;
 // RKN methods) step with the dimension as a compile-time constant.
@@ -98,7 +103,7 @@ std::unique_ptr<detail::StepperBase> make_stepper(const Method& method, System s
           x, d, method, std::move(system), h, options, OrthogonalTransform{&M.eigenvectors()},
           lambda);
     case Stiffness::Structure::circulant:
-      if (d <= kFourierBasisMaxN)
+      if (d < (x && grid_backend_is_fftw() ? kFftwMinN : kFourierBasisMaxN + 1))
         return stepper_of<FourierBasisTransform, Eigen::ArrayXd>(
             x, d, method, std::move(system), h, options, FourierBasisTransform(d),
             FourierBasisTransform::coordinate_eigenvalues(lambda, d));
