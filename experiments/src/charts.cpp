@@ -212,15 +212,19 @@ void chart_scaling(const ScalingResult& r, const fs::path& charts_dir) {
   run_gnuplot(charts_dir, "data/scaling.gp");
 }
 
-void chart_stiff(const ProblemResult& r, const fs::path& charts_dir) {
+void chart_stiff(const ProblemResult& r, double kappa, const fs::path& charts_dir) {
   fs::create_directories(charts_dir / "data");
   const std::string key = slug(r.key);
   for (const MethodResult& m : r.methods) {
     const std::string stem = "data/" + key + "_" + slug(m.name);
     std::ofstream ok = open(charts_dir / (stem + ".dat"));
     std::ofstream failed = open(charts_dir / (stem + "_failed.dat"));
+    std::ofstream predicted = open(charts_dir / (stem + "_predicted.dat"));
     ok << "# steps h error grad_evals cpu_seconds\n";
     failed << "# steps h failure\n";
+    // The V = 0 line's bound z* on h^2 kappa (cos u = 1, the stiffest point of grad^2 U).
+    predicted << "# h = sqrt(z*/kappa), z* = first z with |tr S(0, z)| > 2\n";
+    if (m.first_unstable_z) predicted << std::sqrt(*m.first_unstable_z / kappa) << '\n';
     for (const Measurement& x : m.sweep) {
       if (x.ok() && x.error > 0)
         ok << x.steps << ' ' << x.h << ' ' << x.error << ' ' << x.stats.grad_evals << ' ' << x.cpu
@@ -242,14 +246,16 @@ void chart_stiff(const ProblemResult& r, const fs::path& charts_dir) {
       cpu_plot += sep + quoted(stem + ".dat") + " u 5:3 w lp " + s + " t " + quoted(m.name);
       const std::string color = s.substr(0, s.find('\'', s.find('\'') + 1) + 1);  // "lc rgb '#..'"
       h_plot += sep + quoted(stem + ".dat") + " u 2:3 w lp " + s + " t " + quoted(m.name) + ", " +
-                quoted(stem + "_failed.dat") + " u 2:(1) w p " + color + " pt 2 ps 2 lw 2 notitle";
+                quoted(stem + "_failed.dat") + " u 2:(1) w p " + color +
+                " pt 2 ps 2 lw 2 notitle, " + quoted(stem + "_predicted.dat") + " u 1:(2) w p " +
+                color + " pt 11 ps 1.6 notitle";
     }
     const std::string stem = key + g.suffix;
     std::ofstream gp = open(charts_dir / "data" / (stem + ".gp"));
     write_header(gp, chart_title(r.title, g, "error vs CPU time"), "CPU time (s)", err.str());
     write_outputs(gp, stem + "_cpu", cpu_plot);
-    write_header(gp, chart_title(r.title, g, "error vs h (x: failed runs)"), "step size h",
-                 err.str());
+    write_header(gp, chart_title(r.title, g, "error vs h (x: failed; ▼: S(0, z) bound)"),
+                 "step size h", err.str());
     gp << "set yrange [:3]\n";
     write_outputs(gp, stem + "_h", h_plot);
     gp.close();

@@ -96,7 +96,7 @@ int run(const Options& o, const std::string& command) {
   }
   std::vector<StiffResult> stiff_results;
   if (stiff) stiff_results = run_stiff(solvers, stiff_config, o.config, progress);
-  for (const StiffResult& s : stiff_results) chart_stiff(s.result, charts);
+  for (const StiffResult& s : stiff_results) chart_stiff(s.result, s.kappa, charts);
   progress.finish();
   // results.md first: the grid scenes run last, and a failure there must not lose it.
   if (!keys.empty() || scaling || stiff) {

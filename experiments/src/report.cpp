@@ -95,26 +95,6 @@ void scaling_section(std::ostream& md, const ScalingResult& s) {
   }
 }
 
-// Where a sweep stops working: the smallest step size that failed, and the largest one below it
-// that ran (empty when no run failed).
-struct Limit {
-  std::optional<double> failed_h, stable_h;
-  std::string why;
-};
-
-Limit stability_limit(const std::vector<Measurement>& sweep) {
-  Limit l;
-  for (const Measurement& m : sweep)  // sorted by step count: h decreasing
-    if (!m.ok())
-      l.failed_h = m.h, l.why = m.failure, l.stable_h.reset();
-    else if (l.failed_h && !l.stable_h)
-      l.stable_h = m.h;
-  if (l.why.size() > 60) l.why = l.why.substr(0, 57) + "...";
-  for (char& ch : l.why)
-    if (ch == '|') ch = '/';
-  return l;
-}
-
 void stiff_section(std::ostream& md, const std::vector<StiffResult>& stiff) {
   md << "\n## Stiff nonlinear part — sine-Gordon with U = −κ Σ cos u, N = 32\n\n"
      << "u(0) = sin(2πi/N), u'(0) = 0, error at t = " << stiff.front().result.t_error
@@ -143,7 +123,10 @@ void stiff_section(std::ostream& md, const std::vector<StiffResult>& stiff) {
        << fmt("%.0e", tolerances[0]) << " | CPU ms to " << fmt("%.0e", tolerances[1]) << " |\n"
        << "|---|---|--:|--:|--:|---|--:|--:|\n";
     for (const MethodResult& m : r.methods) {
-      const Limit l = stability_limit(m.sweep);
+      Limit l = stability_limit(m.sweep);
+      if (l.why.size() > 60) l.why = l.why.substr(0, 57) + "...";
+      for (char& ch : l.why)
+        if (ch == '|') ch = '/';
       md << "| " << m.name << " | " << kind_name(m) << " | "
          << (m.first_unstable_z ? fmt("%.3g", *m.first_unstable_z) : "—") << " | "
          << (l.failed_h ? fmt("%.3g", *l.failed_h) + " (" +

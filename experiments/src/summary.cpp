@@ -118,6 +118,16 @@ std::optional<double> implicit_stages(const std::vector<Measurement>& runs) {
   return std::nullopt;
 }
 
+Limit stability_limit(const std::vector<Measurement>& sweep) {
+  Limit l;
+  for (const Measurement& m : sweep)  // sorted by step count: h decreasing
+    if (!m.ok())
+      l.failed_h = m.h, l.why = m.failure, l.stable_h.reset();
+    else if (l.failed_h && !l.stable_h)
+      l.stable_h = m.h;
+  return l;
+}
+
 std::optional<double> scaling_cpu(const ScalingResult& result, size_t line, size_t i) {
   const auto& ms = result.lines[line].brackets[i];
   return ex::cost_to_tolerance(curve(ms, Axis::cpu), result.tolerance);

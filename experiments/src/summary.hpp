@@ -56,6 +56,14 @@ std::optional<double> mean_stage_iterations(const RunStats& stats);
 /// explicit methods or when no run completed.
 std::optional<double> implicit_stages(const std::vector<Measurement>& runs);
 
+/// Where a sweep stops working: the smallest step size that failed, the largest one below it that
+/// ran, and why the first failed (all empty when no run failed).
+struct Limit {
+  std::optional<double> failed_h, stable_h;
+  std::string why;
+};
+Limit stability_limit(const std::vector<Measurement>& sweep);
+
 /// CPU time to the scaling tolerance of one line at size index i.
 std::optional<double> scaling_cpu(const ScalingResult& result, size_t line, size_t i);
 
