@@ -107,8 +107,10 @@ int run(const Options& o, const std::string& command) {
     std::vector<ProblemResult> raw = results;  // the raw files list the stiff scene's sweeps too
     for (const StiffResult& s : stiff_results) raw.push_back(s.result);
     write_raw_results(charts, raw, scaled);
-    write_report(o.out / "results.md", {command, o.mode, wall, o.config.sweep.timing.repeats},
-                 results, scaled, stiff_results);
+    RunInfo info{command, o.mode, wall, cpu_seconds(), o.config.sweep.timing.repeats, {}};
+    for (const Twin& t : identical_registry_methods())
+      info.identical.push_back(t.name + " = " + t.same_as);
+    write_report(o.out / "results.md", info, results, scaled, stiff_results);
     std::printf("%s\nwrote %s and %s/ in %.0f s\n",
                 targets_markdown(target_scenes(results, scaled)).c_str(),
                 (o.out / "results.md").c_str(), charts.c_str(), wall);

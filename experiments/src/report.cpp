@@ -72,7 +72,9 @@ void scaling_section(std::ostream& md, const ScalingResult& s) {
   for (size_t i = 0; i < s.sizes.size(); ++i)
     md << (i ? "; " : " ") << "N = " << s.sizes[i] << ": " << s.references[i].steps << ", "
        << sci(s.references[i].accuracy);
-  md << ". In parentheses: ratio to the best peer at the same N.\n\n";
+  md << ". In parentheses: ratio to the best peer at the same N. The RKN limits are left out: "
+        "like the peers without an exact linear flow they must resolve the fastest mode of M, "
+        "which grows with N.\n\n";
   md << "![CPU time to 1e-6 vs N](charts/scaling.png)\n\n| method |";
   for (int n : s.sizes) md << " N = " << n << " |";
   md << "\n|---|";
@@ -154,9 +156,20 @@ void write_report(const std::filesystem::path& file, const RunInfo& info,
   if (!md) throw std::runtime_error("cannot write " + file.string());
   md << "# erkn — measured results\n\n"
      << "Written by `" << info.command << "` (" << info.mode << " sweep) in "
-     << fmt("%.0f", info.wall_seconds) << " s on " << cpu_model() << " ("
-     << std::thread::hardware_concurrency() << " hardware threads, one used). "
+     << fmt("%.0f", info.wall_seconds) << " s (" << fmt("%.0f", info.cpu_seconds)
+     << " s of CPU time) on " << cpu_model() << " (" << std::thread::hardware_concurrency()
+     << " hardware threads, one used). "
      << "Do not edit: every number below comes from that run.\n\n"
+     << "- **Methods**: the methods of erkn's registry that the command selects (all by default: "
+        "the paper's ERKN methods and their RKN limits, erkn's explicit methods, its other "
+        "implicit methods) and the peers below.";
+  if (!info.identical.empty()) {
+    md << " Registry methods identical to an earlier one (same kind, stages and coefficients) "
+          "are run once, under the earlier name:";
+    for (size_t i = 0; i < info.identical.size(); ++i) md << (i ? ", " : " ") << info.identical[i];
+    md << ".";
+  }
+  md << "\n"
      << "- **Cost** counts every evaluation of ∇U, including each fixed-point or Newton "
         "iteration of the implicit stages; for the peers, every evaluation of the full force "
         "−Mq − ∇U(q).\n"

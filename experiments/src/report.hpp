@@ -15,7 +15,10 @@ struct RunInfo {
   std::string command;  ///< the command line that produced the run
   std::string mode;     ///< "quick", "full", or "custom"
   double wall_seconds = 0;
+  double cpu_seconds = 0;  ///< the process's CPU time (the machine may be shared)
   int repeats = 0;
+  /// Registry methods run under the name of an identical one: "RKN2s3pf = RKN2s3".
+  std::vector<std::string> identical;
 };
 
 /// Writes `file` (results.md) and summary.md beside it (the verdict alone).
