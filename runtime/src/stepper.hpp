@@ -47,7 +47,7 @@ class Stepper final : public StepperBase {
         M_(system_.M, d),
         m_(transform_.spectral_size(d)),
         stride_(aligned_stride<Scalar>(m_)),
-        spectral_(Spectral::Zero((kSlots + 2 * s_) * stride_)),
+        spectral_(Spectral::Zero((kSlots + (kHistory + 1) * s_) * stride_)),
         q_hat_(slot(0), m_),
         p_hat_(slot(1), m_),
         eq_hat_(slot(2), m_),
@@ -57,9 +57,8 @@ class Stepper final : public StepperBase {
         r_hat_(slot(6), m_),
         Q_hat_(slot(7), m_),
         Q_hat_new_(slot(8), m_),
-        guess_hat_(slot(9), m_),
-        G_(slot(kSlots)),
-        G_old_(slot(kSlots + s_)) {
+        guess_hat_(slot(9), m_) {
+    for (int age = 0; age <= kHistory; ++age) steps_[age] = slot(kSlots + age * s_);
     for (Eigen::VectorXd* x : {&Q_, &g_}) x->setZero(d);
     if (rkn_) Mq_.setZero(d);
     k_.emplace(method, h, lambda);
@@ -69,23 +68,7 @@ class Stepper final : public StepperBase {
       };
       weight_[i] = std::max({1.0, ratio(k_->h2bbar(i)), ratio(k_->hb(i) * h)});
     }
-    // Lagrange weights at c_i on the nodes c_j - 1 (the previous step's stages) and c_j, j < i
-    // (this step's stages solved before stage i; they replace an old node at the same time).
-    const double* c = method.table().c;
-    for (int i = 0; i < s_; ++i) {
-      double x[2 * kMaxStages];
-      bool used[2 * kMaxStages];
-      for (int j = 0; j < s_ + i; ++j) {
-        x[j] = j < s_ ? c[j] - 1 : c[j - s_];
-        used[j] = j >= s_ || std::find(c, c + i, x[j]) == c + i;
-      }
-      for (int j = 0; j < s_ + i; ++j) {
-        double w = 1;
-        for (int l = 0; l < s_ + i; ++l)
-          if (l != j && used[l]) w *= (c[i] - x[l]) / (x[j] - x[l]);
-        extrapolation_[i][j] = used[j] ? w : 0.0;
-      }
-    }
+    for (int i = 0; i < s_; ++i) set_nodes(i);
   }
 
   Stepper(const Stepper&) = delete;  // (the maps view its own buffers)
@@ -96,7 +79,7 @@ class Stepper final : public StepperBase {
     transform_.forward(p, p_hat_);
     eq_hat_.setZero();
     ep_hat_.setZero();
-    have_history_ = false;
+    history_ = 0;
   }
 
   void get_state(Eigen::VectorXd& q, Eigen::VectorXd& p) override {
@@ -114,8 +97,8 @@ class Stepper final : public StepperBase {
       stats = before;
       throw;
     }
-    std::swap(G_, G_old_);  // (the pointers)
-    have_history_ = true;
+    std::rotate(steps_.begin(), steps_.end() - 1, steps_.end());
+    history_ = std::min(history_ + 1, kHistory);
     ++stats.steps;
   }
 
@@ -131,14 +114,16 @@ class Stepper final : public StepperBase {
     const StepCoefficients<Coef>& k = *k_;
     for (int i = 0; i < s_; ++i) {
       start_stage(i);
-      if (fixed_point(i, stats)) continue;
-      ++stats.newton_fallbacks;
-      const long before = stats.gradient_evaluations;
-      if (d_ <= kDenseNewtonMaxD)
-        newton(i, stats);
-      else
-        newton_krylov(i, stats);
-      newton_cost_[i] = double(stats.gradient_evaluations - before);
+      if (!fixed_point(i, stats)) {
+        ++stats.newton_fallbacks;
+        const long before = stats.gradient_evaluations;
+        if (d_ <= kDenseNewtonMaxD)
+          newton(i, stats);
+        else
+          newton_krylov(i, stats);
+        newton_cost_[i] = double(stats.gradient_evaluations - before);
+      }
+      adapt_order(i);
     }
     SpectralMap &dq = qw_hat_, &dp = pw_hat_;
     dq = k.phi0m1() * q_hat_ + k.hphi1() * p_hat_;
@@ -155,22 +140,75 @@ class Stepper final : public StepperBase {
   StepPlace place() const { return {&method_, step_number_, t_}; }
 
   // r_i = phi0(c_i^2 V) q + h c_i phi1(c_i^2 V) p - h^2 sum_{j<i} abar_ij g_j, and the starting
-  // guess Q = r_i - h^2 abar_ii g_pred with g_pred extrapolated from the previous step.
+  // guess Q = r_i - h^2 abar_ii g_pred with g_pred extrapolated from the known stage gradients.
   void start_stage(int i) {
     const StepCoefficients<Coef>& k = *k_;
     r_hat_ = k.phi0c(i) * q_hat_ + k.hcphi1c(i) * p_hat_;
     for (int j = 0; j < i; ++j) r_hat_ -= k.abar(i, j) * G(j);
-    if (have_history_) {
-      guess_hat_ = extrapolation_[i][0] * G_old(0);
-      for (int j = 1; j < s_; ++j) guess_hat_ += extrapolation_[i][j] * G_old(j);
-      for (int j = 0; j < i; ++j) guess_hat_ += extrapolation_[i][s_ + j] * G(j);
-    } else if (i > 0) {
-      guess_hat_ = G(i - 1);
-    } else {
+    const int n = std::min(order_[i], available_nodes(i));
+    if (n > 0)
+      predict(i, n, guess_hat_);
+    else
       guess_hat_.setZero();
-    }
     Q_hat_ = r_hat_ - k.abar(i, i) * guess_hat_;
     transform_.inverse(Q_hat_, Q_);
+  }
+
+  // Stage i's nodes, most recent first: this step's stages j < i (at c_j), then those of the
+  // previous steps (at c_j - age); a node at the time of a more recent one is left out.
+  void set_nodes(int i) {
+    const double* c = method_.table().c;
+    const auto time = [&](const Node& node) { return c[node.stage] - node.age; };
+    int& n = node_count_[i];
+    for (int age = 0; age <= kHistory; ++age)
+      for (int j = (age == 0 ? i : s_) - 1; j >= 0; --j) {
+        const Node node{age, j};
+        bool repeated = false;
+        for (int l = 0; l < n; ++l) repeated |= time(nodes_[i][l]) == time(node);
+        if (!repeated && n < kMaxNodes) nodes_[i][n++] = node;
+      }
+    // Lagrange weights at c_i on the first m nodes, for every m.
+    for (int m = 1; m <= n; ++m)
+      for (int l = 0; l < m; ++l) {
+        double w = 1;
+        for (int k = 0; k < m; ++k)
+          if (k != l) w *= (c[i] - time(nodes_[i][k])) / (time(nodes_[i][l]) - time(nodes_[i][k]));
+        weights_[i][m - 1][l] = w;
+      }
+    order_[i] = std::min(n, s_ + i);  // the previous step's stages and this step's so far
+  }
+
+  // Nodes of stage i whose gradients are known (the steps since set_state).
+  int available_nodes(int i) const {
+    int n = 0;
+    while (n < node_count_[i] && nodes_[i][n].age <= history_) ++n;
+    return n;
+  }
+
+  // out = the polynomial through the first n nodes of stage i, at c_i.
+  void predict(int i, int n, SpectralMap& out) {
+    const auto gradient_at = [&](const Node& node) {
+      return SpectralMap(steps_[node.age] + node.stage * stride_, m_);
+    };
+    out = weights_[i][n - 1][0] * gradient_at(nodes_[i][0]);
+    for (int l = 1; l < n; ++l) out += weights_[i][n - 1][l] * gradient_at(nodes_[i][l]);
+  }
+
+  // Moves stage i's order n to whichever of n - 1, n, n + 1 nodes would have predicted its
+  // solved gradient best: high degrees where the stage gradients are smooth on the scale of h,
+  // low ones where they oscillate (the extrapolation then amplifies more than it predicts).
+  void adapt_order(int i) {
+    const int available = available_nodes(i), n = std::min(order_[i], available);
+    if (available < 2) return;
+    double best = transform_.norm(guess_hat_ - G(i));  // (start_stage's prediction, n nodes)
+    int best_n = n;
+    for (int m : {n - 1, n + 1}) {
+      if (m < 1 || m > available) continue;
+      predict(i, m, Q_hat_new_);  // (free between stages)
+      const double error = transform_.norm(Q_hat_new_ - G(i));
+      if (error < best) best = error, best_n = m;
+    }
+    order_[i] = best_n;
   }
 
   // Fixed point Q <- r_i - h^2 abar_ii(V) g(Q). True when converged, or when the updates stall
@@ -463,8 +501,7 @@ class Stepper final : public StepperBase {
   }
 
   Scalar* slot(int k) { return spectral_.data() + k * stride_; }
-  SpectralMap G(int i) { return {G_ + i * stride_, m_}; }
-  SpectralMap G_old(int i) { return {G_old_ + i * stride_, m_}; }
+  SpectralMap G(int i) { return {steps_[0] + i * stride_, m_}; }
 
   // Exchanges the arrays two maps view (Map::swap would exchange their contents).
   static void swap_views(SpectralMap& a, SpectralMap& b) {
@@ -485,20 +522,31 @@ class Stepper final : public StepperBase {
   MOperator M_;
   long step_number_ = 0;  // of the step being taken, and its t, for messages
   double t_ = 0;
-  std::array<std::array<double, 2 * kMaxStages>, kMaxStages> extrapolation_{};
-  bool have_history_ = false;
+  // Starting values: stage i's gradient extrapolated through its order_[i] most recent known
+  // stage gradients (nodes_[i], their Lagrange weights at c_i in weights_[i][order - 1]), from
+  // this step and the kHistory before it.
+  static constexpr int kHistory = 3;
+  static constexpr int kMaxNodes = (kHistory + 1) * kMaxStages;
+  struct Node {
+    int age, stage;  // age 0: this step
+  };
+  std::array<std::array<Node, kMaxNodes>, kMaxStages> nodes_{};
+  std::array<int, kMaxStages> node_count_{}, order_{};
+  std::array<std::array<std::array<double, kMaxNodes>, kMaxNodes>, kMaxStages> weights_{};
+  int history_ = 0;  // steps before this one with stage gradients (since set_state)
   std::array<double, kMaxStages> theta_ = filled<kMaxStages>(-1.0);  // measured; < 0: none
   std::array<int, kMaxStages> theta_age_{};  // stage solves since the measurement
   std::array<double, kMaxStages> weight_{};
   std::array<double, kMaxStages> newton_cost_{};  // evaluations of its last Newton solve; 0: none
   // The arrays in eigen coordinates, m_ entries each and stride_ apart in spectral_ (one
   // allocation): the state (q, p) and its summation errors, the increments dq, dp of a step,
-  // four stage arrays, then the s stage gradients of this step (G_) and of the last (G_old_).
+  // four stage arrays, then the s stage gradients of this step and of the kHistory before it
+  // (steps_[age]).
   Eigen::Index m_, stride_;
   Spectral spectral_;
   SpectralMap q_hat_, p_hat_, eq_hat_, ep_hat_, qw_hat_, pw_hat_;
   SpectralMap r_hat_, Q_hat_, Q_hat_new_, guess_hat_;
-  Scalar *G_, *G_old_;
+  std::array<Scalar*, kHistory + 1> steps_{};
   Eigen::VectorXd Q_, g_, Mq_;  // (Q_, g_ go to the callbacks)
   // Newton workspace, allocated at the first fallback.
   Eigen::MatrixXd J_, H_, M_dense_;
