@@ -2,7 +2,9 @@
 // 4), for every implicit method of the registry, at the step sizes that reach the errors 1e-6 and
 // 1e-9 at t_error: the step count is doubled from the paper's smallest until the max-norm error of
 // q(t_error) against the experiments' reference is below the tolerance. Default Options (stage
-// tolerance near round-off); "newton" counts the stages the fixed-point iteration left to Newton.
+// tolerance near round-off); "newton" counts the stages the fixed-point iteration left to Newton;
+// "vs tol 0" is max |q - q'| with q' from the same run with Options::tolerance = 0 (every stage
+// iterated to round-off): what the stage solver's stopping adds to the error.
 //
 //   erkn_stage_evaluations
 #include <algorithm>
@@ -29,18 +31,21 @@ struct Run {
   long steps = 0;
   double error = 0;
   erkn::Statistics stats;
+  Eigen::VectorXd q;
 };
 
 // The run with n steps on [0, t_error]; error +inf when it fails (unstable h, pole, no stage
 // convergence).
 Run run(const erkn::Method& m, const erkn::problems::Problem& p, const Eigen::VectorXd& reference,
-        long n) {
-  Run r{n, std::numeric_limits<double>::infinity(), {}};
+        long n, const erkn::Options& options = {}) {
+  Run r{n, std::numeric_limits<double>::infinity(), {}, {}};
   try {
-    erkn::Integrator integrator(m, erkn::problems::system(p), p.t_error / double(n), p.q0, p.p0);
+    erkn::Integrator integrator(m, erkn::problems::system(p), p.t_error / double(n), p.q0, p.p0,
+                                options);
     integrator.integrate(p.t_error);
     r.error = (integrator.q() - reference).cwiseAbs().maxCoeff();
     r.stats = integrator.statistics();
+    r.q = integrator.q();
   } catch (const erkn::Error&) {
   }
   return r;
@@ -58,8 +63,10 @@ int main() {
     references.push_back(p.exact ? (*p.exact)(p.t_error)
                                  : ex::reference_solution(p, p.t_error, 1e-12).q);
   }
-  std::printf("%-14s %-4s %6s %10s %9s %10s %12s %7s\n", "method", "prob", "tol", "h", "steps",
-              "error", "gradU/stage", "newton");
+  std::printf("%-14s %-4s %6s %10s %9s %10s %12s %7s %10s\n", "method", "prob", "tol", "h", "steps",
+              "error", "gradU/stage", "newton", "vs tol 0");
+  erkn::Options converged;
+  converged.tolerance = 0;
   double worst[2] = {0, 0};
   for (const erkn::Method& m : erkn::Method::all()) {
     if (!implicit_stages(m)) continue;
@@ -78,9 +85,13 @@ int main() {
         const double per_stage =
             double(r.stats.gradient_evaluations) / double(r.stats.steps) / double(m.stages());
         worst[t] = std::max(worst[t], per_stage);
-        std::printf("%-14s %-4s %6.0e %10.5f %9ld %10.2e %12.3f %7ld\n",
+        const Run full = run(m, p, references[k], n, converged);
+        const double deviation = full.q.size() ? (r.q - full.q).cwiseAbs().maxCoeff()
+                                               : std::numeric_limits<double>::infinity();
+        std::printf("%-14s %-4s %6.0e %10.5f %9ld %10.2e %12.3f %7ld %10.1e\n",
                     std::string(m.name()).c_str(), p.key.c_str(), tolerances[t],
-                    p.t_error / double(n), r.steps, r.error, per_stage, r.stats.newton_fallbacks);
+                    p.t_error / double(n), r.steps, r.error, per_stage, r.stats.newton_fallbacks,
+                    deviation);
       }
     }
   }

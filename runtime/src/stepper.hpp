@@ -232,11 +232,14 @@ class Stepper final : public StepperBase {
       delta = change == 0 ? 0.0 : change / scale;
       norm_Q = norm_new;
       swap_views(Q_hat_, Q_hat_new_);
-      if (delta == 0) return true;
-      if (it == 1 && contraction_proves(i, delta)) return true;
+      // A second update below round-off (delta = 0) bounds theta by about eps / delta_old. A first
+      // one proves nothing: the guess then holds the extrapolation's error below round-off, and
+      // stopping there let RKN3s4(2) drift in energy over 1e6 steps of P3 (h = 1e-3).
+      if (it == 2) record_contraction(i, (delta == 0 ? kEps : delta) / delta_old, delta_old);
+      if (delta == 0 && it > 1) return true;
+      if (it == 1 && delta > 0 && contraction_proves(i, delta)) return true;
       if (it > 1) {
         const double theta = delta / delta_old;
-        if (it == 2) record_contraction(i, theta, delta_old);
         if (theta < 1 && theta / (1 - theta) * delta <= options_.tolerance) return true;
         if (theta >= options_.max_theta)
           return delta <= options_.roundoff_level;  // stagnation at round-off, else diverging
@@ -266,6 +269,7 @@ class Stepper final : public StepperBase {
   static constexpr int kKrylovRestart = 30, kKrylovMaxIterations = 200;
   static constexpr double kKrylovTolerance = 1e-6;
   static constexpr int kThetaRefresh = 8;
+  static constexpr double kEps = std::numeric_limits<double>::epsilon();
 
   bool contraction_proves(int i, double delta) {
     if (theta_[i] < 0 || ++theta_age_[i] >= kThetaRefresh) return false;
@@ -276,7 +280,7 @@ class Stepper final : public StepperBase {
   // A ratio of updates below ~1e3 round-offs measures noise, not theta: then it only confirms
   // the old measurement (renews it) when it does not exceed what that one allowed.
   void record_contraction(int i, double theta, double delta_first) {
-    if (delta_first < 1e3 * std::numeric_limits<double>::epsilon()) {
+    if (delta_first < 1e3 * kEps) {
       if (theta_[i] >= 0 && theta <= kThetaSafety * theta_[i]) theta_age_[i] = 0;
       return;
     }
