@@ -32,16 +32,17 @@ const char* const kColors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7
                                "#e377c2", "#17becf", "#7f7f7f", "#bcbd22", "#393b79", "#637939",
                                "#8c6d31", "#843c39", "#7b4173", "#000000"};
 
-// An ERKN method and its RKN limit share a colour; the family sets dash type and point shape.
+// An ERKN method and its RKN limit (SolverTraits::limit_of) share a colour; the family sets dash
+// type and point shape.
 class Styles {
  public:
-  std::string operator()(const std::string& name, Family family) {
-    const std::string base = name.rfind("SE", 0) == 0 ? name.substr(2) : name;
-    auto [it, added] = colors_.try_emplace(base, int(colors_.size()));
+  std::string operator()(const SolverTraits& m) {
+    const std::string& key = m.limit_of.empty() ? m.name : m.limit_of;
+    auto [it, added] = colors_.try_emplace(key, int(colors_.size()));
     const char* color = kColors[it->second % std::size(kColors)];
     std::ostringstream s;
     s << "lc rgb '" << color << "' ";
-    switch (family) {
+    switch (m.family) {
       case Family::erkn:
         s << "dt 1 lw 2.2 pt 7 ps 0.9";
         break;
@@ -157,7 +158,7 @@ void chart_problem(const ProblemResult& r, const fs::path& charts_dir) {
     for (const MethodResult& m : r.methods) {
       if (!on_chart(m, g)) continue;
       const std::string stem = "data/" + key + "_" + slug(m.name);
-      const std::string s = style(m.name, m.family);
+      const std::string s = style(m);
       const std::string sep = cost_plot == "plot " ? "" : ", \\\n  ";
       cost_plot += sep + quoted(stem + ".dat") + " u 4:3 w lp " + s + " t " + quoted(m.name);
       cpu_plot += sep + quoted(stem + ".dat") + " u 5:3 w lp " + s + " t " + quoted(m.name);
@@ -200,7 +201,7 @@ void chart_scaling(const ScalingResult& r, const fs::path& charts_dir) {
     for (size_t i = 0; i < r.sizes.size(); ++i)
       if (const auto c = scaling_cpu(r, l, i)) dat << r.sizes[i] << ' ' << *c << '\n';
     plot += (plot == "plot " ? "" : ", \\\n  ") + quoted(stem + ".dat") + " u 1:2 w lp " +
-            style(r.lines[l].name, r.lines[l].family) + " t " + quoted(r.lines[l].name);
+            style(r.lines[l]) + " t " + quoted(r.lines[l].name);
   }
   std::ofstream gp = open(charts_dir / "data" / "scaling.gp");
   std::ostringstream title;
@@ -241,7 +242,7 @@ void chart_stiff(const ProblemResult& r, double kappa, const fs::path& charts_di
     for (const MethodResult& m : r.methods) {
       if (!on_chart(m, g)) continue;
       const std::string stem = "data/" + key + "_" + slug(m.name);
-      const std::string s = style(m.name, m.family);
+      const std::string s = style(m);
       const std::string sep = cpu_plot == "plot " ? "" : ", \\\n  ";
       cpu_plot += sep + quoted(stem + ".dat") + " u 5:3 w lp " + s + " t " + quoted(m.name);
       const std::string color = s.substr(0, s.find('\'', s.find('\'') + 1) + 1);  // "lc rgb '#..'"

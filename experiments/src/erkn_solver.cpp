@@ -30,6 +30,7 @@ class ErknSolver : public Solver {
   }
   bool exact_for_linear_part() const override { return method_.kind() != erkn::Kind::rkn; }
   bool is_explicit() const override { return method_.is_explicit(); }
+  std::string limit_of() const override;
 
   RunResult run(const Problem& pr, double h, long steps, const Observer* obs) const override {
     erkn::Integrator integrator(method_, erkn::problems::system(pr), h, pr.q0, pr.p0);
@@ -50,6 +51,18 @@ class ErknSolver : public Solver {
   const erkn::Method& method_;
 };
 
+// b, bbar, abar and c of a and b agree at v (to 1e-14 relative).
+bool same_coefficients(const erkn::Method& a, const erkn::Method& b, double v) {
+  const erkn::Coefficients x = a.at(v), y = b.at(v);
+  auto near = [](double p, double q) { return std::abs(p - q) <= 1e-14 * (1 + std::abs(q)); };
+  for (int i = 0; i < x.s; ++i) {
+    if (!near(x.c[i], y.c[i]) || !near(x.b[i], y.b[i]) || !near(x.bbar[i], y.bbar[i])) return false;
+    for (int j = 0; j <= i; ++j)
+      if (!near(x.abar(i, j), y.abar(i, j))) return false;
+  }
+  return true;
+}
+
 // Two registry methods are the same method when they are integrated the same way and their
 // coefficients agree at several v (the RKN limits use only v = 0): e.g. the RKN limits of the
 // pole-free variants are the paper's RKN limits, since the variants keep c, d and abar_ii(0).
@@ -60,14 +73,7 @@ bool same_method(const erkn::Method& a, const erkn::Method& b) {
       a.kind() == erkn::Kind::rkn ? std::vector<double>{0} : std::vector<double>{0, 0.37, 2.9};
   for (double v : vs) {
     if (a.pole_within(v, 1e-3) >= 0 || b.pole_within(v, 1e-3) >= 0) return false;
-    const erkn::Coefficients x = a.at(v), y = b.at(v);
-    auto near = [](double p, double q) { return std::abs(p - q) <= 1e-14 * (1 + std::abs(q)); };
-    for (int i = 0; i < x.s; ++i) {
-      if (!near(x.c[i], y.c[i]) || !near(x.b[i], y.b[i]) || !near(x.bbar[i], y.bbar[i]))
-        return false;
-      for (int j = 0; j <= i; ++j)
-        if (!near(x.abar(i, j), y.abar(i, j))) return false;
-    }
+    if (!same_coefficients(a, b, v)) return false;
   }
   return true;
 }
@@ -77,6 +83,15 @@ const erkn::Method& first_twin(const erkn::Method& m) {
   for (const erkn::Method& other : erkn::Method::all())
     if (&other == &m || same_method(other, m)) return other;
   return m;
+}
+
+std::string ErknSolver::limit_of() const {
+  if (method_.kind() != erkn::Kind::rkn) return "";
+  for (const erkn::Method& m : erkn::Method::all())
+    if (m.kind() == erkn::Kind::erkn && m.stages() == method_.stages() &&
+        m.pole_within(0, 1e-3) < 0 && same_coefficients(m, method_, 0))
+      return std::string(m.name());
+  return "";
 }
 
 }  // namespace

@@ -5,8 +5,8 @@
 namespace ex {
 
 SolverTraits traits_of(const Solver& s) {
-  return {s.name(), s.family(), s.from_paper(), s.is_explicit(), s.exact_for_linear_part(),
-          s.order()};
+  return {s.name(),  s.family(),  s.from_paper(), s.is_explicit(), s.exact_for_linear_part(),
+          s.order(), s.limit_of()};
 }
 
 ProblemResult run_problem(const Problem& problem, const SolverList& solvers,

@@ -21,6 +21,7 @@ struct SolverTraits {
   bool is_explicit;   ///< Solver::is_explicit
   bool exact_linear;  ///< Solver::exact_for_linear_part
   int order;
+  std::string limit_of;  ///< Solver::limit_of
 };
 SolverTraits traits_of(const Solver& solver);
 

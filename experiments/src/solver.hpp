@@ -45,6 +45,9 @@ class Solver {
   virtual std::optional<double> first_unstable_z() const { return std::nullopt; }
   /// True for the methods of the source paper (read from the registry; false for peers).
   virtual bool from_paper() const { return false; }
+  /// For an RKN limit: the name of the first registry ERKN method whose V -> 0 limit it is (the
+  /// same nodes and coefficients at V = 0); empty otherwise.
+  virtual std::string limit_of() const { return ""; }
   /// Integrates from t = 0 with `steps` steps of size h (coefficient setup included); throws on
   /// failure (a pole of the method, a stage solver that does not converge).
   virtual RunResult run(const Problem& problem, double h, long steps,

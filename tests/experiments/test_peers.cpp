@@ -3,6 +3,9 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <erkn/integrator.hpp>
+#include <erkn/method.hpp>
+#include <set>
 #include <unsupported/Eigen/KroneckerProduct>
 
 #include "block_solve.hpp"
@@ -134,6 +137,37 @@ TEST(SplittingPeers, ExactForTheLinearPart) {
   for (const auto& solver : make_splitting_peers())
     EXPECT_LT((solver->run(p, 1.0, 2, nullptr).q - exact).lpNorm<Eigen::Infinity>(), 1e-12)
         << solver->name();
+}
+
+// The charts pair an ERKN method with its RKN limit by Solver::limit_of (registry data, not
+// names): with M = 0 (V = 0 throughout) the named ERKN method integrates exactly like the limit.
+// Every RKN limit names a different ERKN method (a pairing by stage count alone would not), and
+// nothing else names one.
+TEST(Peers, EveryRknLimitNamesTheErknMethodItIsTheLimitOf) {
+  erkn::System free;  // q'' = -q^3 - q
+  free.M = erkn::Stiffness::scalar(0);
+  free.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) {
+    g = q.array().cube() + q.array();
+  };
+  const Eigen::VectorXd q0 = Eigen::VectorXd::Constant(1, 0.8), p0 = Eigen::VectorXd::Zero(1);
+  std::set<std::string> named;
+  for (const auto& s : make_erkn_solvers()) {
+    SCOPED_TRACE(s->name());
+    if (s->family() != Family::rkn) {
+      EXPECT_EQ(s->limit_of(), "");
+      continue;
+    }
+    ASSERT_NE(s->limit_of(), "");
+    EXPECT_TRUE(named.insert(s->limit_of()).second) << s->limit_of() << " named twice";
+    const erkn::Method& erkn_method = erkn::Method::by_name(s->limit_of());
+    EXPECT_EQ(erkn_method.kind(), erkn::Kind::erkn);
+    erkn::Integrator a(erkn_method, free, 0.1, q0, p0),
+        b(erkn::Method::by_name(s->name()), free, 0.1, q0, p0);
+    a.integrate(5.0);
+    b.integrate(5.0);
+    EXPECT_LT(std::abs(a.q()[0] - b.q()[0]), 1e-14);
+  }
+  EXPECT_GE(named.size(), 2u);
 }
 
 }  // namespace
