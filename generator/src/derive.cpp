@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 
@@ -215,11 +216,13 @@ void solve_nodes(const MethodSpec& spec, const std::vector<symbol>& c, const std
       out.d.push_back(read_constant(spec, "d" + idx(i), spec.d[i]));
       if (out.d[i].is_zero()) fail("d" + idx(i) + " = 0: abar_ij = (...)/d_i is undefined");
     }
-    if (has_decimals(spec)) {
-      if (spec.kind != SpecKind::explicit_erkn)
-        fail("decimal constants are polished for explicit methods only: give c, d exactly");
+    if (has_decimals(spec) && spec.kind != SpecKind::explicit_erkn)
+      out.node_derivation.push_back(
+          "decimals read in " + std::to_string(Qs::kApproxDigits) +
+          " digits, not polished (kind erkn): the certification judges them as given");
+    if (has_decimals(spec) && spec.kind == SpecKind::explicit_erkn) {
       Polished p = polish_explicit(spec.name, out.c, out.d, spec.order, spec.generalized);
-      out.c = p.c, out.d = p.d;
+      out.c = p.c, out.d = p.d, out.unmet_by_decimals = p.unmet;
       out.node_derivation.push_back(p.summary());
     }
     return;
@@ -279,6 +282,23 @@ void check_drift_sum(const MethodSpec& spec) {
   throw std::runtime_error(spec.name + ": the drifts sum to " + sum.to_string() + ", not 1");
 }
 
+/// Every decimal literal of `text` written as the exact rational it denotes, "0.25" ->
+/// "(25/10^2)": GiNaC's parser would read it as a float of GiNaC::Digits digits.
+std::string exact_decimals(const std::string& text) {
+  static const std::regex decimal(R"((^|[^A-Za-z0-9_.])([0-9]*)\.([0-9]+)([eE]([-+]?[0-9]+))?)");
+  std::string out;
+  auto last = text.cbegin();
+  for (std::sregex_iterator it(text.begin(), text.end(), decimal), end; it != end; ++it) {
+    const std::smatch& m = *it;
+    const std::string digits = m[2].str() + m[3].str();
+    const long exponent = long(m[3].length()) - (m[5].matched ? std::stol(m[5].str()) : 0);
+    out.append(last, m[0].first).append(m[1].str());
+    out += "(" + (digits.empty() ? "0" : digits) + "/10^(" + std::to_string(exponent) + "))";
+    last = m[0].second;
+  }
+  return out.append(last, text.cend());
+}
+
 using Record = std::function<void(int, const symbol&, const ex&, const ex&)>;
 
 /// abar_ii from the spec's `diagonal` equations, taken as equalities in V; in them bAe, bbarAe,
@@ -306,7 +326,8 @@ std::vector<ex> solve_diagonal(const MethodSpec& spec, const symbol& v,
   for (const std::string& text : spec.diagonal) {
     size_t eqpos = text.find("==");
     if (eqpos == std::string::npos) fail("diagonal condition is not an equation: " + text);
-    ex lhs = read(text.substr(0, eqpos)), rhs = read(text.substr(eqpos + 2));
+    ex lhs = read(exact_decimals(text.substr(0, eqpos))),
+       rhs = read(exact_decimals(text.substr(eqpos + 2)));
     diag_eqs.append(lhs == rhs);
     diagonal.push_back(lhs - rhs);
   }
@@ -448,6 +469,11 @@ void certify_order(Derived& m) {
     for (int j = 0; j <= i; ++j) t.abar.push_back(k[abar_index(s, i + 1, j + 1)].series);
   int max_power = std::max(m.spec.order + 1, kCertifyPowers);
   for (int g : m.spec.generalized) max_power = std::max(max_power, g + 1);
+  const std::string unmet = m.unmet_by_decimals == 0
+                                ? ""
+                                : "; the decimals miss " + std::to_string(m.unmet_by_decimals) +
+                                      " conditions of the claim by more than 1e-8: a wrong claim "
+                                      "or a transcription error";
   for (bool rkn : {false, true}) {
     if (rkn && m.spec.rkn.empty()) continue;
     Certificate cert = certify(t, rkn, max_power);
@@ -457,14 +483,15 @@ void certify_order(Derived& m) {
             m.spec.name + ": claimed generalized order " + std::to_string(m.spec.generalized[K]) +
             " for eps^" + std::to_string(K + 1) + " is not certified (" +
             (K < cert.generalized.size() ? std::to_string(cert.generalized[K]) : "unchecked") +
-            "): " + generalized_failure(cert, int(K) + 1));
+            "): " + generalized_failure(cert, int(K) + 1) + unmet);
     if (cert.order < m.spec.order) {
       const CheckedCondition* f = cert.first_failure();
       throw std::runtime_error(
           (rkn ? m.spec.rkn + " (the V -> 0 limit of " + m.spec.name + ")" : m.spec.name) +
           ": claimed order " + std::to_string(m.spec.order) + " fails at tree " +
           cert.trees[f->condition.tree].name + ": condition " + f->condition.text(cert.trees) +
-          " has residual " + f->residual + " (certified order " + std::to_string(cert.order) + ")");
+          " has residual " + f->residual + " (certified order " + std::to_string(cert.order) + ")" +
+          unmet);
     }
     (rkn ? m.rkn_certificate : m.certificate) = std::move(cert);
   }

@@ -35,6 +35,9 @@ struct Derived {
   Certificate certificate;                   ///< order conditions of eq. (f), checked
   Certificate rkn_certificate;               ///< the same for the V -> 0 limit (if spec.rkn is set)
   double certify_seconds = 0;                ///< wall time of both certifications
+  /// Conditions of the claim that the spec's decimals miss by more than 1e-8 (Polished::unmet):
+  /// the certification then refuses the claim.
+  int unmet_by_decimals = 0;
   int stages() const { return spec.stages; }
 };
 

@@ -11,6 +11,9 @@
 namespace erkn::gen {
 namespace {
 
+// A correction or residual above this is not rounding of the printed digits.
+constexpr double kTranscription = 1e-8;
+
 double max_abs(const std::vector<Qs>& r) {
   double m = 0;
   for (const Qs& x : r) m = std::max(m, std::abs(x.to_double()));
@@ -85,30 +88,29 @@ std::string Polished::summary() const {
      << " order conditions they must satisfy" << (symmetric ? " (symmetry kept)" : "")
      << ": largest change " << correction << ", largest residual " << residual_before << " -> "
      << residual_after;
+  if (unmet > 0) os << "; " << unmet << " conditions of the claim are not met by the decimals";
   return os.str();
 }
 
-Polished polish_explicit(const std::string& method, std::vector<Qs> c, std::vector<Qs> d, int order,
-                         const std::vector<int>& generalized) {
-  const int max_power = std::max(
-      order, generalized.empty() ? 0 : *std::max_element(generalized.begin(), generalized.end()));
-  const auto trees = sen_trees(max_power);
-  std::vector<OrderCondition> conditions;
-  for (const OrderCondition& oc : order_conditions(trees, max_power)) {
-    const int K = trees[oc.tree].fvertices;
-    if (oc.power <= order || (K <= int(generalized.size()) && oc.power <= generalized[K - 1]))
-      conditions.push_back(oc);
-  }
-  const int terms = max_power / 2 + 1;
+namespace {
+
+// Minimum-norm Newton from (c, d) onto `conditions`; fills out.c, out.d, residuals, correction.
+Polished newton(const std::vector<Qs>& c0, const std::vector<Qs>& d0,
+                const std::vector<SenTree>& trees, const std::vector<OrderCondition>& conditions,
+                int terms) {
   auto R = [&](const std::vector<Qs>& cc, const std::vector<Qs>& dd) {
     return residuals(explicit_series(cc, dd, terms), trees, conditions);
   };
   Polished out;
   out.conditions = int(conditions.size());
-  Parametrization P{int(c.size()), is_symmetric(c, d)};
+  Parametrization P{int(c0.size()), is_symmetric(c0, d0)};
   out.symmetric = P.symmetric;
-  const std::vector<Qs> c0 = c, d0 = d;
+  std::vector<Qs> c = c0, d = d0;
   std::vector<Qs> x = P.get(c, d);
+  // A parameter given exactly (a drift 0 puts a kick at c = 0: the kick is shared with the next
+  // step) is part of the method's structure and stays as given.
+  std::vector<bool> fixed;
+  for (const Qs& xk : x) fixed.push_back(!xk.is_approx());
   P.set(x, c, d);  // symmetrised start
   std::vector<Qs> r = R(c, d);
   out.residual_before = max_abs(r);
@@ -120,6 +122,10 @@ Polished polish_explicit(const std::string& method, std::vector<Qs> c, std::vect
     const size_t n = x.size(), m = r.size();
     std::vector<std::vector<Qs>> J(m, std::vector<Qs>(n));
     for (size_t k = 0; k < n; ++k) {
+      if (fixed[k]) {  // a zero column: the minimum-norm step leaves x[k] alone
+        for (size_t i = 0; i < m; ++i) J[i][k] = Qs(0);
+        continue;
+      }
       std::vector<Qs> xp = x, xm = x, cp = c, dp = d, cm = c, dm = d;
       xp[k] = xp[k] + step, xm[k] = xm[k] - step;
       P.set(xp, cp, dp), P.set(xm, cm, dm);
@@ -143,15 +149,51 @@ Polished polish_explicit(const std::string& method, std::vector<Qs> c, std::vect
   for (size_t i = 0; i < c.size(); ++i)
     out.correction = std::max({out.correction, std::abs((c[i] - c0[i]).to_double()),
                                std::abs((d[i] - d0[i]).to_double())});
-  std::ostringstream why;
-  if (out.correction > 1e-8)
-    why << "the decimals are " << out.correction
-        << " away from a method of the claimed order: a transcription error, not rounding";
-  else if (out.residual_after > 1e-50)
-    why << "Newton left a residual " << out.residual_after;
-  if (!why.str().empty()) throw std::runtime_error(method + ": polishing failed: " + why.str());
   out.c = c, out.d = d;
   return out;
+}
+
+// Why a polishing is not acceptable, or "".
+std::string failure(const Polished& p) {
+  std::ostringstream why;
+  if (p.correction > kTranscription)
+    why << "the decimals are " << p.correction
+        << " away from a method of the claimed order: a transcription error, not rounding";
+  else if (p.residual_after > 1e-50)
+    why << "Newton left a residual " << p.residual_after;
+  return why.str();
+}
+
+}  // namespace
+
+Polished polish_explicit(const std::string& method, std::vector<Qs> c, std::vector<Qs> d, int order,
+                         const std::vector<int>& generalized) {
+  const int max_power = std::max(
+      order, generalized.empty() ? 0 : *std::max_element(generalized.begin(), generalized.end()));
+  const auto trees = sen_trees(max_power);
+  std::vector<OrderCondition> conditions;
+  for (const OrderCondition& oc : order_conditions(trees, max_power)) {
+    const int K = trees[oc.tree].fvertices;
+    if (oc.power <= order || (K <= int(generalized.size()) && oc.power <= generalized[K - 1]))
+      conditions.push_back(oc);
+  }
+  const int terms = max_power / 2 + 1;
+  Polished out = newton(c, d, trees, conditions, terms);
+  const std::string why = failure(out);
+  if (why.empty()) return out;
+  // The claim is not what the decimals satisfy (a wrong order, or a transcription error): polish
+  // onto the conditions they do meet to kTranscription, and leave the refusal to the
+  // certification, which names the first failing tree and its residual.
+  const std::vector<Qs> r = residuals(explicit_series(c, d, terms), trees, conditions);
+  std::vector<OrderCondition> met;
+  for (size_t i = 0; i < r.size(); ++i)
+    if (std::abs(r[i].to_double()) <= kTranscription) met.push_back(conditions[i]);
+  if (met.size() < conditions.size()) {
+    Polished partial = newton(c, d, trees, met, terms);
+    partial.unmet = int(conditions.size() - met.size());
+    if (failure(partial).empty()) return partial;
+  }
+  throw std::runtime_error(method + ": polishing failed: " + why);
 }
 
 }  // namespace erkn::gen

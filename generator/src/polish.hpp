@@ -1,7 +1,8 @@
 // Polishing decimal coefficients: an explicit method transcribed from the literature as decimals
 // (16-30 digits) satisfies its order conditions only to that precision. A minimum-norm Newton
 // correction moves (c, d) onto the conditions in Qs::kApproxDigits-digit arithmetic, keeping the
-// symmetry c_i + c_(s+1-i) = 1, d_i = d_(s+1-i) when the decimals have it, so that the emitted
+// symmetry c_i + c_(s+1-i) = 1, d_i = d_(s+1-i) when the decimals have it and the nodes or weights
+// given exactly (a drift 0: a kick at c = 0), so that the emitted
 // doubles are the correctly rounded values of a method that satisfies them.
 #pragma once
 
@@ -18,14 +19,16 @@ struct Polished {
   double residual_before = 0;  ///< largest |residual| of the conditions polished onto
   double residual_after = 0;
   int conditions = 0;  ///< how many conditions
+  int unmet = 0;       ///< conditions of the claim left out: the decimals miss them by > 1e-8
   bool symmetric = false;
   std::string summary() const;  ///< one line for derivation.md
 };
 
 /// Newton onto every condition of eq. (f) of power <= order and, for K = 1.., those of the trees
-/// with K f-vertices of power <= generalized[K-1]. Throws (naming `method`) if the decimals are
-/// more than 1e-8 away from the conditions (a transcription error, not rounding) or Newton does
-/// not bring every residual below 1e-50.
+/// with K f-vertices of power <= generalized[K-1]. If the decimals miss some of these by more
+/// than 1e-8 (a claim they do not satisfy, or a transcription error), polishes onto the others
+/// (`unmet` > 0) so that the certification refuses the claim naming a tree. Throws (naming
+/// `method`) if no such polishing is within 1e-8 of the decimals with every residual below 1e-50.
 Polished polish_explicit(const std::string& method, std::vector<Qs> c, std::vector<Qs> d, int order,
                          const std::vector<int>& generalized);
 

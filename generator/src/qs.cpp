@@ -1,6 +1,7 @@
 #include "qs.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -100,13 +101,16 @@ Qs Qs::sqrt() const {
   if (s_ == 0) {
     numeric r = GiNaC::sqrt(a_);
     if (r.is_rational()) return Qs(r);
-    // sqrt(p/q) = sqrt(p q)/q: write p q = k^2 m with m square-free.
-    numeric pq = a_.numer() * a_.denom();
-    long n = pq.to_long(), k = 1, m = 1;
-    for (long f = 2; f * f <= n; ++f)
-      while (n % (f * f) == 0) n /= f * f, k *= f;
-    m = n;
-    return Qs(0, numeric(k) / a_.denom(), int(m));
+    // sqrt(p/q) = sqrt(p q)/q: write p q = k^2 m with m square-free, by trial division up to
+    // kTrial. If p q may keep a square factor beyond that, or m does not fit the radicand (an
+    // int), the root is not a number of a small quadratic field: approximate it.
+    constexpr long kTrial = 100000;
+    numeric n = a_.numer() * a_.denom(), k = 1;
+    for (long f = 2; f <= kTrial && numeric(f * f) <= n; ++f)
+      while (GiNaC::irem(n, numeric(f * f)).is_zero()) n = n / (f * f), k = k * f;
+    if (n >= numeric(kTrial) * kTrial || n > std::numeric_limits<int>::max())
+      return approx_of(with_digits([&] { return GiNaC::sqrt(a_); }));
+    return Qs(0, k / a_.denom(), n.to_int());
   }
   // (p + q r)^2 = a + b r  =>  p^2 + s q^2 = a, 2 p q = b; p^2 is a root of t^2 - a t + b^2 s/4.
   numeric disc = a_ * a_ - b_ * b_ * s_;

@@ -196,21 +196,26 @@ TEST(Grid, ObservedOrderOfEveryMethodOnAGridIsItsClaimedOrder) {
   rk4(s, M.to_dense(6), T, 40000, ref, p);
   for (const Method& m : Method::all()) {
     SCOPED_TRACE(std::string(m.name()));
-    // log h, log error: the four finest above 1e-10, far above the stage solver's accumulated
-    // floor (steps x its 1e-14 tolerance: RKN2s4 levels off at 3e-12 near T/1280).
+    // log h, log error: the three finest above 1e-10, far above the stage solver's accumulated
+    // floor (steps x its 1e-14 tolerance: RKN2s4 levels off at 3e-12 near T/1280). Explicit
+    // methods solve no stages: above 1e-13, ten times the reference's own round-off (RK4 with
+    // 20000 and 40000 steps differ by 1.3e-14). Methods with small error constants (SRKN6b,
+    // ABA(10,6,4): 2e-13 at T/160) reach their asymptotic slope only a few halvings above it.
+    const double floor = m.is_explicit() ? 1e-13 : 1e-10;
     std::vector<double> x, y;
     for (int n = 10; n <= 2560; n *= 2) {
       Integrator run(m, s, T / n, q0, p0);
       run.integrate(T);
       const double err = (run.q() - ref).norm();
-      if (err < 1e-10) break;
+      if (err < floor) break;
       x.push_back(std::log(T / n)), y.push_back(std::log(err));
     }
-    ASSERT_GE(x.size(), 4u);
+    const size_t k = 3;
+    ASSERT_GE(x.size(), k);
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    for (size_t i = x.size() - 4; i < x.size(); ++i)
+    for (size_t i = x.size() - k; i < x.size(); ++i)
       sx += x[i], sy += y[i], sxx += x[i] * x[i], sxy += x[i] * y[i];
-    EXPECT_NEAR((4 * sxy - sx * sy) / (4 * sxx - sx * sx), m.order(), 0.15);
+    EXPECT_NEAR((k * sxy - sx * sy) / (k * sxx - sx * sx), m.order(), 0.15);
   }
 }
 

@@ -4,7 +4,7 @@
 # Yoshida6 (the triple jump of Yoshida4) certifies exactly order 6: the conditions of the trees
 # with M-vertices (power >= 5) hold for a composition known to be of order 6, and power 7 fails.
 # Yoshida4dec (16-digit decimals) is polished onto its order conditions and emits exactly
-# Yoshida4's doubles; a decimal off by 1e-6 is refused as a transcription error. SABA2 certifies
+# Yoshida4's doubles; a drift or a kick off by 1e-6 is refused. SABA2 certifies
 # its claimed generalized order (4, 2), and a claim of 5 for eps^1 is refused at a tree.
 execute_process(COMMAND ${GENERATOR} ${SPEC} ${WORKDIR}/ok RESULT_VARIABLE rc ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
@@ -48,15 +48,22 @@ if(rc EQUAL 0 OR NOT err MATCHES "Yoshida4: claimed order 5 fails at tree f.*has
 endif()
 message(STATUS "refused as expected: ${err}")
 
-# Negative controls: a decimal off by 1e-6, and a generalized order raised by one.
+# Negative controls: a drift off by 1e-6 (the drifts no longer sum to 1), a kick off by 1e-6 (no
+# polishing within 1e-8, not even onto the conditions the decimals still meet), a generalized
+# order raised by one.
 string(REPLACE "0.6756035959798289, -0.1756035959798288" "0.6756045959798289, -0.1756035959798288"
-       typo "${spec}")
+       typo_drift "${spec}")
+string(REPLACE "kick      1.3512071919596578," "kick      1.3512081919596578," typo_kick "${spec}")
 string(REPLACE "generalized 4, 2" "generalized 5, 2" raised_g "${spec}")
-foreach(case typo raised_g)
+foreach(case typo_drift typo_kick raised_g)
+  if("${${case}}" STREQUAL "${spec}")
+    message(FATAL_ERROR "${case}: the edit did not apply to ${SPEC}")
+  endif()
   file(WRITE ${WORKDIR}/${case}.spec "${${case}}")
   execute_process(COMMAND ${GENERATOR} ${WORKDIR}/${case}.spec ${WORKDIR}/${case}
                   RESULT_VARIABLE rc ERROR_VARIABLE err)
-  set(expect_typo "Yoshida4dec: polishing failed: the decimals are [0-9.e-]+ away from a method of the claimed order: a transcription error")
+  set(expect_typo_drift "Yoshida4dec: the drifts sum to 1.00000100*[0-9]*, not 1")
+  set(expect_typo_kick "Yoshida4dec: polishing failed: the decimals are 1e-06 away from a method of the claimed order: a transcription error")
   set(expect_raised_g "SABA2: claimed generalized order 5 for eps\\^1 is not certified \\(4\\): tree f")
   if(rc EQUAL 0 OR NOT err MATCHES "${expect_${case}}")
     message(FATAL_ERROR "${case}: expected a refusal matching '${expect_${case}}', got: ${err}")

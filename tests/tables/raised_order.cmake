@@ -1,6 +1,7 @@
 # Negative control of the order certification: for every method of SPEC, a spec holding that
 # method alone with its claimed order raised by one must be refused by erkn-generate with a
-# message naming the method and the first failing tree.
+# message naming the method and the first failing tree. Decimal explicit methods are polished onto
+# the conditions their digits meet, and the refusal says that they miss conditions of the claim.
 file(READ ${SPEC} text)
 string(REPLACE ";" "<semicolon>" text "${text}")  # `diagonal` lists: not CMake list separators
 string(REGEX MATCHALL "\nmethod[ \t]+[^\n]*\n([^m\n][^\n]*\n)*" blocks "\n${text}")
@@ -23,6 +24,11 @@ foreach(block IN LISTS blocks)
   if(rc EQUAL 0 OR NOT err MATCHES "${name_re}: claimed order ${raised} fails at tree f")
     message(FATAL_ERROR "${name} with order ${raised}: expected a refusal naming it and a tree, "
                         "got exit ${rc}: ${err}")
+  endif()
+  if(block MATCHES "\nkind[ \t]+explicit" AND block MATCHES "\n(c|d|drift|kick)[ \t]+[^\n]*[0-9]\\.[0-9]"
+     AND NOT err MATCHES "the decimals miss [0-9]+ conditions of the claim")
+    message(FATAL_ERROR "${name} with order ${raised}: the refusal does not say that the decimals "
+                        "miss conditions of the claim: ${err}")
   endif()
   message(STATUS "refused as expected: ${err}")
 endforeach()
