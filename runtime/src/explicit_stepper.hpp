@@ -28,9 +28,17 @@ template <class Transform, class Coef, int D = Eigen::Dynamic>
 class ExplicitStepper final : public StepperBase {
   using Spectral = typename Transform::Spectral;
   using Scalar = typename Spectral::Scalar;
-  using SpectralMap = Eigen::Map<Spectral, Eigen::AlignedMax>;
+  // (Aligned when stride_ keeps the arrays aligned: in the dynamic-size storage.)
+  using SpectralMap =
+      Eigen::Map<Spectral, D == Eigen::Dynamic ? Eigen::AlignedMax : Eigen::Unaligned>;
   static constexpr bool kIdentity = std::is_same_v<Transform, IdentityTransform>;
   static_assert(D == Eigen::Dynamic || kIdentity, "a fixed dimension needs the identity basis");
+  // The state and its copy (4 arrays each), the gradient of the current stage and the last
+  // stage's gradient of the previous step.
+  static constexpr int kArrays = 10;
+  // Their storage: one allocation, or (fixed dimension) inside the stepper.
+  using Storage = std::conditional_t<D == Eigen::Dynamic, Spectral,
+                                     std::array<Scalar, kArrays * std::max(D, 1)>>;
 
   /// One copy of the state in eigen coordinates: q, p and their summation errors.
   struct State {
@@ -53,8 +61,8 @@ class ExplicitStepper final : public StepperBase {
         transform_(std::move(transform)),
         M_(system_.M, d),
         m_(transform_.spectral_size(d)),
-        stride_(aligned_stride<Scalar>(m_)),
-        spectral_(Spectral::Zero(kArrays * stride_)),
+        stride_(D == Eigen::Dynamic ? aligned_stride<Scalar>(m_) : D),
+        spectral_(zeros(stride_)),
         state_{slot(0), slot(1), slot(2), slot(3)},
         work_{slot(4), slot(5), slot(6), slot(7)},
         G_(slot(8)),
@@ -101,9 +109,12 @@ class ExplicitStepper final : public StepperBase {
   System& system() override { return system_; }
 
  private:
-  // The state and its copy (4 arrays each), the gradient of the current stage and the last
-  // stage's gradient of the previous step.
-  static constexpr int kArrays = 10;
+  static Storage zeros(Eigen::Index stride) {
+    if constexpr (D == Eigen::Dynamic)
+      return Spectral::Zero(kArrays * stride);
+    else
+      return Storage{};
+  }
 
   // The flows and kicks from state_ into work_ (without summation errors when !kKahan: they
   // then stay zero).
@@ -221,9 +232,9 @@ class ExplicitStepper final : public StepperBase {
   FlowCoefficients<Coef> flows_;
   Transform transform_;
   MOperator M_;
-  // kArrays arrays in eigen coordinates, m_ entries each and stride_ apart (one allocation).
+  // kArrays arrays in eigen coordinates, m_ entries each and stride_ apart.
   Eigen::Index m_, stride_;
-  Spectral spectral_;
+  Storage spectral_;
   State state_, work_;
   Scalar *G_, *G_last_;
   Eigen::VectorXd Q_, g_, Mq_;  // physical coordinates (Q_, g_ go to the callback)

@@ -50,10 +50,15 @@ Stiffness Stiffness::scalar(double omega2) {
     throw Error("M = omega2*I: omega2 = " + format(omega2) + " is not finite");
   if (omega2 < 0)
     throw Error("M = omega2*I is not positive semi-definite: omega2 = " + format(omega2));
-  auto d = std::make_shared<Data>();
-  d->structure = Structure::scalar;
-  d->eigenvalues = d->entries = Eigen::VectorXd::Constant(1, omega2);
-  return Stiffness(d);
+  const auto make = [](double w2) {
+    auto d = std::make_shared<Data>();
+    d->structure = Structure::scalar;
+    d->eigenvalues = d->entries = Eigen::VectorXd::Constant(1, w2);
+    return d;
+  };
+  // M = 0 (System's default) shares one record: a default System allocates nothing.
+  static const std::shared_ptr<const Data> zero = make(0.0);
+  return Stiffness(omega2 == 0 && !std::signbit(omega2) ? zero : make(omega2));
 }
 
 Stiffness Stiffness::diagonal(const Eigen::VectorXd& m) {
