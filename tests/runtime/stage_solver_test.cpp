@@ -3,6 +3,9 @@
 // nothing converges, and compensated summation that pays off.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <limits>
+
 #include "problems.hpp"
 
 namespace erkn::test {
@@ -143,6 +146,21 @@ TEST(StageSolver, StageWithoutSolutionIsAnErrorNamingStepTimeStageAndResidual) {
   }
 }
 
+// What compensated summation leaves is the rounding of the increments themselves, identical in
+// every step here (p is constant) and so n times one step's. The implicit path adds h phi1 p in
+// one increment (n fl(h p0) - n h p0 = -7.4e-16). The explicit path adds s + 1 drifts tau_k p,
+// each rounded up to 3 times (tau_k = h (c_k - c_(k-1)) and the product): at most
+// 3 u n |p0| sum_k |tau_k|, where sum_k |tau_k| = h unless a drift is negative (Yoshida4:
+// 1.70 h). Measured: Yoshida4 7.8e-15 (bound 1.4e-14), SABA2 and SABA4 2.8e-15 (8.2e-15).
+double drift_rounding_bound(const Method& m, long n, double h, double p0) {
+  const double* c = m.table().c;
+  double drifts = 0;  // sum_k |tau_k| / h
+  for (int k = 0; k <= m.stages(); ++k)
+    drifts += std::abs((k < m.stages() ? c[k] : 1.0) - (k > 0 ? c[k - 1] : 0.0));
+  const double u = std::numeric_limits<double>::epsilon() / 2;
+  return 3 * u * double(n) * h * std::abs(p0) * drifts;
+}
+
 TEST(StageSolver, CompensatedSummationRemovesTheRoundOffOfManySmallIncrements) {
   // Free motion q = q0 + t p0 (M = 0, U = 0): each increment h p0 is far below q's last digit.
   System s;
@@ -152,9 +170,6 @@ TEST(StageSolver, CompensatedSummationRemovesTheRoundOffOfManySmallIncrements) {
   const double h = 1e-3, q0 = 1, p0 = 0.1234567;
   const long double exact = (long double)q0 + (long double)n * h * p0;
   for (const Method& m : Method::all()) {
-    // Open: the explicit path's compensated sum leaves 3e-15..8e-15 here for the compositions
-    // with negative substeps (Yoshida4, SRKN*, ABA*); the implicit path reaches 1e-15.
-    if (m.is_explicit()) continue;
     SCOPED_TRACE(std::string(m.name()));
     double err[2];
     for (bool compensated : {false, true}) {
@@ -165,8 +180,11 @@ TEST(StageSolver, CompensatedSummationRemovesTheRoundOffOfManySmallIncrements) {
       for (long k = 0; k < n; ++k) run.step();
       err[compensated] = double(std::abs(run.q()[0] - exact));
     }
-    EXPECT_LT(err[1], 0.01 * err[0]) << "plain " << err[0] << ", compensated " << err[1];
-    EXPECT_LT(err[1], 1e-15);
+    const double bound = m.is_explicit() ? drift_rounding_bound(m, n, h, p0) : 1e-15;
+    std::printf("%-14s |q_n - q(t_n)| plain %.2e, compensated %.2e (bound %.2e)\n",
+                std::string(m.name()).c_str(), err[0], err[1], bound);
+    EXPECT_LT(err[1], 0.01 * err[0]);
+    EXPECT_LT(err[1], bound);
   }
 }
 
