@@ -7,12 +7,9 @@
 #include <cmath>
 #include <complex>
 #include <limits>
-#include <string>
 
-#include "erkn/error.hpp"
 #include "erkn/method.hpp"
 #include "erkn/system.hpp"
-#include "format.hpp"
 
 namespace erkn::detail {
 
@@ -33,6 +30,14 @@ inline bool all_finite(const std::complex<double>* x, Eigen::Index n) {
   return all_finite(reinterpret_cast<const double*>(x), 2 * n);
 }
 
+// The errors (stage_checks.cpp: out of line, so the checks inline into the step).
+[[noreturn]] void non_finite_stage(int i, const StepPlace& at);
+[[noreturn]] void gradient_of_wrong_size(Eigen::VectorXd& g, Eigen::Index d, int i,
+                                         const StepPlace& at);
+[[noreturn]] void non_finite_gradient(int i, const StepPlace& at);
+/// A step whose q_{n+1} (or else p_{n+1}) is not finite.
+[[noreturn]] void non_finite_result(bool q_ok, const StepPlace& at);
+
 /// g = grad U(Q) (0-based stage i) through System::gradient, counted in evaluations, refusing a
 /// non-finite Q before the call, and a g of a size other than d or with a non-finite entry after.
 /// D: d when it is a compile-time constant.
@@ -40,32 +45,11 @@ template <int D = Eigen::Dynamic>
 void checked_gradient(const System& system, const Eigen::VectorXd& Q, Eigen::VectorXd& g,
                       Eigen::Index d, int i, const StepPlace& at, long& evaluations) {
   const Eigen::Index n = D == Eigen::Dynamic ? d : D;
-  if (!all_finite(Q.data(), n))
-    throw Error("step " + std::to_string(at.step) + " (t = " + format(at.t) + "): stage " +
-                std::to_string(i + 1) + " of " + std::string(at.method->name()) +
-                " is not finite (is h unstable for this problem? see erkn::advise_step_size); "
-                "the state is unchanged");
+  if (!all_finite(Q.data(), n)) non_finite_stage(i, at);
   system.gradient(Q, g);
   ++evaluations;
-  if (g.size() != d) {
-    const Eigen::Index got = g.size();
-    g.resize(d);
-    throw Error("the gradient callback returned a vector of size " + std::to_string(got) +
-                " for q of size " + std::to_string(d) + " (step " + std::to_string(at.step) +
-                ", stage " + std::to_string(i + 1) + "); the state is unchanged");
-  }
-  if (!all_finite(g.data(), n))
-    throw Error("the gradient callback returned a non-finite value at step " +
-                std::to_string(at.step) + " (t = " + format(at.t) + "), stage " +
-                std::to_string(i + 1) + "; the state is unchanged");
-}
-
-/// The error of a step whose q_{n+1} (or else p_{n+1}) is not finite.
-[[noreturn]] inline void non_finite_result(bool q_ok, const StepPlace& at) {
-  throw Error("step " + std::to_string(at.step) + " (t = " + format(at.t) + ") of " +
-              std::string(at.method->name()) + " gives a non-finite " + (q_ok ? "p" : "q") +
-              " (is h unstable for this problem? see erkn::advise_step_size); the state "
-              "before the step is kept");
+  if (g.size() != d) gradient_of_wrong_size(g, d, i, at);
+  if (!all_finite(g.data(), n)) non_finite_gradient(i, at);
 }
 
 /// A step whose q_{n+1} or p_{n+1} would not be finite fails before it changes the state.

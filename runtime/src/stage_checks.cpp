@@ -1,0 +1,38 @@
+#include "stage_checks.hpp"
+
+#include <string>
+
+#include "erkn/error.hpp"
+#include "format.hpp"
+
+namespace erkn::detail {
+
+void non_finite_stage(int i, const StepPlace& at) {
+  throw Error("step " + std::to_string(at.step) + " (t = " + format(at.t) + "): stage " +
+              std::to_string(i + 1) + " of " + std::string(at.method->name()) +
+              " is not finite (is h unstable for this problem? see erkn::advise_step_size); the "
+              "state is unchanged");
+}
+
+void gradient_of_wrong_size(Eigen::VectorXd& g, Eigen::Index d, int i, const StepPlace& at) {
+  const Eigen::Index got = g.size();
+  g.resize(d);
+  throw Error("the gradient callback returned a vector of size " + std::to_string(got) +
+              " for q of size " + std::to_string(d) + " (step " + std::to_string(at.step) +
+              ", stage " + std::to_string(i + 1) + "); the state is unchanged");
+}
+
+void non_finite_gradient(int i, const StepPlace& at) {
+  throw Error("the gradient callback returned a non-finite value at step " +
+              std::to_string(at.step) + " (t = " + format(at.t) + "), stage " +
+              std::to_string(i + 1) + "; the state is unchanged");
+}
+
+void non_finite_result(bool q_ok, const StepPlace& at) {
+  throw Error("step " + std::to_string(at.step) + " (t = " + format(at.t) + ") of " +
+              std::string(at.method->name()) + " gives a non-finite " + (q_ok ? "p" : "q") +
+              " (is h unstable for this problem? see erkn::advise_step_size); the state "
+              "before the step is kept");
+}
+
+}  // namespace erkn::detail
