@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -247,17 +248,20 @@ void chart_stiff(const ProblemResult& r, double kappa, const fs::path& charts_di
       cpu_plot += sep + quoted(stem + ".dat") + " u 5:3 w lp " + s + " t " + quoted(m.name);
       const std::string color = s.substr(0, s.find('\'', s.find('\'') + 1) + 1);  // "lc rgb '#..'"
       h_plot += sep + quoted(stem + ".dat") + " u 2:3 w lp " + s + " t " + quoted(m.name) + ", " +
-                quoted(stem + "_failed.dat") + " u 2:(1) w p " + color +
-                " pt 2 ps 2 lw 2 notitle, " + quoted(stem + "_predicted.dat") + " u 1:(2) w p " +
+                quoted(stem + "_failed.dat") + " u 2:(1e3) w p " + color +
+                " pt 2 ps 2 lw 2 notitle, " + quoted(stem + "_predicted.dat") + " u 1:(1e4) w p " +
                 color + " pt 11 ps 1.6 notitle";
     }
     const std::string stem = key + g.suffix;
     std::ofstream gp = open(charts_dir / "data" / (stem + ".gp"));
-    write_header(gp, chart_title(r.title, g, "error vs CPU time"), "CPU time (s)", err.str());
+    char scene[64];
+    std::snprintf(scene, sizeof scene, "stiff sine-Gordon, κ = %g", kappa);
+    write_header(gp, chart_title(scene, g, "error vs CPU time"), "CPU time (s)", err.str());
     write_outputs(gp, stem + "_cpu", cpu_plot);
-    write_header(gp, chart_title(r.title, g, "error vs h (x: failed; ▼: S(0, z) bound)"),
+    write_header(gp, chart_title(scene, g, "error vs h (×: failed; ▼: S(0, z) bound)"),
                  "step size h", err.str());
-    gp << "set yrange [:3]\n";
+    // Completed runs (error below 100 (1 + |q|)), then a row of crosses and a row of triangles.
+    gp << "set yrange [:3e4]\n";
     write_outputs(gp, stem + "_h", h_plot);
     gp.close();
     run_gnuplot(charts_dir, "data/" + stem + ".gp");

@@ -27,9 +27,9 @@ std::vector<ChartGroup> chart_groups(const std::vector<MethodResult>& methods);
 void chart_problem(const ProblemResult& result, const std::filesystem::path& charts_dir);
 void chart_scaling(const ScalingResult& result, const std::filesystem::path& charts_dir);
 /// The stiff scene at one kappa, per chart group: <key><suffix>_cpu (error vs CPU time) and
-/// <key><suffix>_h (error vs step size, with each method's failed runs drawn as crosses at error
-/// 1, and above them a triangle at the h where its linear stability bound on the V = 0 line,
-/// Solver::first_unstable_z, predicts the failure: h^2 kappa = z*).
+/// <key><suffix>_h (error vs step size, with each method's failed runs drawn as crosses in a row
+/// at error 1e3, and above them a triangle at the h where its linear stability bound on the V = 0
+/// line, Solver::first_unstable_z, predicts the failure: h^2 kappa = z*).
 void chart_stiff(const ProblemResult& result, double kappa,
                  const std::filesystem::path& charts_dir);
 
