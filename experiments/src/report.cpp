@@ -109,7 +109,10 @@ void stiff_section(std::ostream& md, const std::vector<StiffResult>& stiff) {
         "these limits; the table gives their V = 0 line: the smallest z at which |tr S(0, z)| > 2 "
         "(S singular included), for the registry's methods from erkn::stability_matrix and for "
         "the splitting peers from the product of their flow and kick matrices (the other peers: "
-        "—). With ∇²U = κ cos u, a run is linearly unstable once h²κ passes it.\n";
+        "—). With ∇²U = κ cos u, a run is linearly unstable once h²κ passes it (▼ in the "
+        "error-vs-h charts). A run counts as failed when its error at t = 1 exceeds 100 (1 + |q|) "
+        "or the runtime refuses h or cannot solve a stage; at coarse h an instability has few "
+        "steps to grow, so a run past its bound may complete with a large error instead.\n";
   for (const auto& [kappa, tolerances, r] : stiff) {
     const std::string key = slug(r.key);
     md << "\n### " << r.title << "\n\nReference: " << r.reference.method << "; agreement "
