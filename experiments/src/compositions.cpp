@@ -29,7 +29,8 @@ Composition strang() {
           2,
           {0.5, 0.5},
           {1.0},
-          false};
+          false,
+          true};
 }
 
 Composition blanes_moan_srkn6b() {
@@ -46,7 +47,8 @@ Composition blanes_moan_srkn6b() {
           4,
           palindrome(b, b4, true),
           palindrome(flow_half, 0, false),
-          false};
+          false,
+          true};
 }
 
 Composition blanes_moan_srkn14a() {
@@ -66,7 +68,8 @@ Composition blanes_moan_srkn14a() {
           6,
           kick,
           palindrome(a, 1 - 2 * sum(a), true),
-          false};
+          false,
+          true};
 }
 
 Composition aba1064() {
@@ -103,6 +106,7 @@ Composition mollified_impulse() {
   c.source =
       "García-Archilla, Sanz-Serna & Skeel, SIAM J. Sci. Comput. 20 (1999); GNI XIII.2.2 (C)";
   c.filtered = true;
+  c.for_grids = false;  // built for near-integrable and resonant problems (P1-P3 charts)
   return c;
 }
 

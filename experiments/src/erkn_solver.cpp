@@ -31,6 +31,8 @@ class ErknSolver : public Solver {
   bool exact_for_linear_part() const override { return method_.kind() != erkn::Kind::rkn; }
   bool is_explicit() const override { return method_.is_explicit(); }
   std::string limit_of() const override;
+  // The RKN limits would have to resolve M's frequencies: left out of the grids.
+  bool suits_grid() const override { return method_.kind() == erkn::Kind::erkn; }
 
   RunResult run(const Problem& pr, double h, long steps, const Observer* obs) const override {
     erkn::Integrator integrator(method_, erkn::problems::system(pr), h, pr.q0, pr.p0);

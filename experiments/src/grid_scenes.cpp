@@ -23,17 +23,6 @@ namespace ex {
 namespace fs = std::filesystem;
 namespace {
 
-// The peers that suit a large grid: Verlet (resolves M's frequencies) and the exact-flow
-// splittings of orders 2, 4 and 6. Left out: Gauss2 (dense block solves), the Odeint RKN steppers
-// (like Verlet, slower per step), ABA(10,6,4) and the mollified impulse method (built for
-// near-integrable and resonant problems; their P1-P3 charts show them).
-bool suits_grid(const Solver& s) {
-  if (s.family() == Family::erkn) return true;  // the RKN limits must resolve M: left out
-  const std::string n = s.name();
-  return s.family() == Family::peer && (n == "Störmer–Verlet" || n.rfind("Strang", 0) == 0 ||
-                                        n.find("SRKN") != std::string::npos);
-}
-
 bool is_peer(const GridLine& l) { return l.solver->family() == Family::peer; }
 bool is_paper(const GridLine& l) { return !is_peer(l) && l.solver->from_paper(); }
 
@@ -283,9 +272,14 @@ std::vector<GridScene> make_scenes(const GridSceneConfig& cfg, const SolverList&
   scenes[1].key = "KG3D", scenes[1].title = "3-D Klein-Gordon phi^4, Dirichlet";
   scenes[1].make = klein_gordon_3d, scenes[1].sizes = cfg.kg_sizes;
   scenes[1].step_sizes = cfg.kg_step_sizes;
+  // Solver::suits_grid: the ERKN methods, Verlet (resolves M's frequencies) and the exact-flow
+  // splittings of orders 2, 4 and 6. Left out: the RKN limits (must resolve M), Gauss2 (dense
+  // block solves), the Odeint RKN steppers (like Verlet, slower per step), ABA(10,6,4) and the
+  // mollified impulse method (built for near-integrable and resonant problems; their P1-P3
+  // charts show them).
   for (GridScene& sc : scenes)
     for (const auto& s : solvers)
-      if (suits_grid(*s)) sc.lines.push_back({s.get(), {}});
+      if (s->suits_grid()) sc.lines.push_back({s.get(), {}});
   return scenes;
 }
 

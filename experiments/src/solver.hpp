@@ -48,6 +48,9 @@ class Solver {
   /// For an RKN limit: the name of the first registry ERKN method whose V -> 0 limit it is (the
   /// same nodes and coefficients at V = 0); empty otherwise.
   virtual std::string limit_of() const { return ""; }
+  /// Run in the large-grid scenes: a step is cheap at large d (no dense solves) and M's
+  /// frequencies are integrated exactly or resolved (Verlet); the rest is in the P1-P3 charts.
+  virtual bool suits_grid() const { return false; }
   /// Integrates from t = 0 with `steps` steps of size h (coefficient setup included); throws on
   /// failure (a pole of the method, a stage solver that does not converge).
   virtual RunResult run(const Problem& problem, double h, long steps,

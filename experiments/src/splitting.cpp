@@ -66,6 +66,7 @@ class SplittingPeer : public Solver {
   bool is_explicit() const override { return true; }
   int order() const override { return c_.order; }
   bool exact_for_linear_part() const override { return true; }
+  bool suits_grid() const override { return c_.for_grids; }
   std::optional<double> first_unstable_z() const override {
     return ex::first_unstable_z([this](double z) { return unstable_at(c_, z); });
   }

@@ -22,6 +22,8 @@ struct Composition {
   /// Mollified kicks: grad U(q) replaced by Phi grad U(Phi q), Phi = sinc(h Omega), Omega =
   /// M^{1/2}.
   bool filtered = false;
+  /// Run in the large-grid scenes (Solver::suits_grid).
+  bool for_grids = false;
 };
 
 Composition strang();               ///< Strang / impulse, order 2

@@ -10,6 +10,7 @@ class StormerVerlet : public Solver {
   Family family() const override { return Family::peer; }
   bool is_explicit() const override { return true; }
   int order() const override { return 2; }
+  bool suits_grid() const override { return true; }  // resolves M's frequencies, cheapest step
 
   RunResult run(const Problem& pr, double h, long steps, const Observer* obs) const override {
     RunResult r{pr.q0, pr.p0, {}};
