@@ -175,7 +175,7 @@ class Stepper final : public StepperBase {
           if (k != l) w *= (c[i] - time(nodes_[i][k])) / (time(nodes_[i][l]) - time(nodes_[i][k]));
         weights_[i][m - 1][l] = w;
       }
-    order_[i] = std::min(n, s_ + i);  // the previous step's stages and this step's so far
+    order_[i] = n;
   }
 
   // Nodes of stage i whose gradients are known (the steps since set_state).
@@ -194,18 +194,23 @@ class Stepper final : public StepperBase {
     for (int l = 1; l < n; ++l) out += weights_[i][n - 1][l] * gradient_at(nodes_[i][l]);
   }
 
-  // Moves stage i's order n to whichever of n - 1, n, n + 1 nodes would have predicted its
-  // solved gradient best: high degrees where the stage gradients are smooth on the scale of h,
-  // low ones where they oscillate (the extrapolation then amplifies more than it predicts).
+  // Moves stage i's order n to whichever of n - 1, n, n + 1 nodes would have given the solved
+  // stage the best guess, |h^2 abar_ii(V) (g_pred - g_i)|: high degrees where the stage gradients
+  // are smooth on the scale of h, low ones where they oscillate (the extrapolation then amplifies
+  // more than it predicts, most harmfully in the modes with large abar_ii).
   void adapt_order(int i) {
     const int available = available_nodes(i), n = std::min(order_[i], available);
     if (available < 2) return;
-    double best = transform_.norm(guess_hat_ - G(i));  // (start_stage's prediction, n nodes)
+    const auto guess_error = [&](SpectralMap& prediction) {
+      prediction = k_->abar(i, i) * (prediction - G(i));
+      return transform_.norm(prediction);
+    };
+    double best = guess_error(guess_hat_);  // (start_stage's prediction, n nodes)
     int best_n = n;
     for (int m : {n - 1, n + 1}) {
       if (m < 1 || m > available) continue;
       predict(i, m, Q_hat_new_);  // (free between stages)
-      const double error = transform_.norm(Q_hat_new_ - G(i));
+      const double error = guess_error(Q_hat_new_);
       if (error < best) best = error, best_n = m;
     }
     order_[i] = best_n;
@@ -259,11 +264,15 @@ class Stepper final : public StepperBase {
 
   // The contraction theta of stage i's iteration is a property of h, M and U near the solution:
   // measured at a second iteration, it lets a later first iteration stop once
-  // theta/(1-theta) |dQ| weight_i <= tolerance with theta = kThetaSafety times the measurement
-  // (no second evaluation to measure it again). Measured afresh every kThetaRefresh steps of
-  // that stage. The step then uses g(Q_0), whose error reaches (q, p) through bbar_i and b_i
-  // rather than abar_ii: weight_i = max(1, |bbar_i| / |abar_ii|, |b_i| / (h |abar_ii|)).
-  static constexpr double kThetaSafety = 4;
+  // theta/(1-theta) |dQ| weight_i <= kFirstShare * tolerance with theta = kThetaSafety times the
+  // measurement (no second evaluation to measure it again). Measured afresh every kThetaRefresh
+  // steps of that stage. The step then uses g(Q_0), whose error reaches (q, p) through bbar_i and
+  // b_i rather than abar_ii: weight_i = max(1, |bbar_i| / |abar_ii|, |b_i| / (h |abar_ii|)).
+  // kFirstShare: that error is the extrapolation's, systematic, so it adds up over the steps
+  // (a converged second iteration leaves round-off): at the full tolerance P1's error at 1e-9
+  // changed by up to 25% against stages iterated to round-off (erkn_stage_evaluations, "vs
+  // tol 0"), at a hundredth of it by < 2e-11.
+  static constexpr double kThetaSafety = 4, kFirstShare = 0.01;
   // Newton with a dense LU up to this d, Newton-Krylov (GMRES) beyond it.
   static constexpr Eigen::Index kDenseNewtonMaxD = 256;
   static constexpr int kKrylovRestart = 30, kKrylovMaxIterations = 200;
@@ -274,7 +283,8 @@ class Stepper final : public StepperBase {
   bool contraction_proves(int i, double delta) {
     if (theta_[i] < 0 || ++theta_age_[i] >= kThetaRefresh) return false;
     const double theta = kThetaSafety * theta_[i];
-    return theta < 0.5 && theta / (1 - theta) * delta * weight_[i] <= options_.tolerance;
+    return theta < 0.5 &&
+           theta / (1 - theta) * delta * weight_[i] <= kFirstShare * options_.tolerance;
   }
 
   // A ratio of updates below ~1e3 round-offs measures noise, not theta: then it only confirms
@@ -528,8 +538,10 @@ class Stepper final : public StepperBase {
   double t_ = 0;
   // Starting values: stage i's gradient extrapolated through its order_[i] most recent known
   // stage gradients (nodes_[i], their Lagrange weights at c_i in weights_[i][order - 1]), from
-  // this step and the kHistory before it.
-  static constexpr int kHistory = 3;
+  // this step and the kHistory before it. One step back: three predicted better at fine h on
+  // P1-P3, but their higher degrees let the modes with large abar_ii of P1 at N = 2048 diverge
+  // (SERKN3s4(1), h = 1/32: 9.4 evaluations per stage and 23 Newton fallbacks instead of 3.8, 7).
+  static constexpr int kHistory = 1;
   static constexpr int kMaxNodes = (kHistory + 1) * kMaxStages;
   struct Node {
     int age, stage;  // age 0: this step
