@@ -144,7 +144,7 @@ TEST(Output, OutputBetweenGridPointsHasTheOrderOfTheMethod) {
   std::vector<double> at;  // off the grid for every h below
   for (int j = 0; j < 40; ++j) at.push_back(T * (j + 0.5) / 40 + 0.0123);
   const Eigen::VectorXd times = Eigen::Map<Eigen::VectorXd>(at.data(), Eigen::Index(at.size()));
-  const PolynomialReference ref = polynomial_reference(kQ, kP, at);
+  const Reference ref = polynomial_reference(kQ, kP, at);
   EXPECT_LT(ref.accuracy, 1e-15);
   Options solved_to_round_off;
   solved_to_round_off.tolerance = 0;

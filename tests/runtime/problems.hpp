@@ -56,51 +56,33 @@ inline System polynomial_system(double eps = 0.5) {
   return s;
 }
 
-/// Classical RK4 on (q, p)' = (p, -M q - grad U(q)): the independent reference.
-inline void rk4(const System& s, const Eigen::MatrixXd& M, double T, long n, Eigen::VectorXd& q,
-                Eigen::VectorXd& p) {
-  const double h = T / double(n);
-  Eigen::VectorXd g(q.size());
-  auto acc = [&](const Eigen::VectorXd& x) {
-    s.gradient(x, g);
-    return Eigen::VectorXd(-M * x - g);
-  };
-  for (long k = 0; k < n; ++k) {
-    Eigen::VectorXd k1q = p, k1p = acc(q);
-    Eigen::VectorXd k2q = p + 0.5 * h * k1p, k2p = acc(q + 0.5 * h * k1q);
-    Eigen::VectorXd k3q = p + 0.5 * h * k2p, k3p = acc(q + 0.5 * h * k2q);
-    Eigen::VectorXd k4q = p + h * k3p, k4p = acc(q + h * k3q);
-    q += h / 6 * (k1q + 2 * k2q + 2 * k3q + k4q);
-    p += h / 6 * (k1p + 2 * k2p + 2 * k3p + k4p);
-  }
-}
-
-/// q of polynomial_system(eps) from (q0, p0) at the ascending times `at`, accurate to ~1e-17:
-/// classical RK4 in long double (64-bit mantissa) with steps of ~5e-5 and of half that. `accuracy`
-/// is the largest difference of the two, 15 times the error of the finer one (RK4: error ~ h^4)
-/// and far above its round-off (~1e-17).
-struct PolynomialReference {
-  std::vector<Eigen::Vector3d> q;
+/// q at the ascending times `at` of q'' + M q = -grad U(q) from (q0, p0), accurate to ~1e-17:
+/// classical RK4 in long double (64-bit mantissa) with steps of ~5e-5 and of half that.
+/// `gradient` maps a long-double q to grad U. `accuracy` is the largest difference of the two, 15
+/// times the error of the finer one (RK4: error ~ h^4) and far above its round-off (~1e-17).
+struct Reference {
+  std::vector<Eigen::VectorXd> q;
   double accuracy = 0;
 };
-inline PolynomialReference polynomial_reference(const Eigen::Vector3d& q0,
-                                                const Eigen::Vector3d& p0,
-                                                const std::vector<double>& at, double eps = 0.5) {
-  using V = Eigen::Matrix<long double, 3, 1>;
-  const Eigen::Matrix<long double, 3, 3> M = polynomial_system(eps).M.matrix().cast<long double>();
-  auto acc = [&](const V& x) -> V { return -M * x - polynomial_gradient<long double>(x, eps); };
+using VectorLD = Eigen::Matrix<long double, Eigen::Dynamic, 1>;
+template <class Gradient>
+Reference long_double_reference(const Eigen::MatrixXd& M_double, Gradient&& gradient,
+                                const Eigen::VectorXd& q0, const Eigen::VectorXd& p0,
+                                const std::vector<double>& at) {
+  const Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic> M = M_double.cast<long double>();
+  auto acc = [&](const VectorLD& x) -> VectorLD { return -M * x - gradient(x); };
   auto solve = [&](double step) {
-    std::vector<V> out;
-    V q = q0.cast<long double>(), p = p0.cast<long double>();
+    std::vector<VectorLD> out;
+    VectorLD q = q0.cast<long double>(), p = p0.cast<long double>();
     double t = 0;
     for (double tau : at) {
       const long n = std::max(1L, std::lround(std::ceil((tau - t) / step)));
       const long double h = ((long double)tau - t) / n;
       for (long k = 0; k < n; ++k) {
-        const V k1q = p, k1p = acc(q);
-        const V k2q = p + h / 2 * k1p, k2p = acc(q + h / 2 * k1q);
-        const V k3q = p + h / 2 * k2p, k3p = acc(q + h / 2 * k2q);
-        const V k4q = p + h * k3p, k4p = acc(q + h * k3q);
+        const VectorLD k1q = p, k1p = acc(q);
+        const VectorLD k2q = p + h / 2 * k1p, k2p = acc(q + h / 2 * k1q);
+        const VectorLD k3q = p + h / 2 * k2p, k3p = acc(q + h / 2 * k2q);
+        const VectorLD k4q = p + h * k3p, k4p = acc(q + h * k3q);
         q += h / 6 * (k1q + 2 * k2q + 2 * k3q + k4q);
         p += h / 6 * (k1p + 2 * k2p + 2 * k3p + k4p);
       }
@@ -108,13 +90,24 @@ inline PolynomialReference polynomial_reference(const Eigen::Vector3d& q0,
     }
     return out;
   };
-  const std::vector<V> coarse = solve(5e-5), fine = solve(2.5e-5);
-  PolynomialReference r;
+  const std::vector<VectorLD> coarse = solve(5e-5), fine = solve(2.5e-5);
+  Reference r;
   for (size_t i = 0; i < at.size(); ++i) {
     r.q.push_back(fine[i].cast<double>());
     r.accuracy = std::max(r.accuracy, double((coarse[i] - fine[i]).norm()));
   }
   return r;
+}
+
+/// long_double_reference for polynomial_system(eps).
+inline Reference polynomial_reference(const Eigen::Vector3d& q0, const Eigen::Vector3d& p0,
+                                      const std::vector<double>& at, double eps = 0.5) {
+  return long_double_reference(
+      polynomial_system(eps).M.matrix(),
+      [eps](const VectorLD& x) -> VectorLD {
+        return polynomial_gradient<long double>(Eigen::Matrix<long double, 3, 1>(x), eps);
+      },
+      q0, p0, at);
 }
 
 /// Observed order of convergence: the least-squares slope of log(error) against log(h) over the
