@@ -124,7 +124,8 @@ Problem problem_by_key(const std::string& key) {
   if (key == "P1") return sine_gordon(32);
   if (key == "P2") return duffing();
   if (key == "P3") return stellar_orbits();
-  throw std::invalid_argument("unknown problem '" + key + "' (known: P1, P2, P3)");
+  if (key == "FPU") return fpu();
+  throw std::invalid_argument("unknown problem '" + key + "' (known: P1, P2, P3, FPU)");
 }
 
 }  // namespace erkn::problems

@@ -1,4 +1,4 @@
-// erkn advise NAME --h H (--spectrum L1,L2,... | --problem P1|P2|P3) [--hessian LO,HI]
+// erkn advise NAME --h H (--spectrum L1,L2,... | --problem P1|P2|P3|FPU) [--hessian LO,HI]
 //
 // --spectrum: eigenvalues of M; the Hessian bounds default to [0, 0] (U = 0) unless --hessian.
 // --problem:  a problem of erkn::problems, with M's eigenvalues and the Hessian bounds at its
@@ -40,7 +40,7 @@ std::vector<double> numbers(const std::string& option, const std::string& text) 
 }
 
 int usage() {
-  std::cerr << "usage: erkn advise NAME --h H (--spectrum L1,L2,... | --problem P1|P2|P3)"
+  std::cerr << "usage: erkn advise NAME --h H (--spectrum L1,L2,... | --problem P1|P2|P3|FPU)"
                " [--hessian LO,HI]\n";
   return 2;
 }

@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
                "       erkn tableau NAME (--v X | --series K | --poles VMAX)\n"
                "       erkn run [--quick | --full] [experiment options; erkn run --help]\n"
                "       erkn stability NAME|all [--vmax V --zmin Z --zmax Z --grid N --out DIR]\n"
-               "       erkn advise NAME --h H (--spectrum L1,... | --problem P1|P2|P3)"
+               "       erkn advise NAME --h H (--spectrum L1,... | --problem P1|P2|P3|FPU)"
                " [--hessian LO,HI]\n";
   return 2;
 }

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "erkn/error.hpp"
+#include "erkn/integrator.hpp"
 #include "format.hpp"
 
 namespace erkn {
@@ -25,14 +26,13 @@ void validate(const Eigen::VectorXd& eigenvalues, double h, HessianBounds k,
   if (!std::isfinite(k.lo) || !std::isfinite(k.hi) || k.lo > k.hi)
     throw Error("advise_step_size: the Hessian bounds [" + format(k.lo) + ", " + format(k.hi) +
                 "] are not a finite range");
-  const bool ok = o.resonance_width >= 0 && o.resonance_width < 0.5 && o.pole_margin >= 0 &&
+  const bool ok = o.potential_degree >= 1 && o.potential_degree <= 64 && o.pole_margin >= 0 &&
                   o.pole_margin < 1 && o.trace_tolerance >= 0 && o.z_samples >= 2 &&
                   o.z_samples <= 100000 && o.max_change >= 0 && o.max_change < 1 &&
-                  o.search_step > 0 && std::isfinite(o.trace_tolerance) && o.coupling_factor >= 0 &&
-                  std::isfinite(o.coupling_factor);
+                  o.search_step > 0 && std::isfinite(o.trace_tolerance);
   if (!ok)
     throw Error(
-        "advise_step_size: invalid AdvisorOptions (need 0 <= resonance_width < 0.5, 0 <= "
+        "advise_step_size: invalid AdvisorOptions (need 1 <= potential_degree <= 64, 0 <= "
         "pole_margin < 1, finite trace_tolerance >= 0, 2 <= z_samples <= 100000, 0 <= "
         "max_change < 1, search_step > 0)");
 }
@@ -43,6 +43,51 @@ std::vector<double> kappa_samples(HessianBounds k, int n) {
   if (k.lo < 0 && k.hi > 0) kappa.push_back(0.0);
   for (int j = 0; j < n; ++j) kappa.push_back(k.lo + (k.hi - k.lo) * j / (n - 1));
   return kappa;  // (hi last)
+}
+
+// The coupling angle sigma(V): how far one step with Hessian value kappa can turn or stretch the
+// stiff mode. At z = 0, S(V, 0) is the rotation by theta = sqrt(V) in the coordinates
+// (theta y, h y') (T = diag(theta, 1)); the perturbation E = T (S(V, z) - S(V, 0)) T^-1 moves
+// its eigenvalues by its symmetric traceless part (the skew part only shifts theta), whose norm
+// is the half-width of the instability tongue in the phase. Maximum over the sampled z.
+double coupling_angle(const Method& method, const Coefficients& c, double V,
+                      const std::vector<double>& kappa, double h) {
+  const double theta = std::sqrt(V);
+  const StabilityMatrix S0 = stability_matrix(method, c, V, 0.0);
+  double sigma = 0;
+  for (double k : kappa) {
+    const StabilityMatrix S = stability_matrix(method, c, V, h * h * k);
+    const double e11 = S.s11 - S0.s11, e22 = S.s22 - S0.s22;
+    const double e12 = theta * (S.s12 - S0.s12), e21 = (S.s21 - S0.s21) / theta;
+    sigma = std::max(sigma, std::hypot(0.5 * (e11 - e22), 0.5 * (e12 + e21)));
+  }
+  return sigma;
+}
+
+// Numerical resonance (ERKN methods, lambda > 0). Write U as a polynomial of degree D in the
+// stiff coordinate y (phase theta = h sqrt(lambda) per step) and the slow ones, whose angular
+// frequencies are at most omega_s = sqrt(hi) (the fastest linearised slow oscillation). A
+// monomial with r stiff and D - r slow factors carries the phase r theta + m h omega_s per step,
+// |m| <= D - r; it is resonant (a small divisor of the modulated Fourier expansion, or a
+// parametric tongue of the stiff mode) when that phase is a multiple 2 pi j of 2 pi, j >= 1:
+//     |r theta - 2 pi j| <= (D - r) h omega_s + r sigma(V),   r = 1 .. D - 1,
+// sigma(V) the tongue's own half-width (coupling_angle). r = 1 is h sqrt(lambda) near 2 pi j
+// (the aliased stiff mode forces the slow motion), r = 2 near pi j (parametric resonance), r = 3
+// near 2 pi j / 3 (the third harmonic of a cubic force); r = D has no slow factor left to detune.
+bool resonance(const Method& method, const Coefficients& c, double h, double lambda,
+               const std::vector<double>& kappa, const AdvisorOptions& o, AdvisorFinding& f) {
+  const double theta = h * std::sqrt(lambda), two_pi = 2 * std::numbers::pi;
+  const double slow = h * std::sqrt(std::max(kappa.back(), 0.0));
+  const double sigma = coupling_angle(method, c, lambda * h * h, kappa, h);
+  for (int r = 1; r < o.potential_degree; ++r) {
+    const double j = std::round(r * theta / two_pi);
+    if (j >= 1 && std::abs(r * theta - two_pi * j) <= (o.potential_degree - r) * slow + r * sigma) {
+      f.hazard = Hazard::resonance, f.trace = 2 * std::cos(theta), f.pole = two_pi * j / r;
+      f.harmonic = r;
+      return true;
+    }
+  }
+  return false;
 }
 
 // The worst finding for one eigenvalue at step h, if any.
@@ -71,20 +116,7 @@ bool check(const Method& method, double h, double lambda, const std::vector<doub
     }
   }
   if (worst > 0) return true;
-  if (erkn && lambda > 0) {
-    // The band: resonance_width * pi, or the phase h sqrt(kappa_max) that the slowest-to-fastest
-    // mode of the linearised U advances per step, if wider (coupling_factor times: the harmonics of
-    // a cubic force and a Hessian that grows along the solution; 3 left SERKN2s3 at 3 pi -> 1.65 pi
-    // unbounded).
-    const double x = h * std::sqrt(lambda), k = std::round(x / std::numbers::pi);
-    const double band = std::max(o.resonance_width * std::numbers::pi,
-                                 o.coupling_factor * h * std::sqrt(std::max(kappa.back(), 0.0)));
-    if (k >= 1 && std::abs(x - k * std::numbers::pi) < band) {
-      f.hazard = Hazard::resonance, f.trace = 2 * std::cos(x), f.pole = k * std::numbers::pi;
-      return true;
-    }
-  }
-  return false;
+  return erkn && lambda > 0 && resonance(method, c, h, lambda, kappa, o, f);
 }
 
 // True when no eigenvalue gives a finding at h (stops at the first).
@@ -160,7 +192,8 @@ std::string StepSizeAdvice::report(const Method& method) const {
         << ")";
     else if (f.hazard == Hazard::resonance)
       s << " (h sqrt(lambda) = " << format(std::sqrt(f.V)) << " near "
-        << format(f.pole / std::numbers::pi, 3) << " pi; tr S(V, 0) = " << format(f.trace) << ")";
+        << format(f.pole / std::numbers::pi, 4) << " pi, harmonic " << f.harmonic
+        << "; tr S(V, 0) = " << format(f.trace) << ")";
     else
       s << " (pole v = " << format(f.pole) << ")";
     s << "\n";
@@ -200,6 +233,20 @@ HessianBounds hessian_bounds_at(const System& system, const Eigen::VectorXd& q) 
   const Eigen::VectorXd kappa =
       Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(sym, Eigen::EigenvaluesOnly).eigenvalues();
   return {kappa.minCoeff(), kappa.maxCoeff()};
+}
+
+HessianBounds hessian_bounds_along(const Method& method, const System& system, double h,
+                                   const Eigen::VectorXd& q0, const Eigen::VectorXd& p0,
+                                   long steps) {
+  if (steps < 0) throw Error("hessian_bounds_along: steps = " + std::to_string(steps) + " < 0");
+  Integrator run(method, system, h, q0, p0);
+  HessianBounds k = hessian_bounds_at(system, q0);
+  for (long n = 0; n < steps; ++n) {
+    run.step();
+    const HessianBounds at = hessian_bounds_at(system, run.q());
+    k.lo = std::min(k.lo, at.lo), k.hi = std::max(k.hi, at.hi);
+  }
+  return k;
 }
 
 StepSizeAdvice advise_step_size(const Method& method, const System& system, double h,

@@ -91,6 +91,11 @@ TEST(Cli, AdviseFlagsPolesAndResonancesAndAcceptsTheRest) {
   const erkn::process::Result p = erkn_cli({"advise", "SERKN2s4", "--h", "0.1", "--problem", "P2"});
   EXPECT_TRUE(p.exit_code == 0 || p.exit_code == 3) << p.err;
   EXPECT_NE(p.out.find("Hessian of U in"), std::string::npos) << p.out << p.err;
+  // FPU at h omega = pi (omega = 50): its Hessian at the initial state puts h in a resonance band.
+  const erkn::process::Result f =
+      erkn_cli({"advise", "SERKN2s4", "--h", "0.06283185307179587", "--problem", "FPU"});
+  EXPECT_EQ(f.exit_code, 3) << f.out << f.err;
+  EXPECT_NE(f.out.find("resonance"), std::string::npos) << f.out;
   expect_refusal({"advise", "SERKN2s4", "--h", "0.1", "--problem", "P9"}, "unknown problem");
   expect_refusal({"advise", "SERKN2s4", "--h", "0.1", "--spectrum", "1,,2"}, "finite numbers");
 }

@@ -52,8 +52,15 @@ Problem sine_gordon(int n, double kappa = 1);
 Problem duffing(double k = 0.03);
 /// P3: stellar orbits q1'' + 4 q1 = eps q2^2, q2'' + q2 = 2 eps q1 q2, q(0) = (1, 1), q'(0) = 0.
 Problem stellar_orbits(double eps = 1e-3);
+/// FPU: Hairer-Lubich-Wanner's Fermi-Pasta-Ulam chain (GNI section I.5.1) of m stiff springs,
+/// q = (x0_1..x0_m, x1_1..x1_m), M = diag(0, omega^2), U = 1/4 sum_i u_i^4 with the elongations
+/// u_0 = x0_1 - x1_1, u_i = x0_{i+1} - x1_{i+1} - x0_i - x1_i, u_m = x0_m + x1_m;
+/// x0_1 = 1, x0_1' = 1, x1_1 = 1/omega, x1_1' = 1, all else 0. Its numerical resonances at
+/// h omega near k pi are what erkn::advise_step_size is tested on.
+Problem fpu(int m = 3, double omega = 50);
 
-/// "P1", "P2", "P3" -> the paper's problem; throws std::invalid_argument otherwise.
+/// "P1", "P2", "P3" -> the paper's problem, "FPU" -> fpu(); throws std::invalid_argument
+/// otherwise.
 Problem problem_by_key(const std::string& key);
 
 /// M in the runtime's form (scalar, diagonal, circulant).

@@ -9,13 +9,18 @@
 //   pole       V within pole_margin (relative) of a pole of the coefficients (ERKN methods);
 //   unstable   |tr S(V, z)| > 2 + trace_tolerance for some sampled z: |rho(S)| > 1, the linear
 //              solution grows geometrically;
-//   resonance  (ERKN methods, lambda > 0) h sqrt(lambda) within a band of k pi, k >= 1, where
-//              tr S(V, 0) = 2 cos(h sqrt(lambda)) = +-2: the stiff oscillation aliases to a
-//              phase near 0 or pi per step. The linear analysis is only marginal there, but the
-//              stiff mode resonates with the slow motion (Hairer & Lubich's numerical
-//              resonances): energy drifts or blows up. The band is the phase h sqrt(hi) that the
-//              fastest mode of the linearised U advances per step (measured on FPU: the bad
-//              band widens with h sqrt(hi)), or resonance_width * pi if wider.
+//   resonance  (ERKN methods, lambda > 0) r h sqrt(lambda) within
+//                  (D - r) h sqrt(hi) + r sigma(V)
+//              of a multiple 2 pi j (j >= 1) for some r = 1 .. D - 1, D the polynomial degree of
+//              U (AdvisorOptions::potential_degree). There tr S(V, 0) = 2 cos(h sqrt(lambda)) is
+//              harmless, but a harmonic r of the stiff phase meets the phase sqrt(hi) h per step
+//              of the slow motion carried by the remaining D - r factors of U: a small divisor of
+//              the numerical solution's modulated Fourier expansion (Hairer & Lubich's numerical
+//              resonances; r = 2 is the parametric tongue of the stiff mode at h sqrt(lambda) near
+//              k pi, r = 1 the aliased stiff mode forcing the slow motion near 2 k pi). sigma(V)
+//              is the tongue's half-width from S itself: the symmetric traceless part of
+//              S(V, z) - S(V, 0) in the coordinates where S(V, 0) is a rotation, maximised over z.
+//              Derivation and the FPU runs that check it: README, "Resonances".
 // What it cannot guarantee: K and M need not commute and K changes along the solution, so this is
 // a per-eigenvalue model of the linearisation; a range [lo, hi] estimated at the initial state
 // can be exceeded later. An h it accepts is not a proof of bounded energy, and a flagged h is not
@@ -38,11 +43,9 @@ struct HessianBounds {
 };
 
 struct AdvisorOptions {
-  /// Flags h sqrt(lambda) within max(resonance_width * pi, coupling_factor * h sqrt(hi)) of a
-  /// multiple k pi, k >= 1 (hi: the upper Hessian bound). 4 is the smallest whole factor whose
-  /// suggestions ran bounded in every FPU test of tests/runtime/advisor_test.cpp.
-  double resonance_width = 0.01;
-  double coupling_factor = 4;
+  /// D: the degree of U as a polynomial (4 for FPU and phi^4; for other U, the degree of the
+  /// Taylor terms that matter). Resonances r h sqrt(lambda) ~ 2 pi j are checked for r < D.
+  int potential_degree = 4;
   /// Flags V within this relative distance of a pole (wider than the integrator's refusal).
   double pole_margin = 1e-3;
   /// |tr S| > 2 + trace_tolerance is unstable.
@@ -64,7 +67,8 @@ struct AdvisorFinding {
   Hazard hazard = Hazard::unstable;
   double z = 0;      ///< unstable: the sampled z with the largest |tr S|
   double trace = 0;  ///< unstable: tr S(V, z) there; resonance: tr S(V, 0)
-  double pole = 0;   ///< pole: the pole; resonance: k pi
+  double pole = 0;   ///< pole: the pole; resonance: the resonant phase 2 pi j / r
+  int harmonic = 0;  ///< resonance: r
 };
 
 struct StepSizeAdvice {
@@ -86,6 +90,13 @@ StepSizeAdvice advise_step_size(const Method& method, const Eigen::VectorXd& eig
 /// The Hessian bounds at q: the extreme eigenvalues of System::hessian at q, or of a
 /// finite-difference Hessian of System::gradient without it (d gradient evaluations; d <= 2000).
 HessianBounds hessian_bounds_at(const System& system, const Eigen::VectorXd& q);
+
+/// The Hessian bounds along a pilot run: the extreme eigenvalues of the Hessian (as in
+/// hessian_bounds_at) at q0 and after each of `steps` steps of `method` with step size h from
+/// (q0, p0). The range at q0 alone can be far too narrow (FPU: hi = 12.5 at q0, 22.4 by t = 100).
+HessianBounds hessian_bounds_along(const Method& method, const System& system, double h,
+                                   const Eigen::VectorXd& q0, const Eigen::VectorXd& p0,
+                                   long steps);
 
 /// advise_step_size with M's eigenvalues and the Hessian bounds at q0.
 StepSizeAdvice advise_step_size(const Method& method, const System& system, double h,
