@@ -189,4 +189,39 @@ inline Method perturbed(const Method& m) {
   return Method(m.id(), &copy);
 }
 
+/// The state (q, p) after one step of m with step size h from y = (q, p), the stages iterated to
+/// round-off: the map must be smooth at 1e-13 for a finite-difference Jacobian.
+inline Eigen::VectorXd one_step_map(const Method& m, const System& s, double h,
+                                    const Eigen::VectorXd& y) {
+  const Eigen::Index d = y.size() / 2;
+  Options o;
+  o.tolerance = 1e-16;
+  Integrator run(m, s, h, y.head(d), y.tail(d), o);
+  run.step();
+  Eigen::VectorXd out(2 * d);
+  out << run.q(), run.p();
+  return out;
+}
+
+/// max |J^T Omega J - Omega| for the Jacobian J of one_step_map at y (fourth-order central
+/// differences): zero up to round-off and truncation for a symplectic one-step map.
+inline double symplecticity_defect(const Method& m, const System& s, double h,
+                                   const Eigen::VectorXd& y) {
+  const Eigen::Index d = y.size() / 2;
+  const double e = 1e-3;
+  Eigen::MatrixXd J(2 * d, 2 * d);
+  for (Eigen::Index j = 0; j < 2 * d; ++j) {
+    auto at = [&](double k) {
+      Eigen::VectorXd z = y;
+      z[j] += k * e;
+      return one_step_map(m, s, h, z);
+    };
+    J.col(j) = (8 * (at(1) - at(-1)) - (at(2) - at(-2))) / (12 * e);
+  }
+  Eigen::MatrixXd Omega = Eigen::MatrixXd::Zero(2 * d, 2 * d);
+  Omega.topRightCorner(d, d).setIdentity();
+  Omega.bottomLeftCorner(d, d) = -Eigen::MatrixXd::Identity(d, d);
+  return (J.transpose() * Omega * J - Omega).cwiseAbs().maxCoeff();
+}
+
 }  // namespace erkn::test

@@ -21,16 +21,8 @@ foreach(component runtime ${COMPONENTS})
   run(${CMAKE_COMMAND} --install ${BUILD_DIR} --component ${component} --prefix ${PREFIX})
 endforeach()
 
-file(STRINGS ${PREFIX}/include/${HEADER} lines)
-set(example "")
-foreach(line IN LISTS lines)
-  if(line MATCHES "^//   (.*)$")
-    string(APPEND example "${CMAKE_MATCH_1}\n")
-  endif()
-endforeach()
-if(NOT example MATCHES "int main")
-  message(FATAL_ERROR "no example program found in the installed ${HEADER}")
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/header_example.cmake)
+header_example(${PREFIX}/include/${HEADER} example)
 file(WRITE ${CONSUMER_BUILD}/example/main.cpp "${example}")
 
 run(${CMAKE_COMMAND} -S ${CONSUMER_SOURCE} -B ${CONSUMER_BUILD}/build

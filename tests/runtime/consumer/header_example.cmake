@@ -1,0 +1,15 @@
+# header_example(HEADER OUT): the example program of an installed header, its lines that start
+# with "//   " without that prefix; a header without one (no "int main") is an error.
+function(header_example header out)
+  file(STRINGS ${header} lines)
+  set(example "")
+  foreach(line IN LISTS lines)
+    if(line MATCHES "^//   (.*)$")
+      string(APPEND example "${CMAKE_MATCH_1}\n")
+    endif()
+  endforeach()
+  if(NOT example MATCHES "int main")
+    message(FATAL_ERROR "no example program found in ${header}")
+  endif()
+  set(${out} "${example}" PARENT_SCOPE)
+endfunction()
