@@ -50,7 +50,7 @@ double expect_clean(const Method& m, double h, double error) {
   return neighbours;
 }
 
-// The Hessian range along a pilot run of t = 100 at h omega = 0.5 (hi = 22.4 to 23.1; at the
+// The Hessian range along a pilot run of t = 100 at h omega = 0.5 (hi about 23; at the
 // initial state alone it is [0, 12.5], too narrow: the slow springs stretch further later).
 HessianBounds pilot_hessian(const Method& m) {
   return hessian_bounds_along(m, fpu(), 0.5 / kOmega, fpu_problem().q0, fpu_problem().p0, 10000);
