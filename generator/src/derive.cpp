@@ -471,9 +471,11 @@ void certify_order(Derived& m) {
   for (int g : m.spec.generalized) max_power = std::max(max_power, g + 1);
   const std::string unmet = m.unmet_by_decimals == 0
                                 ? ""
-                                : "; the decimals miss " + std::to_string(m.unmet_by_decimals) +
-                                      " conditions of the claim by more than 1e-8: a wrong claim "
-                                      "or a transcription error";
+                                : "; the decimals do not meet the claim (polished onto the orders "
+                                  "they meet, " +
+                                      std::to_string(m.unmet_by_decimals) +
+                                      " conditions left out): a wrong claim or a transcription "
+                                      "error";
   for (bool rkn : {false, true}) {
     if (rkn && m.spec.rkn.empty()) continue;
     Certificate cert = certify(t, rkn, max_power);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -88,7 +89,7 @@ std::string Polished::summary() const {
      << " order conditions they must satisfy" << (symmetric ? " (symmetry kept)" : "")
      << ": largest change " << correction << ", largest residual " << residual_before << " -> "
      << residual_after;
-  if (unmet > 0) os << "; " << unmet << " conditions of the claim are not met by the decimals";
+  if (unmet > 0) os << "; " << unmet << " conditions of the claim left out (not met)";
   return os.str();
 }
 
@@ -164,6 +165,35 @@ std::string failure(const Polished& p) {
   return why.str();
 }
 
+// The conditions of the orders the decimals meet: with u_K the lowest power of a condition of
+// the trees with K f-vertices that they miss by more than kTranscription, and p = min_K u_K - 1
+// (the classical order they meet), those of power <= p, and for a claimed generalized order g_K
+// those of the K-trees of power <= g_K below u_K.
+std::vector<OrderCondition> met_orders(const std::vector<Qs>& c, const std::vector<Qs>& d,
+                                       const std::vector<SenTree>& trees,
+                                       const std::vector<OrderCondition>& conditions, int terms,
+                                       int order, const std::vector<int>& generalized) {
+  const std::vector<Qs> r = residuals(explicit_series(c, d, terms), trees, conditions);
+  std::map<int, int> lowest_unmet;  // K -> u_K
+  int p = order;
+  for (size_t i = 0; i < r.size(); ++i)
+    if (std::abs(r[i].to_double()) > kTranscription) {
+      const int K = trees[conditions[i].tree].fvertices;
+      auto [it, fresh] = lowest_unmet.emplace(K, conditions[i].power);
+      if (!fresh) it->second = std::min(it->second, conditions[i].power);
+      p = std::min(p, conditions[i].power - 1);
+    }
+  std::vector<OrderCondition> met;
+  for (const OrderCondition& oc : conditions) {
+    const int K = trees[oc.tree].fvertices;
+    const auto u = lowest_unmet.find(K);
+    const int gK = K <= int(generalized.size()) ? generalized[K - 1] : 0;
+    if (oc.power <= p || (oc.power <= gK && (u == lowest_unmet.end() || oc.power < u->second)))
+      met.push_back(oc);
+  }
+  return met;
+}
+
 }  // namespace
 
 Polished polish_explicit(const std::string& method, std::vector<Qs> c, std::vector<Qs> d, int order,
@@ -182,12 +212,10 @@ Polished polish_explicit(const std::string& method, std::vector<Qs> c, std::vect
   const std::string why = failure(out);
   if (why.empty()) return out;
   // The claim is not what the decimals satisfy (a wrong order, or a transcription error): polish
-  // onto the conditions they do meet to kTranscription, and leave the refusal to the
-  // certification, which names the first failing tree and its residual.
-  const std::vector<Qs> r = residuals(explicit_series(c, d, terms), trees, conditions);
-  std::vector<OrderCondition> met;
-  for (size_t i = 0; i < r.size(); ++i)
-    if (std::abs(r[i].to_double()) <= kTranscription) met.push_back(conditions[i]);
+  // onto the orders they do meet to kTranscription, and leave the refusal to the certification,
+  // which names the first failing tree and its residual. Whole orders, not single conditions:
+  // a condition of a higher order that happens to be small is not one the method satisfies.
+  std::vector<OrderCondition> met = met_orders(c, d, trees, conditions, terms, order, generalized);
   if (met.size() < conditions.size()) {
     Polished partial = newton(c, d, trees, met, terms);
     partial.unmet = int(conditions.size() - met.size());

@@ -19,15 +19,16 @@ struct Polished {
   double residual_before = 0;  ///< largest |residual| of the conditions polished onto
   double residual_after = 0;
   int conditions = 0;  ///< how many conditions
-  int unmet = 0;       ///< conditions of the claim left out: the decimals miss them by > 1e-8
+  int unmet = 0;       ///< conditions of the claim left out: beyond the orders the decimals meet
   bool symmetric = false;
   std::string summary() const;  ///< one line for derivation.md
 };
 
 /// Newton onto every condition of eq. (f) of power <= order and, for K = 1.., those of the trees
 /// with K f-vertices of power <= generalized[K-1]. If the decimals miss some of these by more
-/// than 1e-8 (a claim they do not satisfy, or a transcription error), polishes onto the others
-/// (`unmet` > 0) so that the certification refuses the claim naming a tree. Throws (naming
+/// than 1e-8 (a claim they do not satisfy, or a transcription error), polishes onto the orders
+/// they meet (`unmet` > 0: the conditions left out) so that the certification refuses the claim
+/// naming a tree. Throws (naming
 /// `method`) if no such polishing is within 1e-8 of the decimals with every residual below 1e-50.
 Polished polish_explicit(const std::string& method, std::vector<Qs> c, std::vector<Qs> d, int order,
                          const std::vector<int>& generalized);

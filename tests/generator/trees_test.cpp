@@ -97,6 +97,35 @@ TEST(OrderConditions, PaperInstancesSAndSchems100) {
   EXPECT_EQ(conditions_of_order(4), paper);
 }
 
+// The paper's compact condition b^T(V) Phi = rho!/gamma phi_rho(V) reads one V for M outside the
+// elementary differential (the root's V^j) and inside it (abar(V) on an edge). Through order 4
+// only V^0 of an abar-edge enters (the instances above); from order 5 on M inside is its own
+// tree: at power 5, b^T A e splits into [V^1] of f[f] and [V^0] of f[M f], two conditions, whose
+// sum is the paper's single-V coefficient. The sum is -1/60 = [V^1] (phi2 - phi3)/2, not the
+// paper's [V^1] phi3 = -1/120 (docs/errata.md).
+TEST(OrderConditions, AnAbarEdgeIsItsOwnTreeFromOrderFive) {
+  const auto trees = sen_trees(5);
+  const auto conditions = order_conditions(trees, 5);
+  auto rhs = [&](const std::string& tree, int j) {
+    std::vector<GiNaC::numeric> found;
+    for (const OrderCondition& c : conditions)
+      if (!c.bbar && c.j == j && trees[c.tree].name == tree) found.push_back(c.rhs);
+    EXPECT_EQ(found.size(), 1u) << tree << " at V^" << j;
+    return found.empty() ? GiNaC::numeric(0) : found[0];
+  };
+  const int below_five =
+      int(std::count_if(conditions.begin(), conditions.end(),
+                        [&](const auto& c) { return !trees[c.tree].nystrom && c.power <= 4; }));
+  EXPECT_EQ(below_five, 0);  // negative control of "from order 5": no M inside up to order 4
+  const GiNaC::numeric outside = rhs("f[f]", 1), inside = rhs("f[M f]", 0);
+  EXPECT_EQ(outside, GiNaC::numeric(-1, 120));
+  EXPECT_EQ(inside, GiNaC::numeric(-1, 120));
+  EXPECT_EQ(outside + inside, GiNaC::numeric(-1, 60));
+  const GiNaC::numeric phi2_v1(-1, 24), phi3_v1(-1, 120);  // [V^1] phi_j = -1/(j+2)!
+  EXPECT_EQ(outside + inside, (phi2_v1 - phi3_v1) / 2);
+  EXPECT_NE(outside + inside, phi3_v1);
+}
+
 // The conditions of one tree and root are the Taylor coefficients of eq. (f): [V^j] with powers
 // rho + 2j (b) and rho + 1 + 2j (bbar) up to r, right-hand sides (-1)^j rho!/gamma / (2j+m)!.
 TEST(OrderConditions, AreTheTaylorCoefficientsOfEqF) {

@@ -8,7 +8,7 @@
 namespace erkn::generated {
 
 /// Largest stage count of any method.
-inline constexpr int kMaxStages = 8;
+inline constexpr int kMaxStages = 14;
 /// Stored Taylor coefficients per coefficient function: v^0 .. v^(kSeriesTerms-1).
 inline constexpr int kSeriesTerms = 25;
 /// Poles are listed for v = h^2 lambda in (0, kPoleSearchMax].
