@@ -170,10 +170,10 @@ TEST(Grid, ErknMethodsAreExactForUZeroAtLargeStepsAndRknLimitsAreNot) {
     System s;
     s.M = M;
     s.gradient = [](const Eigen::VectorXd&, Eigen::VectorXd& g) { g.setZero(); };
-    if (m.kind() == Kind::rkn) {  // negative control: unstable at this h
-      Integrator run(m, s, 0.01, q0, p0);
+    if (m.kind() == Kind::rkn) {  // negative control: not exact (unstable at h = 0.7), even at
+      Integrator run(m, s, 0.01, q0, p0);  // h = 0.01 1e3 times above the ERKN bound below
       for (int n = 0; n < 700; ++n) run.step();
-      EXPECT_GE((run.q() - exact).cwiseAbs().maxCoeff(), 1e-6);
+      EXPECT_GE((run.q() - exact).cwiseAbs().maxCoeff(), 1e-9 * exact.cwiseAbs().maxCoeff());
       continue;
     }
     Integrator run(m, s, h, q0, p0);

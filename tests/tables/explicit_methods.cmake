@@ -38,9 +38,9 @@ endif()
 expect_raised_order_refused(Yoshida4 4 ".*has residual [-0-9.e]+ \\(certified order 4\\)")
 file(READ ${SPEC} spec)
 
-# Negative controls: a drift off by 1e-6 (the drifts no longer sum to 1), a kick off by 1e-6 (no
-# polishing within 1e-8, not even onto the conditions the decimals still meet), a generalized
-# order raised by one.
+# Negative controls: a drift off by 1e-6 (the drifts no longer sum to 1), a kick off by 1e-6 (the
+# decimals meet no order: refused at the tree f with the residual 1e-6), a generalized order
+# raised by one.
 string(REPLACE "0.6756035959798289, -0.1756035959798288" "0.6756045959798289, -0.1756035959798288"
        typo_drift "${spec}")
 string(REPLACE "kick      1.3512071919596578," "kick      1.3512081919596578," typo_kick "${spec}")
@@ -53,7 +53,7 @@ foreach(case typo_drift typo_kick raised_g)
   execute_process(COMMAND ${GENERATOR} ${WORKDIR}/${case}.spec ${WORKDIR}/${case}
                   RESULT_VARIABLE rc ERROR_VARIABLE err)
   set(expect_typo_drift "Yoshida4dec: the drifts sum to 1.00000100*[0-9]*, not 1")
-  set(expect_typo_kick "Yoshida4dec: polishing failed: the decimals are 1e-06 away from a method of the claimed order: a transcription error")
+  set(expect_typo_kick "Yoshida4dec: claimed order 4 fails at tree f: .* has residual 1e-06 \\(certified order 0\\); the decimals do not meet the claim \\(polished onto the orders they meet, [0-9]+ conditions left out\\): a wrong claim or a transcription error")
   set(expect_raised_g "SABA2: claimed generalized order 5 for eps\\^1 is not certified \\(4\\): tree f")
   if(rc EQUAL 0 OR NOT err MATCHES "${expect_${case}}")
     message(FATAL_ERROR "${case}: expected a refusal matching '${expect_${case}}', got: ${err}")
