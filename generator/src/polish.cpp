@@ -142,7 +142,8 @@ Polished newton(const std::vector<Qs>& c0, const std::vector<Qs>& d0,
       }
     for (size_t k = 0; k < n; ++k) A[k][k] = A[k][k] + mu;
     std::vector<Qs> dx = solve(A, g);
-    for (size_t k = 0; k < n; ++k) x[k] = x[k] + dx[k];
+    for (size_t k = 0; k < n; ++k)
+      if (!fixed[k]) x[k] = x[k] + dx[k];  // a fixed parameter stays exact
     P.set(x, c, d);
     r = R(c, d);
   }
