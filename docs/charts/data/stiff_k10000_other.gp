@@ -1,0 +1,85 @@
+set title 'stiff sine-Gordon, κ = 10000: erkn''s other implicit methods + peers — error vs CPU time' noenhanced
+set xlabel 'CPU time (s)'
+set ylabel 'max-norm error of q at t = 1'
+set logscale xy
+set format xy '10^{%L}'
+set grid lc rgb '#dddddd'
+set key outside right top noenhanced spacing 1.15
+set terminal pngcairo size 1000,620 enhanced font 'DejaVu Sans,11'
+set output 'stiff_k10000_other_cpu.png'
+plot 'data/stiff_k10000_serkn2s3pf.dat' u 5:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3pf', \
+  'data/stiff_k10000_serkn2s4pf.dat' u 5:3 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4pf', \
+  'data/stiff_k10000_serkn3s4pf_1.dat' u 5:3 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4pf(1)', \
+  'data/stiff_k10000_serkn3s4pf_2.dat' u 5:3 w lp lc rgb '#9467bd' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4pf(2)', \
+  'data/stiff_k10000_serkn4s6.dat' u 5:3 w lp lc rgb '#ff7f0e' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN4s6', \
+  'data/stiff_k10000_rkn4s6.dat' u 5:3 w lp lc rgb '#ff7f0e' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN4s6', \
+  'data/stiff_k10000_st_rmer_verlet.dat' u 5:3 w lp lc rgb '#8c564b' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
+  'data/stiff_k10000_odeint_sb3a_mclachlan.dat' u 5:3 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
+  'data/stiff_k10000_odeint_sb3a_m4_mclachlan.dat' u 5:3 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
+  'data/stiff_k10000_gauss2_order_4.dat' u 5:3 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)', \
+  'data/stiff_k10000_strang_impulse.dat' u 5:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 12 ps 1.0 t 'Strang (impulse)', \
+  'data/stiff_k10000_blanes_moan_srkn6b.dat' u 5:3 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
+  'data/stiff_k10000_blanes_moan_srkn14a.dat' u 5:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
+  'data/stiff_k10000_aba_10_6_4.dat' u 5:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
+  'data/stiff_k10000_mollified_impulse_sinc.dat' u 5:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
+set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
+set output 'stiff_k10000_other_cpu.svg'
+plot 'data/stiff_k10000_serkn2s3pf.dat' u 5:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3pf', \
+  'data/stiff_k10000_serkn2s4pf.dat' u 5:3 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4pf', \
+  'data/stiff_k10000_serkn3s4pf_1.dat' u 5:3 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4pf(1)', \
+  'data/stiff_k10000_serkn3s4pf_2.dat' u 5:3 w lp lc rgb '#9467bd' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4pf(2)', \
+  'data/stiff_k10000_serkn4s6.dat' u 5:3 w lp lc rgb '#ff7f0e' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN4s6', \
+  'data/stiff_k10000_rkn4s6.dat' u 5:3 w lp lc rgb '#ff7f0e' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN4s6', \
+  'data/stiff_k10000_st_rmer_verlet.dat' u 5:3 w lp lc rgb '#8c564b' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
+  'data/stiff_k10000_odeint_sb3a_mclachlan.dat' u 5:3 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
+  'data/stiff_k10000_odeint_sb3a_m4_mclachlan.dat' u 5:3 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
+  'data/stiff_k10000_gauss2_order_4.dat' u 5:3 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)', \
+  'data/stiff_k10000_strang_impulse.dat' u 5:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 12 ps 1.0 t 'Strang (impulse)', \
+  'data/stiff_k10000_blanes_moan_srkn6b.dat' u 5:3 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
+  'data/stiff_k10000_blanes_moan_srkn14a.dat' u 5:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
+  'data/stiff_k10000_aba_10_6_4.dat' u 5:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
+  'data/stiff_k10000_mollified_impulse_sinc.dat' u 5:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
+unset output
+set title 'stiff sine-Gordon, κ = 10000: erkn''s other implicit methods + peers — error vs h (×: failed; ▼: S(0, z) bound)' noenhanced
+set xlabel 'step size h'
+set ylabel 'max-norm error of q at t = 1'
+set logscale xy
+set format xy '10^{%L}'
+set grid lc rgb '#dddddd'
+set key outside right top noenhanced spacing 1.15
+set yrange [:3e4]
+set terminal pngcairo size 1000,620 enhanced font 'DejaVu Sans,11'
+set output 'stiff_k10000_other_h.png'
+plot 'data/stiff_k10000_serkn2s3pf.dat' u 2:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3pf', 'data/stiff_k10000_serkn2s3pf_failed.dat' u 2:(1e3) w p lc rgb '#1f77b4' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_serkn2s3pf_predicted.dat' u 1:(1e4) w p lc rgb '#1f77b4' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_serkn2s4pf.dat' u 2:3 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4pf', 'data/stiff_k10000_serkn2s4pf_failed.dat' u 2:(1e3) w p lc rgb '#d62728' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_serkn2s4pf_predicted.dat' u 1:(1e4) w p lc rgb '#d62728' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_serkn3s4pf_1.dat' u 2:3 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4pf(1)', 'data/stiff_k10000_serkn3s4pf_1_failed.dat' u 2:(1e3) w p lc rgb '#2ca02c' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_serkn3s4pf_1_predicted.dat' u 1:(1e4) w p lc rgb '#2ca02c' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_serkn3s4pf_2.dat' u 2:3 w lp lc rgb '#9467bd' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4pf(2)', 'data/stiff_k10000_serkn3s4pf_2_failed.dat' u 2:(1e3) w p lc rgb '#9467bd' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_serkn3s4pf_2_predicted.dat' u 1:(1e4) w p lc rgb '#9467bd' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_serkn4s6.dat' u 2:3 w lp lc rgb '#ff7f0e' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN4s6', 'data/stiff_k10000_serkn4s6_failed.dat' u 2:(1e3) w p lc rgb '#ff7f0e' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_serkn4s6_predicted.dat' u 1:(1e4) w p lc rgb '#ff7f0e' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_rkn4s6.dat' u 2:3 w lp lc rgb '#ff7f0e' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN4s6', 'data/stiff_k10000_rkn4s6_failed.dat' u 2:(1e3) w p lc rgb '#ff7f0e' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_rkn4s6_predicted.dat' u 1:(1e4) w p lc rgb '#ff7f0e' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_st_rmer_verlet.dat' u 2:3 w lp lc rgb '#8c564b' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', 'data/stiff_k10000_st_rmer_verlet_failed.dat' u 2:(1e3) w p lc rgb '#8c564b' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_st_rmer_verlet_predicted.dat' u 1:(1e4) w p lc rgb '#8c564b' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_odeint_sb3a_mclachlan.dat' u 2:3 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', 'data/stiff_k10000_odeint_sb3a_mclachlan_failed.dat' u 2:(1e3) w p lc rgb '#e377c2' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_odeint_sb3a_mclachlan_predicted.dat' u 1:(1e4) w p lc rgb '#e377c2' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_odeint_sb3a_m4_mclachlan.dat' u 2:3 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', 'data/stiff_k10000_odeint_sb3a_m4_mclachlan_failed.dat' u 2:(1e3) w p lc rgb '#17becf' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_odeint_sb3a_m4_mclachlan_predicted.dat' u 1:(1e4) w p lc rgb '#17becf' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_gauss2_order_4.dat' u 2:3 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)', 'data/stiff_k10000_gauss2_order_4_failed.dat' u 2:(1e3) w p lc rgb '#7f7f7f' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_gauss2_order_4_predicted.dat' u 1:(1e4) w p lc rgb '#7f7f7f' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_strang_impulse.dat' u 2:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 12 ps 1.0 t 'Strang (impulse)', 'data/stiff_k10000_strang_impulse_failed.dat' u 2:(1e3) w p lc rgb '#bcbd22' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_strang_impulse_predicted.dat' u 1:(1e4) w p lc rgb '#bcbd22' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_blanes_moan_srkn6b.dat' u 2:3 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', 'data/stiff_k10000_blanes_moan_srkn6b_failed.dat' u 2:(1e3) w p lc rgb '#393b79' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_blanes_moan_srkn6b_predicted.dat' u 1:(1e4) w p lc rgb '#393b79' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_blanes_moan_srkn14a.dat' u 2:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', 'data/stiff_k10000_blanes_moan_srkn14a_failed.dat' u 2:(1e3) w p lc rgb '#637939' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_blanes_moan_srkn14a_predicted.dat' u 1:(1e4) w p lc rgb '#637939' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_aba_10_6_4.dat' u 2:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', 'data/stiff_k10000_aba_10_6_4_failed.dat' u 2:(1e3) w p lc rgb '#8c6d31' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_aba_10_6_4_predicted.dat' u 1:(1e4) w p lc rgb '#8c6d31' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_mollified_impulse_sinc.dat' u 2:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', 'data/stiff_k10000_mollified_impulse_sinc_failed.dat' u 2:(1e3) w p lc rgb '#843c39' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_mollified_impulse_sinc_predicted.dat' u 1:(1e4) w p lc rgb '#843c39' pt 11 ps 1.6 notitle
+set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
+set output 'stiff_k10000_other_h.svg'
+plot 'data/stiff_k10000_serkn2s3pf.dat' u 2:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3pf', 'data/stiff_k10000_serkn2s3pf_failed.dat' u 2:(1e3) w p lc rgb '#1f77b4' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_serkn2s3pf_predicted.dat' u 1:(1e4) w p lc rgb '#1f77b4' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_serkn2s4pf.dat' u 2:3 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4pf', 'data/stiff_k10000_serkn2s4pf_failed.dat' u 2:(1e3) w p lc rgb '#d62728' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_serkn2s4pf_predicted.dat' u 1:(1e4) w p lc rgb '#d62728' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_serkn3s4pf_1.dat' u 2:3 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4pf(1)', 'data/stiff_k10000_serkn3s4pf_1_failed.dat' u 2:(1e3) w p lc rgb '#2ca02c' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_serkn3s4pf_1_predicted.dat' u 1:(1e4) w p lc rgb '#2ca02c' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_serkn3s4pf_2.dat' u 2:3 w lp lc rgb '#9467bd' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4pf(2)', 'data/stiff_k10000_serkn3s4pf_2_failed.dat' u 2:(1e3) w p lc rgb '#9467bd' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_serkn3s4pf_2_predicted.dat' u 1:(1e4) w p lc rgb '#9467bd' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_serkn4s6.dat' u 2:3 w lp lc rgb '#ff7f0e' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN4s6', 'data/stiff_k10000_serkn4s6_failed.dat' u 2:(1e3) w p lc rgb '#ff7f0e' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_serkn4s6_predicted.dat' u 1:(1e4) w p lc rgb '#ff7f0e' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_rkn4s6.dat' u 2:3 w lp lc rgb '#ff7f0e' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN4s6', 'data/stiff_k10000_rkn4s6_failed.dat' u 2:(1e3) w p lc rgb '#ff7f0e' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_rkn4s6_predicted.dat' u 1:(1e4) w p lc rgb '#ff7f0e' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_st_rmer_verlet.dat' u 2:3 w lp lc rgb '#8c564b' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', 'data/stiff_k10000_st_rmer_verlet_failed.dat' u 2:(1e3) w p lc rgb '#8c564b' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_st_rmer_verlet_predicted.dat' u 1:(1e4) w p lc rgb '#8c564b' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_odeint_sb3a_mclachlan.dat' u 2:3 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', 'data/stiff_k10000_odeint_sb3a_mclachlan_failed.dat' u 2:(1e3) w p lc rgb '#e377c2' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_odeint_sb3a_mclachlan_predicted.dat' u 1:(1e4) w p lc rgb '#e377c2' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_odeint_sb3a_m4_mclachlan.dat' u 2:3 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', 'data/stiff_k10000_odeint_sb3a_m4_mclachlan_failed.dat' u 2:(1e3) w p lc rgb '#17becf' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_odeint_sb3a_m4_mclachlan_predicted.dat' u 1:(1e4) w p lc rgb '#17becf' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_gauss2_order_4.dat' u 2:3 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)', 'data/stiff_k10000_gauss2_order_4_failed.dat' u 2:(1e3) w p lc rgb '#7f7f7f' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_gauss2_order_4_predicted.dat' u 1:(1e4) w p lc rgb '#7f7f7f' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_strang_impulse.dat' u 2:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 12 ps 1.0 t 'Strang (impulse)', 'data/stiff_k10000_strang_impulse_failed.dat' u 2:(1e3) w p lc rgb '#bcbd22' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_strang_impulse_predicted.dat' u 1:(1e4) w p lc rgb '#bcbd22' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_blanes_moan_srkn6b.dat' u 2:3 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', 'data/stiff_k10000_blanes_moan_srkn6b_failed.dat' u 2:(1e3) w p lc rgb '#393b79' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_blanes_moan_srkn6b_predicted.dat' u 1:(1e4) w p lc rgb '#393b79' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_blanes_moan_srkn14a.dat' u 2:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', 'data/stiff_k10000_blanes_moan_srkn14a_failed.dat' u 2:(1e3) w p lc rgb '#637939' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_blanes_moan_srkn14a_predicted.dat' u 1:(1e4) w p lc rgb '#637939' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_aba_10_6_4.dat' u 2:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', 'data/stiff_k10000_aba_10_6_4_failed.dat' u 2:(1e3) w p lc rgb '#8c6d31' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_aba_10_6_4_predicted.dat' u 1:(1e4) w p lc rgb '#8c6d31' pt 11 ps 1.6 notitle, \
+  'data/stiff_k10000_mollified_impulse_sinc.dat' u 2:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', 'data/stiff_k10000_mollified_impulse_sinc_failed.dat' u 2:(1e3) w p lc rgb '#843c39' pt 2 ps 2 lw 2 notitle, 'data/stiff_k10000_mollified_impulse_sinc_predicted.dat' u 1:(1e4) w p lc rgb '#843c39' pt 11 ps 1.6 notitle
+unset output
