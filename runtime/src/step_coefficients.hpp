@@ -87,53 +87,53 @@ class FlowCoefficients {
 
 template <class Coef>
 class StepCoefficients {
-  // Slots of the flat layout, per stage i (and j <= i).
-  static constexpr int kPhi0c = 0, kHcphi1c = kMaxStages, kH2bbar = 2 * kMaxStages,
-                       kHb = 3 * kMaxStages, kH2abar = 4 * kMaxStages,
-                       kPhi0m1 = kH2abar + kMaxStages * (kMaxStages + 1) / 2, kHphi1 = kPhi0m1 + 1,
-                       kMhMphi1 = kPhi0m1 + 2, kSlots = kPhi0m1 + 3;
-  using Slots = CoefficientSlots<Coef, kSlots>;
+  // The flat layout for s stages: phi0c, hcphi1c, h2bbar, hb (s slots each), h2abar (the lower
+  // triangle, s(s+1)/2 slots), then phi0m1, hphi1, mhMphi1. Sized by the method's s, not by
+  // kMaxStages: on a grid every slot is an array over all unknowns.
+  static constexpr int slot_count(int s) { return 4 * s + s * (s + 1) / 2 + 3; }
+  using Slots = CoefficientSlots<Coef, slot_count(kMaxStages)>;
   using Value = typename Slots::Value;
 
  public:
   /// v_k = h^2 lambda_k; lambda must have one entry when Coef is double. The caller has checked
   /// every v against the method's poles (check_step_size), so the table is evaluated directly.
-  /// Only the s stages' coefficients are set.
   StepCoefficients(const Method& method, double h, const Eigen::VectorXd& lambda)
-      : slots_(kSlots, lambda.size()) {
-    const int s = method.stages();
+      : s_(method.stages()), slots_(slot_count(s_), lambda.size()) {
     const generated::Table& table = method.table();
     Coefficients co;
     for (Eigen::Index e = 0; e < lambda.size(); ++e) {
       const auto set = [&](int slot, double x) { slots_.set(slot, e, x); };
       const double v = h * h * lambda[e];
       table.coefficients(v, co.b.data(), co.bbar.data(), co.abar_packed.data());
-      for (int i = 0; i < s; ++i) {
+      for (int i = 0; i < s_; ++i) {
         const double c = table.c[i];
-        set(kPhi0c + i, phi0(c * c * v));
-        set(kHcphi1c + i, h * c * phi1(c * c * v));
-        set(kH2bbar + i, h * h * co.bbar[i]);
-        set(kHb + i, h * co.b[i]);
-        for (int j = 0; j <= i; ++j) set(kH2abar + i * (i + 1) / 2 + j, h * h * co.abar(i, j));
+        set(i, phi0(c * c * v));
+        set(s_ + i, h * c * phi1(c * c * v));
+        set(2 * s_ + i, h * h * co.bbar[i]);
+        set(3 * s_ + i, h * co.b[i]);
+        for (int j = 0; j <= i; ++j) set(abar_slot(i, j), h * h * co.abar(i, j));
       }
-      set(kPhi0m1, phi0_minus_1(v));
-      set(kHphi1, h * phi1(v));
-      set(kMhMphi1, -h * lambda[e] * phi1(v));
+      set(last(0), phi0_minus_1(v));
+      set(last(1), h * phi1(v));
+      set(last(2), -h * lambda[e] * phi1(v));
     }
   }
 
-  Value phi0c(int i) const { return at(kPhi0c + i); }      ///< phi0(c_i^2 V)
-  Value hcphi1c(int i) const { return at(kHcphi1c + i); }  ///< h c_i phi1(c_i^2 V)
-  Value abar(int i, int j) const { return at(kH2abar + i * (i + 1) / 2 + j); }  ///< h^2 abar_ij(V)
-  Value h2bbar(int i) const { return at(kH2bbar + i); }                         ///< h^2 bbar_i(V)
-  Value hb(int i) const { return at(kHb + i); }                                 ///< h b_i(V)
-  Value phi0m1() const { return at(kPhi0m1); }                                  ///< phi0(V) - 1
-  Value hphi1() const { return at(kHphi1); }                                    ///< h phi1(V)
-  Value mhMphi1() const { return at(kMhMphi1); }  ///< -h M phi1(V) = -(V/h) phi1(V)
+  Value phi0c(int i) const { return at(i); }                      ///< phi0(c_i^2 V)
+  Value hcphi1c(int i) const { return at(s_ + i); }               ///< h c_i phi1(c_i^2 V)
+  Value abar(int i, int j) const { return at(abar_slot(i, j)); }  ///< h^2 abar_ij(V)
+  Value h2bbar(int i) const { return at(2 * s_ + i); }            ///< h^2 bbar_i(V)
+  Value hb(int i) const { return at(3 * s_ + i); }                ///< h b_i(V)
+  Value phi0m1() const { return at(last(0)); }                    ///< phi0(V) - 1
+  Value hphi1() const { return at(last(1)); }                     ///< h phi1(V)
+  Value mhMphi1() const { return at(last(2)); }                   ///< -h M phi1(V) = -(V/h) phi1(V)
 
  private:
+  int abar_slot(int i, int j) const { return 4 * s_ + i * (i + 1) / 2 + j; }
+  int last(int k) const { return slot_count(s_) - 3 + k; }
   Value at(int slot) const { return slots_.at(slot); }
 
+  int s_;
   Slots slots_;
 };
 

@@ -14,6 +14,7 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "erkn/error.hpp"
 #include "erkn/integrator.hpp"
@@ -68,6 +69,7 @@ class Stepper final : public StepperBase {
       };
       weight_[i] = std::max({1.0, ratio(k_->h2bbar(i)), ratio(k_->hb(i) * h)});
     }
+    weights_.assign(size_t(s_) * ((kHistory + 1) * s_) * ((kHistory + 1) * s_), 0.0);
     for (int i = 0; i < s_; ++i) set_nodes(i);
   }
 
@@ -173,7 +175,7 @@ class Stepper final : public StepperBase {
         double w = 1;
         for (int k = 0; k < m; ++k)
           if (k != l) w *= (c[i] - time(nodes_[i][k])) / (time(nodes_[i][l]) - time(nodes_[i][k]));
-        weights_[i][m - 1][l] = w;
+        weight(i, m - 1, l) = w;
       }
     order_[i] = n;
   }
@@ -190,8 +192,8 @@ class Stepper final : public StepperBase {
     const auto gradient_at = [&](const Node& node) {
       return SpectralMap(steps_[node.age] + node.stage * stride_, m_);
     };
-    out = weights_[i][n - 1][0] * gradient_at(nodes_[i][0]);
-    for (int l = 1; l < n; ++l) out += weights_[i][n - 1][l] * gradient_at(nodes_[i][l]);
+    out = weight(i, n - 1, 0) * gradient_at(nodes_[i][0]);
+    for (int l = 1; l < n; ++l) out += weight(i, n - 1, l) * gradient_at(nodes_[i][l]);
   }
 
   // Moves stage i's order n to whichever of n - 1, n, n + 1 nodes would have given the solved
@@ -537,7 +539,7 @@ class Stepper final : public StepperBase {
   long step_number_ = 0;  // of the step being taken, and its t, for messages
   double t_ = 0;
   // Starting values: stage i's gradient extrapolated through its order_[i] most recent known
-  // stage gradients (nodes_[i], their Lagrange weights at c_i in weights_[i][order - 1]), from
+  // stage gradients (nodes_[i], their Lagrange weights at c_i in weight(i, order - 1, .)), from
   // this step and the kHistory before it. One step back: three predicted better at fine h on
   // P1-P3, but their higher degrees let the modes with large abar_ii of P1 at N = 2048 diverge
   // (SERKN3s4(1), h = 1/32: 9.4 evaluations per stage and 23 Newton fallbacks instead of 3.8, 7).
@@ -548,7 +550,13 @@ class Stepper final : public StepperBase {
   };
   std::array<std::array<Node, kMaxNodes>, kMaxStages> nodes_{};
   std::array<int, kMaxStages> node_count_{}, order_{};
-  std::array<std::array<std::array<double, kMaxNodes>, kMaxNodes>, kMaxStages> weights_{};
+  // weight(i, m - 1, l): node l's Lagrange weight at c_i on the first m nodes; sized by s, not
+  // by kMaxStages (that would be kMaxStages (2 kMaxStages)^2 doubles to clear at every setup).
+  std::vector<double> weights_;
+  double& weight(int i, int m, int l) {
+    const int n = (kHistory + 1) * s_;
+    return weights_[(size_t(i) * n + m) * n + l];
+  }
   int history_ = 0;  // steps before this one with stage gradients (since set_state)
   std::array<double, kMaxStages> theta_ = filled<kMaxStages>(-1.0);  // measured; < 0: none
   std::array<int, kMaxStages> theta_age_{};  // stage solves since the measurement
