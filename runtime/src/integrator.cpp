@@ -57,28 +57,29 @@ double grid_tolerance(double t, double t_end, double h) {
 // 6.1 us, N = 64 12.5 vs 13.3 us, N = 128 35 vs 24 us.
 constexpr Eigen::Index kFftwMinN = 4, kFourierBasisMaxN = 64;
 
-// Explicit methods in dimensions up to this with M's identity eigenbasis (scalar, diagonal M;
-// RKN methods) step with the dimension as a compile-time constant.
+// Dimensions up to this with M's identity eigenbasis (scalar, diagonal M; RKN methods) step with
+// the dimension as a compile-time constant.
 constexpr Eigen::Index kFixedMaxD = 4;
 
-template <class Transform, class Coef, int D = 1, class... Args>
-std::unique_ptr<detail::StepperBase> explicit_stepper(Eigen::Index d, Args&&... args) {
-  using detail::ExplicitStepper;
+// Stepper S<Transform, Coef, D> for the dimension d: D = d when fixed sizes apply, else dynamic;
+// args: the constructor's arguments before d.
+template <template <class, class, int> class S, class Transform, class Coef, int D = 1,
+          class... Args>
+std::unique_ptr<detail::StepperBase> stepper_for(Eigen::Index d, Args&&... args) {
   if constexpr (std::is_same_v<Transform, detail::IdentityTransform> && D <= kFixedMaxD) {
-    if (d == D)
-      return std::make_unique<ExplicitStepper<Transform, Coef, D>>(std::forward<Args>(args)..., d);
-    return explicit_stepper<Transform, Coef, D + 1>(d, std::forward<Args>(args)...);
+    if (d == D) return std::make_unique<S<Transform, Coef, D>>(std::forward<Args>(args)..., d);
+    return stepper_for<S, Transform, Coef, D + 1>(d, std::forward<Args>(args)...);
   }
-  return std::make_unique<ExplicitStepper<Transform, Coef>>(std::forward<Args>(args)..., d);
+  return std::make_unique<S<Transform, Coef, Eigen::Dynamic>>(std::forward<Args>(args)..., d);
 }
 
-// The stepper of the method's kind over the eigenbasis Transform with coefficients Coef; args:
-// the constructor's arguments before the dimension d.
+// The stepper of the method's kind over the eigenbasis Transform with coefficients Coef.
 template <class Transform, class Coef, class... Args>
 std::unique_ptr<detail::StepperBase> stepper_of(bool explicit_method, Eigen::Index d,
                                                 Args&&... args) {
-  if (explicit_method) return explicit_stepper<Transform, Coef>(d, std::forward<Args>(args)...);
-  return std::make_unique<detail::Stepper<Transform, Coef>>(std::forward<Args>(args)..., d);
+  if (explicit_method)
+    return stepper_for<detail::ExplicitStepper, Transform, Coef>(d, std::forward<Args>(args)...);
+  return stepper_for<detail::Stepper, Transform, Coef>(d, std::forward<Args>(args)...);
 }
 
 std::unique_ptr<detail::StepperBase> make_stepper(const Method& method, System system, double h,

@@ -1,6 +1,8 @@
 // The step of eq. (d) for methods with implicit stages, generic over M's eigenbasis (Transform)
 // and the coefficient type (Coef). Stages run in eigen coordinates; gradients are evaluated in
-// physical coordinates. Explicit methods step in explicit_stepper.hpp.
+// physical coordinates. D: the dimension when it is a compile-time constant (tiny systems with
+// M's identity eigenbasis: the stage arrays then live inside the stepper and every pass over them
+// unrolls). Explicit methods step in explicit_stepper.hpp.
 #pragma once
 
 #include <Eigen/Core>
@@ -13,6 +15,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -27,11 +30,27 @@
 
 namespace erkn::detail {
 
-template <class Transform, class Coef>
+template <class Transform, class Coef, int D = Eigen::Dynamic>
 class Stepper final : public StepperBase {
   using Spectral = typename Transform::Spectral;
   using Scalar = typename Spectral::Scalar;
-  using SpectralMap = Eigen::Map<Spectral, Eigen::AlignedMax>;
+  static constexpr bool kFixed = D != Eigen::Dynamic;
+  static_assert(!kFixed || std::is_same_v<Transform, IdentityTransform>,
+                "a fixed dimension needs the identity basis");
+  // One array in eigen coordinates (aligned when stride_ keeps it so: in the dynamic storage).
+  using Array = std::conditional_t<kFixed, Eigen::Array<Scalar, D, 1>, Spectral>;
+  using SpectralMap = Eigen::Map<Array, kFixed ? Eigen::Unaligned : Eigen::AlignedMax>;
+  // The arrays' storage: one allocation, or (fixed dimension) inside the stepper, sized for
+  // kMaxStages.
+  static constexpr int kSlots = 10;  // (the arrays before the stage gradients)
+  // Steps back whose stage gradients the starting values extrapolate from. One: three predicted
+  // better at fine h on P1-P3, but their higher degrees let the modes with large abar_ii of P1 at
+  // N = 2048 diverge (SERKN3s4(1), h = 1/32: 9.4 evaluations per stage and 23 Newton fallbacks
+  // instead of 3.8, 7).
+  static constexpr int kHistory = 1;
+  using Storage = std::conditional_t<
+      kFixed, std::array<Scalar, (kSlots + (kHistory + 1) * kMaxStages) * std::max(D, 1)>,
+      Spectral>;
 
  public:
   /// lambda: M's eigenvalues ({0} for RKN methods, whose force then includes -M q).
@@ -47,8 +66,8 @@ class Stepper final : public StepperBase {
         transform_(std::move(transform)),
         M_(system_.M, d),
         m_(transform_.spectral_size(d)),
-        stride_(aligned_stride<Scalar>(m_)),
-        spectral_(Spectral::Zero((kSlots + (kHistory + 1) * s_) * stride_)),
+        stride_(kFixed ? D : aligned_stride<Scalar>(m_)),
+        spectral_(zeros(s_, stride_)),
         q_hat_(slot(0), m_),
         p_hat_(slot(1), m_),
         eq_hat_(slot(2), m_),
@@ -108,8 +127,22 @@ class Stepper final : public StepperBase {
   System& system() override { return system_; }
 
  private:
-  // Slots of spectral_ before the stage gradients.
-  static constexpr int kSlots = 10;
+  static Storage zeros(int s, Eigen::Index stride) {
+    if constexpr (kFixed)
+      return Storage{};
+    else
+      return Spectral::Zero((kSlots + (kHistory + 1) * s) * stride);
+  }
+
+  // A coefficient of k_ as the arrays see it: a number, or an array map (of fixed size when D
+  // is, so that expressions mixing it with the stage arrays keep the fixed size).
+  template <class V>
+  static auto co(const V& value) {
+    if constexpr (kFixed && !std::is_same_v<V, double>)
+      return Eigen::Map<const Eigen::Array<double, D, 1>>(value.data());
+    else
+      return value;
+  }
 
   // Eq. (d): the stages one by one, then the update, added to the state only at the end.
   void implicit_step(Statistics& stats) {
@@ -128,11 +161,11 @@ class Stepper final : public StepperBase {
       adapt_order(i);
     }
     SpectralMap &dq = qw_hat_, &dp = pw_hat_;
-    dq = k.phi0m1() * q_hat_ + k.hphi1() * p_hat_;
-    dp = k.mhMphi1() * q_hat_ + k.phi0m1() * p_hat_;
+    dq = co(k.phi0m1()) * q_hat_ + co(k.hphi1()) * p_hat_;
+    dp = co(k.mhMphi1()) * q_hat_ + co(k.phi0m1()) * p_hat_;
     for (int i = 0; i < s_; ++i) {
-      dq -= k.h2bbar(i) * G(i);
-      dp -= k.hb(i) * G(i);
+      dq -= co(k.h2bbar(i)) * G(i);
+      dp -= co(k.hb(i)) * G(i);
     }
     require_finite_result(q_hat_ + dq, p_hat_ + dp, place());
     add(q_hat_, eq_hat_, dq);
@@ -145,14 +178,14 @@ class Stepper final : public StepperBase {
   // guess Q = r_i - h^2 abar_ii g_pred with g_pred extrapolated from the known stage gradients.
   void start_stage(int i) {
     const StepCoefficients<Coef>& k = *k_;
-    r_hat_ = k.phi0c(i) * q_hat_ + k.hcphi1c(i) * p_hat_;
-    for (int j = 0; j < i; ++j) r_hat_ -= k.abar(i, j) * G(j);
+    r_hat_ = co(k.phi0c(i)) * q_hat_ + co(k.hcphi1c(i)) * p_hat_;
+    for (int j = 0; j < i; ++j) r_hat_ -= co(k.abar(i, j)) * G(j);
     const int n = std::min(order_[i], available_nodes(i));
     if (n > 0)
       predict(i, n, guess_hat_);
     else
       guess_hat_.setZero();
-    Q_hat_ = r_hat_ - k.abar(i, i) * guess_hat_;
+    Q_hat_ = r_hat_ - co(k.abar(i, i)) * guess_hat_;
     transform_.inverse(Q_hat_, Q_);
   }
 
@@ -204,7 +237,7 @@ class Stepper final : public StepperBase {
     const int available = available_nodes(i), n = std::min(order_[i], available);
     if (available < 2) return;
     const auto guess_error = [&](SpectralMap& prediction) {
-      prediction = k_->abar(i, i) * (prediction - G(i));
+      prediction = co(k_->abar(i, i)) * (prediction - G(i));
       return transform_.norm(prediction);
     };
     double best = guess_error(guess_hat_);  // (start_stage's prediction, n nodes)
@@ -227,7 +260,7 @@ class Stepper final : public StepperBase {
       if (it > 1) transform_.inverse(Q_hat_, Q_);  // (start_stage did it for the guess)
       force(Q_, i, stats);
       transform_.forward(g_, G(i));
-      Q_hat_new_ = r_hat_ - k_->abar(i, i) * G(i);
+      Q_hat_new_ = r_hat_ - co(k_->abar(i, i)) * G(i);
       ++stats.stage_iterations;
       // |dQ| / max(|Q_new|, |Q_old|) in eigen coordinates, so a converged stage needs no inverse
       // transform. Both iterates: an iterate at 0 (a 2-cycle r -> 0 -> r) must not make delta
@@ -487,7 +520,7 @@ class Stepper final : public StepperBase {
   }
 
   void gradient(const Eigen::VectorXd& Q, Eigen::VectorXd& g, int i, Statistics& stats) {
-    checked_gradient(system_, Q, g, d_, i, place(), stats.gradient_evaluations);
+    checked_gradient<D>(system_, Q, g, d_, i, place(), stats.gradient_evaluations);
   }
 
   // x += dx in eigen coordinates, Kahan-compensated when enabled (error carries the lost
@@ -540,10 +573,7 @@ class Stepper final : public StepperBase {
   double t_ = 0;
   // Starting values: stage i's gradient extrapolated through its order_[i] most recent known
   // stage gradients (nodes_[i], their Lagrange weights at c_i in weight(i, order - 1, .)), from
-  // this step and the kHistory before it. One step back: three predicted better at fine h on
-  // P1-P3, but their higher degrees let the modes with large abar_ii of P1 at N = 2048 diverge
-  // (SERKN3s4(1), h = 1/32: 9.4 evaluations per stage and 23 Newton fallbacks instead of 3.8, 7).
-  static constexpr int kHistory = 1;
+  // this step and the kHistory before it.
   static constexpr int kMaxNodes = (kHistory + 1) * kMaxStages;
   struct Node {
     int age, stage;  // age 0: this step
@@ -567,7 +597,7 @@ class Stepper final : public StepperBase {
   // four stage arrays, then the s stage gradients of this step and of the kHistory before it
   // (steps_[age]).
   Eigen::Index m_, stride_;
-  Spectral spectral_;
+  Storage spectral_;
   SpectralMap q_hat_, p_hat_, eq_hat_, ep_hat_, qw_hat_, pw_hat_;
   SpectralMap r_hat_, Q_hat_, Q_hat_new_, guess_hat_;
   std::array<Scalar*, kHistory + 1> steps_{};
