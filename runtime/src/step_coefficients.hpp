@@ -7,7 +7,9 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
+#include <numeric>
 #include <type_traits>
+#include <vector>
 
 #include "erkn/method.hpp"
 #include "phi.hpp"
@@ -37,6 +39,11 @@ class CoefficientSlots {
     if constexpr (!kScalar) values_.resize(slots * stride_);
   }
   void set(int slot, Eigen::Index e, double x) { values_[slot * stride_ + e] = x; }
+  /// Every slot's value at coordinate from, copied to coordinate to.
+  void copy(int slots, Eigen::Index from, Eigen::Index to) {
+    for (int slot = 0; slot < slots; ++slot)
+      values_[slot * stride_ + to] = values_[slot * stride_ + from];
+  }
   Value at(int slot) const {
     if constexpr (kScalar)
       return values_[slot];
@@ -85,12 +92,29 @@ class FlowCoefficients {
   Slots slots_;
 };
 
+/// For each entry of lambda, the index of the first entry with exactly the same value (itself
+/// when none comes before it): M's eigenvalues repeat (a circulant M has each twice, a grid's
+/// symmetric axes more), and a method's coefficients at v are costly (16 long-double sines and
+/// cosines for SERKN3s4(1)), so they are evaluated once per distinct value.
+inline std::vector<Eigen::Index> first_equal(const Eigen::VectorXd& lambda) {
+  std::vector<Eigen::Index> order(size_t(lambda.size())), first(order.size());
+  std::iota(order.begin(), order.end(), Eigen::Index(0));
+  // Stable: among equal values the lowest index comes first and represents them.
+  std::stable_sort(order.begin(), order.end(),
+                   [&](Eigen::Index a, Eigen::Index b) { return lambda[a] < lambda[b]; });
+  for (size_t k = 0; k < order.size(); ++k)
+    first[size_t(order[k])] =
+        k > 0 && lambda[order[k]] == lambda[order[k - 1]] ? first[size_t(order[k - 1])] : order[k];
+  return first;
+}
+
 template <class Coef>
 class StepCoefficients {
   // The flat layout for s stages: phi0c, hcphi1c, h2bbar, hb (s slots each), h2abar (the lower
   // triangle, s(s+1)/2 slots), then phi0m1, hphi1, mhMphi1. Sized by the method's s, not by
   // kMaxStages: on a grid every slot is an array over all unknowns.
   static constexpr int slot_count(int s) { return 4 * s + s * (s + 1) / 2 + 3; }
+  static constexpr Eigen::Index kShareFrom = 16;
   using Slots = CoefficientSlots<Coef, slot_count(kMaxStages)>;
   using Value = typename Slots::Value;
 
@@ -100,8 +124,15 @@ class StepCoefficients {
   StepCoefficients(const Method& method, double h, const Eigen::VectorXd& lambda)
       : s_(method.stages()), slots_(slot_count(s_), lambda.size()) {
     const generated::Table& table = method.table();
+    // (Below kShareFrom entries the sort and its allocations would cost more than they save.)
+    const std::vector<Eigen::Index> first =
+        lambda.size() >= kShareFrom ? first_equal(lambda) : std::vector<Eigen::Index>{};
     Coefficients co;
     for (Eigen::Index e = 0; e < lambda.size(); ++e) {
+      if (!first.empty() && first[size_t(e)] != e) {  // (first[e] < e: evaluated already)
+        slots_.copy(slot_count(s_), first[size_t(e)], e);
+        continue;
+      }
       const auto set = [&](int slot, double x) { slots_.set(slot, e, x); };
       const double v = h * h * lambda[e];
       table.coefficients(v, co.b.data(), co.bbar.data(), co.abar_packed.data());
