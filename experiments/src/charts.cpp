@@ -68,6 +68,12 @@ std::string quoted(const std::string& s) {
   return out + "'";
 }
 
+// One curve of a plot command: columns `columns` of `file` with lines and points, titled `title`.
+std::string curve(const std::string& file, const std::string& columns, const std::string& style,
+                  const std::string& title) {
+  return quoted(file) + " u " + columns + " w lp " + style + " t " + quoted(title);
+}
+
 void write_header(std::ostream& gp, const std::string& title, const std::string& xlabel,
                   const std::string& ylabel) {
   gp << "set title " << quoted(title) << " noenhanced\n"
@@ -161,10 +167,9 @@ void chart_problem(const ProblemResult& r, const fs::path& charts_dir) {
       const std::string stem = "data/" + key + "_" + slug(m.name);
       const std::string s = style(m);
       const std::string sep = cost_plot == "plot " ? "" : ", \\\n  ";
-      cost_plot += sep + quoted(stem + ".dat") + " u 4:3 w lp " + s + " t " + quoted(m.name);
-      cpu_plot += sep + quoted(stem + ".dat") + " u 5:3 w lp " + s + " t " + quoted(m.name);
-      energy_plot +=
-          sep + quoted(stem + "_energy.dat") + " u 1:2 w lp " + s + " t " + quoted(m.name);
+      cost_plot += sep + curve(stem + ".dat", "4:3", s, m.name);
+      cpu_plot += sep + curve(stem + ".dat", "5:3", s, m.name);
+      energy_plot += sep + curve(stem + "_energy.dat", "1:2", s, m.name);
     }
     const std::string stem = key + g.suffix;
     std::ofstream gp = open(charts_dir / "data" / (stem + ".gp"));
@@ -201,8 +206,8 @@ void chart_scaling(const ScalingResult& r, const fs::path& charts_dir) {
             << ' ' << m.cpu << '\n';
     for (size_t i = 0; i < r.sizes.size(); ++i)
       if (const auto c = scaling_cpu(r, l, i)) dat << r.sizes[i] << ' ' << *c << '\n';
-    plot += (plot == "plot " ? "" : ", \\\n  ") + quoted(stem + ".dat") + " u 1:2 w lp " +
-            style(r.lines[l]) + " t " + quoted(r.lines[l].name);
+    plot += (plot == "plot " ? "" : ", \\\n  ") +
+            curve(stem + ".dat", "1:2", style(r.lines[l]), r.lines[l].name);
   }
   std::ofstream gp = open(charts_dir / "data" / "scaling.gp");
   std::ostringstream title;
@@ -245,12 +250,12 @@ void chart_stiff(const ProblemResult& r, double kappa, const fs::path& charts_di
       const std::string stem = "data/" + key + "_" + slug(m.name);
       const std::string s = style(m);
       const std::string sep = cpu_plot == "plot " ? "" : ", \\\n  ";
-      cpu_plot += sep + quoted(stem + ".dat") + " u 5:3 w lp " + s + " t " + quoted(m.name);
+      cpu_plot += sep + curve(stem + ".dat", "5:3", s, m.name);
       const std::string color = s.substr(0, s.find('\'', s.find('\'') + 1) + 1);  // "lc rgb '#..'"
-      h_plot += sep + quoted(stem + ".dat") + " u 2:3 w lp " + s + " t " + quoted(m.name) + ", " +
-                quoted(stem + "_failed.dat") + " u 2:(1e3) w p " + color +
-                " pt 2 ps 2 lw 2 notitle, " + quoted(stem + "_predicted.dat") + " u 1:(1e4) w p " +
-                color + " pt 11 ps 1.6 notitle";
+      h_plot += sep + curve(stem + ".dat", "2:3", s, m.name) + ", " + quoted(stem + "_failed.dat") +
+                " u 2:(1e3) w p " + color + " pt 2 ps 2 lw 2 notitle, " +
+                quoted(stem + "_predicted.dat") + " u 1:(1e4) w p " + color +
+                " pt 11 ps 1.6 notitle";
     }
     const std::string stem = key + g.suffix;
     std::ofstream gp = open(charts_dir / "data" / (stem + ".gp"));
