@@ -15,7 +15,9 @@ std::optional<Breakdown> breakdown(const SceneRuns& scene, const SceneRuns::Run&
   b.cpu = *x.cpu / *y.cpu;
   b.steps = *x.steps / *y.steps;
   b.evals_per_step = (*x.evals / *x.steps) / (*y.evals / *y.steps);
-  b.cpu_per_eval = (*x.cpu / *x.evals) / (*y.cpu / *y.evals);
+  b.method_seconds_per_eval = *x.cpu / *x.evals;
+  b.peer_seconds_per_eval = *y.cpu / *y.evals;
+  b.cpu_per_eval = b.method_seconds_per_eval / b.peer_seconds_per_eval;
   b.at_parity = b.steps * b.evals_per_step;
   if (const auto s = implicit_stages(*method.measurements)) {
     b.evals_per_stage = (*x.evals / *x.steps) / *s;

@@ -23,6 +23,7 @@ struct Breakdown {
   double steps = 0;           ///< step-count ratio: order and error constant
   double evals_per_step = 0;  ///< ∇U-per-step ratio: stages × stage iterations
   double cpu_per_eval = 0;    ///< CPU-per-∇U ratio: the integrator's own work and setup
+  double method_seconds_per_eval = 0, peer_seconds_per_eval = 0;  ///< their CPU time per ∇U
   /// The method's measured ∇U evaluations per implicit stage (empty for explicit methods).
   std::optional<double> evals_per_stage;
   /// steps × evals_per_step: the ratio if CPU per ∇U were the peer's (overhead parity).

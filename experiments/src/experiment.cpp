@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "retime.hpp"
+
 namespace ex {
 
 SolverTraits traits_of(const Solver& s) {
@@ -10,7 +12,8 @@ SolverTraits traits_of(const Solver& s) {
 }
 
 ProblemResult run_problem(const Problem& problem, const SolverList& solvers,
-                          const RunConfig& config, Progress& progress) {
+                          const RunConfig& config, Progress& progress,
+                          const std::vector<double>& tolerances) {
   ProblemResult out{problem.key, problem.title, problem.t_error, {}, {}};
   progress.label(problem.key + " reference");
   out.reference = reference_solution(problem, problem.t_error, config.reference_tolerance);
@@ -24,6 +27,12 @@ ProblemResult run_problem(const Problem& problem, const SolverList& solvers,
     out.methods.push_back(std::move(m));
     progress.advance(problem.key + " " + solver->name());
   }
+  progress.label(problem.key + " interleaved timing");
+  std::vector<TimedLine> lines;
+  for (size_t i = 0; i < solvers.size(); ++i)
+    lines.push_back({solvers[i].get(), &out.methods[i], &out.methods[i].sweep});
+  retime_contenders(problem, lines, tolerances, config.sweep.timing);
+  progress.record(problem.key + " interleaved timing");
   return out;
 }
 
@@ -49,6 +58,12 @@ ScalingResult run_scaling(const SolverList& solvers, const RunConfig& config, Pr
                                               start, config.sweep));
       progress.advance("scaling N=" + std::to_string(n) + " " + solvers[i]->name());
     }
+    progress.label("scaling N=" + std::to_string(n) + " interleaved timing");
+    std::vector<TimedLine> lines;
+    for (size_t i = 0; i < solvers.size(); ++i)
+      lines.push_back({solvers[i].get(), &out.lines[i], &out.lines[i].brackets.back()});
+    retime_contenders(problem, lines, {config.scaling_tolerance}, config.sweep.timing);
+    progress.record("scaling N=" + std::to_string(n) + " interleaved timing");
   }
   return out;
 }

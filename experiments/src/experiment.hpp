@@ -2,6 +2,7 @@
 // and the scaling scene (P1 for growing N, CPU time to reach 1e-6).
 #pragma once
 
+#include <iterator>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +13,9 @@
 #include "sweep.hpp"
 
 namespace ex {
+
+/// The tolerances of P1-P3's comparisons.
+inline constexpr double kTolerances[] = {1e-6, 1e-9};
 
 /// What the report needs to know of a solver besides its runs.
 struct SolverTraits {
@@ -57,10 +61,15 @@ struct RunConfig {
   double scaling_tolerance = 1e-6, scaling_t_end = 1, scaling_reference_tolerance = 1e-10;
 };
 
+/// The sweeps and energy runs of every solver, then the runs that decide the comparisons at
+/// `tolerances` timed again, interleaved (retime.hpp).
 ProblemResult run_problem(const Problem& problem, const SolverList& solvers,
-                          const RunConfig& config, Progress& progress);
+                          const RunConfig& config, Progress& progress,
+                          const std::vector<double>& tolerances = {std::begin(kTolerances),
+                                                                   std::end(kTolerances)});
 
 /// `solvers`: the ERKN methods and peers to compare (the RKN limits are left out by the caller).
+/// Per size, the runs that decide the comparisons are timed again, interleaved (retime.hpp).
 ScalingResult run_scaling(const SolverList& solvers, const RunConfig& config, Progress& progress);
 
 }  // namespace ex

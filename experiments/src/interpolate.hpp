@@ -21,4 +21,8 @@ struct CurvePoint {
 /// steps) replaces it.
 std::optional<double> cost_to_tolerance(const std::vector<CurvePoint>& points, double tolerance);
 
+/// The index a of the pair (a, a + 1) that cost_to_tolerance interpolates between; empty when no
+/// pair brackets the tolerance.
+std::optional<size_t> bracketing_pair(const std::vector<CurvePoint>& points, double tolerance);
+
 }  // namespace ex

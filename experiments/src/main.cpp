@@ -110,6 +110,7 @@ int run(const Options& o, const std::string& command) {
     RunInfo info{command, o.mode, wall, cpu_seconds(), o.config.sweep.timing.repeats, {}};
     for (const Twin& t : identical_registry_methods())
       info.identical.push_back(t.name + " = " + t.same_as);
+    info.rounds = o.config.sweep.timing.rounds;
     write_report(o.out / "results.md", info, results, scaled, stiff_results);
     std::printf("%s\nwrote %s and %s/ in %.0f s\n",
                 targets_markdown(target_scenes(results, scaled)).c_str(),

@@ -17,6 +17,11 @@ std::string sci(double x) { return std::isfinite(x) ? fmt("%.2e", x) : "failed";
 
 std::string times(double ratio) { return fmt("%.2f×", ratio); }
 
+std::string times(const Ratio& r) {
+  if (!r.low || !r.high) return times(r.value);
+  return times(r.value) + " [" + fmt("%.2f", *r.low) + "–" + fmt("%.2f", *r.high) + "]";
+}
+
 std::string with_ratio(const std::optional<double>& v, const std::optional<double>& reference,
                        const char* format) {
   if (!v) return "—";

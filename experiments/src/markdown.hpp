@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-#include "experiment.hpp"
+#include "summary.hpp"
 
 namespace ex {
 
@@ -14,6 +14,8 @@ std::string fmt(const char* format, double x);
 std::string sci(double x);
 /// "2.35×".
 std::string times(double ratio);
+/// "2.35× [2.20–2.51]": a ratio and its range over the interleaved timing rounds, if measured.
+std::string times(const Ratio& ratio);
 /// "0.476 (2.80×)": a value with its ratio to a reference, or "—" without a value.
 std::string with_ratio(const std::optional<double>& value, const std::optional<double>& reference,
                        const char* format);

@@ -53,13 +53,13 @@ long steps_of(const std::string& h_text) {
 void set_quick(RunConfig& c) {
   c.sweep.factor = 2;
   c.sweep.max_steps = 100000;
-  c.sweep.timing = {5, 0.3, 0.02};
+  c.sweep.timing = {5, 0.3, 0.02, 5, 5e-3};
 }
 
 void set_full(RunConfig& c) {
   c.sweep.factor = std::sqrt(2.0);
   c.sweep.max_steps = 2000000;
-  c.sweep.timing = {7, 1.0, 0.05};
+  c.sweep.timing = {7, 1.0, 0.05, 9, 0.01};
 }
 
 }  // namespace
@@ -67,8 +67,10 @@ void set_full(RunConfig& c) {
 std::string usage() {
   return "usage: erkn-experiments [--quick | --full] [--problems P1,P2,P3,scaling,stiff,grids]\n"
          "                        [--methods NAME,...] [--steps H,...] [--out DIR] [--list]\n"
-         "  --quick      small sweep (default): step factor 2, best of up to 5 timings\n"
-         "  --full       fine sweep: step factor sqrt 2, up to 2e6 steps, best of 7 timings\n"
+         "  --quick      small sweep (default): step factor 2, best of up to 5 timings, the\n"
+         "               deciding runs timed again in 5 interleaved rounds\n"
+         "  --full       fine sweep: step factor sqrt 2, up to 2e6 steps, best of 7 timings,\n"
+         "               9 interleaved rounds\n"
          "  --problems   which scenes to run (default: all; grids writes DIR/grids.md)\n"
          "  --methods    the paper's names, e.g. SERKN3s4(1),RKN3s4(1),Gauss2 (default: all)\n"
          "  --steps      fixed step sizes on [0, 10], e.g. 1/40,1/80 (no extension)\n"

@@ -9,6 +9,7 @@
 
 #include "charts.hpp"
 #include "markdown.hpp"
+#include "retime.hpp"
 #include "summary.hpp"
 #include "targets.hpp"
 #include "verdict.hpp"
@@ -179,7 +180,16 @@ void write_report(const std::filesystem::path& file, const RunInfo& info,
      << "- **CPU time** is process CPU time, the best of up to " << info.repeats
      << " repeats (a run shorter than 1 ms is timed in a batch of runs of at least 1 ms, divided "
         "by "
-        "the batch size), coefficient setup included.\n"
+        "the batch size), coefficient setup included. After each scene's sweeps, the runs that "
+        "decide its comparisons (the runs each summary ratio is read from, of every method "
+        "within "
+     << fmt("%g", kContenderMargin) << "× of its group's best) are timed again in " << info.rounds
+     << " interleaved rounds, round-robin over the methods; their CPU time is the best round, "
+        "and each round's own ratio gives the range shown in brackets.\n"
+     << "- **Fairness**: every method, erkn's and the peers', calls the same ∇U code (the "
+        "problems library's); its setup (erkn: constructing the Integrator with its default "
+        "options, as a user would; a peer: its eigenbasis and flow tables) is inside every timed "
+        "run; all are measured against the same reference, to the same tolerance.\n"
      << "- **To 1e-6 / 1e-9**: interpolated linearly on the log–log error curve between the two "
         "measured step sizes that first bracket the tolerance; “—” when no measured pair brackets "
         "it (never extrapolated). If the coarser run of the pair failed (unstable, or a step size "

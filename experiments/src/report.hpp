@@ -19,6 +19,7 @@ struct RunInfo {
   int repeats = 0;
   /// Registry methods run under the name of an identical one: "RKN2s3pf = RKN2s3".
   std::vector<std::string> identical;
+  int rounds = 0;  ///< interleaved re-timing rounds of the deciding runs (retime.hpp)
 };
 
 /// Writes `file` (results.md) and summary.md beside it (the verdict alone).

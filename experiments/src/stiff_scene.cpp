@@ -6,6 +6,8 @@
 #include <limits>
 #include <numbers>
 
+#include "retime.hpp"
+
 namespace ex {
 
 Problem stiff_sine_gordon(double kappa, double t_end) {
@@ -45,6 +47,12 @@ std::vector<StiffResult> run_stiff(const SolverList& solvers, const StiffConfig&
       r.methods.push_back(std::move(m));
       progress.advance(problem.key + " " + solver->name());
     }
+    progress.label(problem.key + " interleaved timing");
+    std::vector<TimedLine> lines;
+    for (size_t i = 0; i < solvers.size(); ++i)
+      lines.push_back({solvers[i].get(), &r.methods[i], &r.methods[i].sweep});
+    retime_contenders(problem, lines, stiff.tolerances, config.sweep.timing);
+    progress.record(problem.key + " interleaved timing");
     out.push_back({kappa, stiff.tolerances, std::move(r)});
   }
   return out;

@@ -1,5 +1,9 @@
 #include "summary.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
 #include "interpolate.hpp"
 
 namespace ex {
@@ -13,10 +17,21 @@ std::optional<double> min_opt(const std::optional<double>& a, const std::optiona
 
 enum class Axis { evals, cpu, steps };
 
-std::vector<CurvePoint> curve(const std::vector<Measurement>& ms, Axis axis) {
+// Errors this small may differ by round-off between two codes of the same method.
+constexpr double kRoundOff = 1e-9;
+// Relative agreement of the errors of the same method (above round-off).
+constexpr double kSameError = 1e-4;
+
+// CPU seconds of a run: its best time, or its time in interleaved round `round` if it has one.
+double cpu_of(const Measurement& m, std::optional<int> round) {
+  return round && *round < int(m.round_cpu.size()) ? m.round_cpu[size_t(*round)] : m.cpu;
+}
+
+std::vector<CurvePoint> curve(const std::vector<Measurement>& ms, Axis axis,
+                              std::optional<int> round = std::nullopt) {
   std::vector<CurvePoint> pts;
   for (const Measurement& m : ms)
-    pts.push_back({axis == Axis::cpu     ? m.cpu
+    pts.push_back({axis == Axis::cpu     ? cpu_of(m, round)
                    : axis == Axis::evals ? double(m.stats.grad_evals)
                                          : double(m.steps),
                    m.error});
@@ -25,9 +40,10 @@ std::vector<CurvePoint> curve(const std::vector<Measurement>& ms, Axis axis) {
 
 }  // namespace
 
-Cost cost_to_tolerance(const std::vector<Measurement>& sweep, double tolerance) {
+Cost cost_to_tolerance(const std::vector<Measurement>& sweep, double tolerance,
+                       std::optional<int> round) {
   return {ex::cost_to_tolerance(curve(sweep, Axis::evals), tolerance),
-          ex::cost_to_tolerance(curve(sweep, Axis::cpu), tolerance),
+          ex::cost_to_tolerance(curve(sweep, Axis::cpu, round), tolerance),
           ex::cost_to_tolerance(curve(sweep, Axis::steps), tolerance)};
 }
 
@@ -95,15 +111,68 @@ SceneRuns scene_runs(const ScalingResult& result, size_t i) {
   return s;
 }
 
-Best best_of(const SceneRuns& scene, Group group) {
+Best best_of(const SceneRuns& scene, Group group, std::optional<int> round) {
   Best best;
   for (const SceneRuns::Run& r : scene.runs) {
     if (!in_group(*r.traits, group)) continue;
-    const Cost cost = cost_to_tolerance(*r.measurements, scene.tolerance);
+    const Cost cost = cost_to_tolerance(*r.measurements, scene.tolerance, round);
     if (cost.cpu && (!best.cpu || *cost.cpu < *best.cpu))
       best = {cost.cpu, r.traits->name, cost, r};
   }
   return best;
+}
+
+int timing_rounds(const SceneRuns& scene) {
+  size_t n = 0;
+  for (const SceneRuns::Run& r : scene.runs)
+    for (const Measurement& m : *r.measurements) n = std::max(n, m.round_cpu.size());
+  return int(n);
+}
+
+namespace {
+
+// f with the best timings, and its range over the scene's interleaved timing rounds.
+std::optional<Ratio> over_rounds(
+    const SceneRuns& scene,
+    const std::function<std::optional<double>(std::optional<int> round)>& f) {
+  const auto value = f(std::nullopt);
+  if (!value) return std::nullopt;
+  Ratio out{*value, {}, {}};
+  for (int k = 0; k < timing_rounds(scene); ++k) {
+    const auto r = f(k);
+    if (!r) return Ratio{*value, {}, {}};  // a round without a ratio: no range
+    out.low = std::min(out.low.value_or(*r), *r);
+    out.high = std::max(out.high.value_or(*r), *r);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::optional<Ratio> best_ratio(const SceneRuns& scene, Group a, Group b) {
+  return over_rounds(scene, [&](std::optional<int> k) {
+    return ratio(best_of(scene, a, k).cpu, best_of(scene, b, k).cpu);
+  });
+}
+
+std::optional<Ratio> run_ratio(const SceneRuns& scene, const SceneRuns::Run& a,
+                               const SceneRuns::Run& b) {
+  return over_rounds(scene, [&](std::optional<int> k) {
+    return ratio(cost_to_tolerance(*a.measurements, scene.tolerance, k).cpu,
+                 cost_to_tolerance(*b.measurements, scene.tolerance, k).cpu);
+  });
+}
+
+bool same_method(const std::vector<Measurement>& a, const std::vector<Measurement>& b) {
+  int agree = 0;
+  for (const Measurement& x : a)
+    for (const Measurement& y : b) {
+      if (x.steps != y.steps || !x.ok() || !y.ok()) continue;
+      if (std::min(x.error, y.error) < kRoundOff) continue;
+      if (std::abs(x.error - y.error) > kSameError * std::max(x.error, y.error)) return false;
+      ++agree;
+    }
+  return agree >= 2;
 }
 
 std::optional<double> mean_stage_iterations(const RunStats& stats) {

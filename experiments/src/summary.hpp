@@ -15,7 +15,10 @@ struct Cost {
   std::optional<double> steps;       ///< step count to the tolerance, read off the same way
 };
 
-Cost cost_to_tolerance(const std::vector<Measurement>& sweep, double tolerance);
+/// `round`: with the CPU times of that interleaved timing round (Measurement::round_cpu) where a
+/// run has one, else with its best time.
+Cost cost_to_tolerance(const std::vector<Measurement>& sweep, double tolerance,
+                       std::optional<int> round = std::nullopt);
 
 /// The cheapest peer cost at `tolerance` (evaluations and CPU time taken separately).
 Cost best_peer(const ProblemResult& result, double tolerance);
@@ -48,7 +51,29 @@ struct Best {
   Cost cost;             ///< of that method at the tolerance
   SceneRuns::Run run{};  ///< that method's traits and runs (null when cpu is empty)
 };
-Best best_of(const SceneRuns& scene, Group group);
+/// `round`: as in cost_to_tolerance.
+Best best_of(const SceneRuns& scene, Group group, std::optional<int> round = std::nullopt);
+
+/// Interleaved timing rounds of a scene: the most round_cpu entries of any run (0: none).
+int timing_rounds(const SceneRuns& scene);
+
+/// The best of group a over the best of group b, and its range over the interleaved timing
+/// rounds (each round's bests against each other): the measured noise of the ratio.
+struct Ratio {
+  double value;
+  std::optional<double> low, high;  ///< empty without interleaved rounds
+  /// True when the range reaches both sides of `target`: the run cannot tell which side it is.
+  bool straddles(double target) const { return low && high && *low <= target && target <= *high; }
+};
+std::optional<Ratio> best_ratio(const SceneRuns& scene, Group a, Group b);
+/// The same for two runs of the scene: a's CPU time to the tolerance over b's.
+std::optional<Ratio> run_ratio(const SceneRuns& scene, const SceneRuns::Run& a,
+                               const SceneRuns::Run& b);
+
+/// True when two runs of a scene integrate the same method: at two or more common step counts
+/// the errors agree to 1e-4 (relative, where they are above round-off) and no common step count
+/// disagrees. A CPU ratio between them is then runtime overhead alone.
+bool same_method(const std::vector<Measurement>& a, const std::vector<Measurement>& b);
 
 /// Mean fixed-point/Newton iterations per stage solve of a run; empty for explicit methods.
 std::optional<double> mean_stage_iterations(const RunStats& stats);

@@ -6,6 +6,7 @@
 
 #include "breakdown.hpp"
 #include "markdown.hpp"
+#include "retime.hpp"
 #include "targets.hpp"
 
 namespace ex {
@@ -13,7 +14,7 @@ namespace {
 
 struct Case {
   std::string label;  ///< "P1 at 1e-06"
-  double ratio;
+  Ratio ratio;
 };
 
 std::string label(const SceneRuns& s) { return s.scene + " at " + fmt("%.0e", s.tolerance); }
@@ -38,45 +39,92 @@ std::string cases(const std::vector<Case>& cs, size_t total) {
   return s + ")";
 }
 
+// "; within the measured noise of 1× in P1 at 1e-06 and ..." for the cases whose range over the
+// timing rounds reaches both sides of `target`; empty when none does.
+std::string within_noise(const std::vector<Case>& cs, double target) {
+  std::vector<std::string> hit;
+  for (const Case& c : cs)
+    if (c.ratio.straddles(target)) hit.push_back(c.label);
+  if (hit.empty()) return "";
+  std::string s = "; within the measured noise of " + fmt("%g", target) + "× (its range over the " +
+                  "timing rounds reaches both sides) in ";
+  for (size_t i = 0; i < hit.size(); ++i)
+    s += (i == 0 ? "" : i + 1 == hit.size() ? " and " : ", ") + hit[i];
+  return s;
+}
+
+// The run of a scene that is the same method as `run` (summary.hpp: same_method), of the other
+// side (a registry method for a peer, a peer for a registry method); null when none is.
+const SceneRuns::Run* twin_of(const SceneRuns& s, const SceneRuns::Run& run) {
+  const bool peer = run.traits->family == Family::peer;
+  for (const SceneRuns::Run& r : s.runs)
+    if ((r.traits->family == Family::peer) != peer &&
+        same_method(*r.measurements, *run.measurements))
+      return &r;
+  return nullptr;
+}
+
 // How `group`'s best fares against `against`'s best over the scenes: wins and losses.
 std::string duel(const std::vector<SceneRuns>& scenes, Group group, Group against) {
-  std::vector<Case> wins, losses;
-  for (const SceneRuns& s : scenes) {
-    const auto r = ratio(best_of(s, group).cpu, best_of(s, against).cpu);
-    if (r) (*r <= 1 ? wins : losses).push_back({label(s), *r});
-  }
-  const size_t n = wins.size() + losses.size();
-  return "faster " + cases(wins, n) + ", slower " + cases(losses, n);
+  std::vector<Case> wins, losses, all;
+  for (const SceneRuns& s : scenes)
+    if (const auto r = best_ratio(s, group, against)) {
+      (r->value <= 1 ? wins : losses).push_back({label(s), *r});
+      all.push_back({label(s), *r});
+    }
+  const size_t n = all.size();
+  return "faster " + cases(wins, n) + ", slower " + cases(losses, n) + within_noise(all, 1);
 }
 
 void comparison_table(std::ostream& md, const std::vector<SceneRuns>& scenes) {
   md << "| scene | tolerance | best paper method | / best exact-flow peer | / best other peer | "
         "best method erkn ships | / best peer |\n|---|--:|---|--:|--:|---|--:|\n";
-  auto cell = [](const Best& a, const Best& b) {
-    const auto r = ratio(a.cpu, b.cpu);
-    return r ? times(*r) + " (" + b.name + ")" : std::string("—");
+  // "1.04× [0.95–1.12] (peer)", marked when the two are the same method.
+  auto cell = [](const SceneRuns& s, Group a, Group b) {
+    const auto r = best_ratio(s, a, b);
+    if (!r) return std::string("—");
+    const Best x = best_of(s, a), y = best_of(s, b);
+    const SceneRuns::Run* twin = twin_of(s, x.run);
+    return times(*r) + " (" + y.name +
+           (twin && twin->traits == y.run.traits ? "; the same method: runtime overhead" : "") +
+           ")";
   };
   for (const SceneRuns& s : scenes) {
     const Best paper = best_of(s, Group::paper), shipped = best_of(s, Group::shipped);
     md << "| " << s.scene << " | " << sci(s.tolerance) << " | " << (paper.cpu ? paper.name : "—")
-       << " | " << cell(paper, best_of(s, Group::exact_peer)) << " | "
-       << cell(paper, best_of(s, Group::other_peer)) << " | " << (shipped.cpu ? shipped.name : "—")
-       << " | " << cell(shipped, best_of(s, Group::peer)) << " |\n";
+       << " | " << cell(s, Group::paper, Group::exact_peer) << " | "
+       << cell(s, Group::paper, Group::other_peer) << " | " << (shipped.cpu ? shipped.name : "—")
+       << " | " << cell(s, Group::shipped, Group::peer) << " |\n";
   }
 }
 
-// Where the best paper method stays above kPaperTarget: the ratio at parity and the intrinsic one.
+// " = 13.0× the steps (order 4 against 6) × 0.29× the ∇U per step (2.04 ∇U per implicit stage)
+// × 1.52× the CPU per ∇U (0.91 against 0.60 µs)": the measured factors of a CPU ratio.
+std::string factors(const Breakdown& b) {
+  std::string s = " = " + times(b.steps) + " the steps (order " + std::to_string(b.method_order) +
+                  " against " + std::to_string(b.peer_order) + ") × " + times(b.evals_per_step) +
+                  " the ∇U per step";
+  if (b.evals_per_stage) s += " (" + fmt("%.2f", *b.evals_per_stage) + " ∇U per implicit stage)";
+  return s + " × " + times(b.cpu_per_eval) + " the CPU per ∇U (" +
+         fmt("%.3g", b.method_seconds_per_eval * 1e6) + " against " +
+         fmt("%.3g", b.peer_seconds_per_eval * 1e6) + " µs)";
+}
+
+// Where the best paper method stays above kPaperTarget: the measured factors of its ratio, the
+// ratio at parity and the intrinsic one.
 void above_target(std::ostream& md, const std::vector<SceneRuns>& scenes) {
   std::vector<std::string> rows;
   for (const SceneRuns& s : scenes) {
     const Best paper = best_of(s, Group::paper), peer = best_of(s, Group::peer);
-    const auto r = ratio(paper.cpu, peer.cpu);
-    if (!r || *r <= kPaperTarget) continue;
+    const auto r = best_ratio(s, Group::paper, Group::peer);
+    if (!r || r->value <= kPaperTarget) continue;
     const auto b = breakdown(s, paper.run, peer);
     const auto in = smallest_intrinsic(s, Group::paper, peer);
     std::string row =
         label(s) + ": " + times(*r) + " (" + paper.name + " against " + peer.name + ")";
-    if (b) row += "; at CPU-per-∇U parity " + times(b->at_parity);
+    if (r->straddles(kPaperTarget))
+      row += ", within the measured noise of " + fmt("%g", kPaperTarget) + "×";
+    if (b) row += factors(*b) + "; at CPU-per-∇U parity " + times(b->at_parity);
     if (in) {
       row += "; intrinsic " + times(*in->intrinsic) + " (" + in->method + ": " + times(in->steps) +
              " the steps at order " + std::to_string(in->method_order) + " against " +
@@ -94,13 +142,44 @@ void above_target(std::ostream& md, const std::vector<SceneRuns>& scenes) {
     return;
   }
   md << "not in " << rows.size() << " of " << scenes.size()
-     << " cases. For each: the measured ratio; the ratio at *CPU-per-∇U parity* (the paper "
-        "method's CPU time per ∇U brought to the peer's); and the *intrinsic* ratio, at parity "
-        "and with "
+     << " cases. For each: the measured ratio and its factors (steps: order and error constant; "
+        "∇U per step: stages × stage iterations; CPU per ∇U: the integrator's own work and "
+        "setup, all from this run); the ratio at *CPU-per-∇U parity* (the paper method's CPU "
+        "time per ∇U brought to the peer's); and the *intrinsic* ratio, at parity and with "
      << fmt("%g", kEvalsPerStage)
-     << " ∇U per implicit stage (for the paper method best by that measure), which is owed only "
-        "to order, error constant and stage count:\n";
+     << " ∇U per implicit stage (the target, for the paper method best by that measure), which "
+        "is owed only to order, error constant and stage count:\n";
   for (const std::string& row : rows) md << "  - " << row << "\n";
+}
+
+// Registry methods that are the same method as a peer (same errors at the same step counts):
+// their CPU ratio per scene is the runtime's overhead against the hand-written step.
+void same_method_lines(std::ostream& md, const std::vector<SceneRuns>& scenes) {
+  std::vector<std::pair<std::string, std::vector<Case>>> pairs;  // "A against B", cases
+  for (const SceneRuns& s : scenes)
+    for (const SceneRuns::Run& run : s.runs) {
+      if (run.traits->family == Family::peer) continue;
+      const SceneRuns::Run* peer = twin_of(s, run);
+      const auto r = peer ? run_ratio(s, run, *peer) : std::nullopt;
+      if (!r) continue;
+      const std::string pair = run.traits->name + " against " + peer->traits->name;
+      auto it =
+          std::find_if(pairs.begin(), pairs.end(), [&](const auto& p) { return p.first == pair; });
+      if (it == pairs.end()) it = pairs.insert(pairs.end(), {pair, {}});
+      it->second.push_back({label(s), *r});
+    }
+  if (pairs.empty()) return;
+  md << "- **erkn's runtime against a hand-written peer of the same method** (the registry "
+        "method and the peer reach the same errors at the same step counts, with the same ∇U "
+        "code, setup included, erkn's Integrator with its defaults: the CPU ratio is runtime "
+        "overhead alone):";
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    md << (i ? ";" : "") << " " << pairs[i].first << ":";
+    for (size_t j = 0; j < pairs[i].second.size(); ++j)
+      md << (j ? "," : "") << " " << pairs[i].second[j].label << " "
+         << times(pairs[i].second[j].ratio);
+  }
+  md << ".\n";
 }
 
 // How a group's methods failed in one stiff sweep: "2 of 6 failed, first at h²κ = 6.25 to 25"
@@ -164,7 +243,15 @@ std::string verdict_markdown(const std::vector<SceneRuns>& scenes,
   std::ostringstream md;
   md << "## Summary of this run\n\n"
      << "CPU time to the tolerance, setup included, best against best in the same run (below 1: "
-        "faster). Generated from the measurements below; quote it rather than retyping it.\n\n";
+        "faster). Generated from the measurements below; quote it rather than retyping it.";
+  if (!scenes.empty() && timing_rounds(scenes.front()) > 0)
+    md << " The runs that decide these ratios (each group's contenders within "
+       << fmt("%g", kContenderMargin) << "× of its best) were timed again in "
+       << timing_rounds(scenes.front())
+       << " interleaved rounds after each scene's sweeps, round-robin, so that the methods "
+          "compared see the same machine load; a CPU time is the best of the rounds, and "
+          "[low–high] is the range of the ratio over the rounds: its measured noise.";
+  md << "\n\n";
   if (!scenes.empty()) {
     comparison_table(md, scenes);
     const SceneRuns& s = scenes.front();
@@ -178,6 +265,7 @@ std::string verdict_markdown(const std::vector<SceneRuns>& scenes,
          << "): " << duel(scenes, Group::paper, Group::other_peer) << ".\n";
     md << "- **The best method erkn ships against the best peer**: "
        << duel(scenes, Group::shipped, Group::peer) << ".\n";
+    same_method_lines(md, scenes);
     above_target(md, scenes);
   }
   if (!stiff.empty()) stiff_lines(md, stiff);
