@@ -48,20 +48,6 @@ std::ofstream open(const std::filesystem::path& file) {
   return f;
 }
 
-std::string measurement_csv(const Measurement& m) {
-  return std::to_string(m.steps) + "," + num(m.h, false) + "," + num(m.error, false) + "," +
-         num(m.cpu, false) + "," + std::to_string(m.stats.grad_evals) + "," +
-         std::to_string(m.stats.stage_iterations) + "," + csv_text(m.failure);
-}
-
-std::string measurement_json(const Measurement& m) {
-  return "{\"steps\": " + std::to_string(m.steps) + ", \"h\": " + num(m.h, true) +
-         ", \"error\": " + num(m.error, true) + ", \"cpu_seconds\": " + num(m.cpu, true) +
-         ", \"grad_evals\": " + std::to_string(m.stats.grad_evals) +
-         ", \"stage_iterations\": " + std::to_string(m.stats.stage_iterations) +
-         ", \"failure\": " + quoted(m.failure) + "}";
-}
-
 template <class T, class F>
 std::string json_list(const std::vector<T>& xs, F&& item) {
   std::string out = "[";
@@ -69,10 +55,30 @@ std::string json_list(const std::vector<T>& xs, F&& item) {
   return out + "]";
 }
 
+std::string measurement_csv(const Measurement& m) {
+  std::string rounds;  // "t1;t2;...": the interleaved rounds' CPU times, if re-timed
+  for (double t : m.round_cpu) {
+    if (!rounds.empty()) rounds += ';';
+    rounds += num(t, false);
+  }
+  return std::to_string(m.steps) + "," + num(m.h, false) + "," + num(m.error, false) + "," +
+         num(m.cpu, false) + "," + std::to_string(m.stats.grad_evals) + "," +
+         std::to_string(m.stats.stage_iterations) + "," + csv_text(m.failure) + "," + rounds;
+}
+
+std::string measurement_json(const Measurement& m) {
+  return "{\"steps\": " + std::to_string(m.steps) + ", \"h\": " + num(m.h, true) +
+         ", \"error\": " + num(m.error, true) + ", \"cpu_seconds\": " + num(m.cpu, true) +
+         ", \"grad_evals\": " + std::to_string(m.stats.grad_evals) +
+         ", \"stage_iterations\": " + std::to_string(m.stats.stage_iterations) +
+         ", \"failure\": " + quoted(m.failure) + ", \"round_cpu_seconds\": " +
+         json_list(m.round_cpu, [](double t) { return num(t, true); }) + "}";
+}
+
 void write_csv(const std::filesystem::path& dir, const std::vector<ProblemResult>& problems) {
   std::ofstream sweep = open(dir / "sweep.csv"), energy = open(dir / "energy.csv");
   sweep << "problem,method,family,from_paper,order,steps,h,error,cpu_seconds,grad_evals,"
-           "stage_iterations,failure\n";
+           "stage_iterations,failure,round_cpu_seconds\n";
   energy << "problem,method,family,h,t_end,max_energy_error,failure\n";
   for (const ProblemResult& p : problems)
     for (const MethodResult& m : p.methods) {
@@ -88,7 +94,8 @@ void write_csv(const std::filesystem::path& dir, const std::vector<ProblemResult
 
 void write_scaling_csv(const std::filesystem::path& dir, const ScalingResult& s) {
   std::ofstream f = open(dir / "scaling.csv");
-  f << "size,method,family,steps,h,error,cpu_seconds,grad_evals,stage_iterations,failure\n";
+  f << "size,method,family,steps,h,error,cpu_seconds,grad_evals,stage_iterations,failure,"
+       "round_cpu_seconds\n";
   for (const ScalingResult::Line& line : s.lines)
     for (size_t k = 0; k < line.brackets.size() && k < s.sizes.size(); ++k)
       for (const Measurement& x : line.brackets[k])

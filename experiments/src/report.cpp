@@ -185,7 +185,8 @@ void write_report(const std::filesystem::path& file, const RunInfo& info,
         "within "
      << fmt("%g", kContenderMargin) << "× of its group's best) are timed again in " << info.rounds
      << " interleaved rounds, round-robin over the methods; their CPU time is the best round, "
-        "and each round's own ratio gives the range shown in brackets.\n"
+        "and each round's own ratio (with that of the best times) gives the range shown in "
+        "brackets.\n"
      << "- **Fairness**: every method, erkn's and the peers', calls the same ∇U code (the "
         "problems library's); its setup (erkn: constructing the Integrator with its default "
         "options, as a user would; a peer: its eigenbasis and flow tables) is inside every timed "

@@ -138,11 +138,12 @@ std::optional<Ratio> over_rounds(
   const auto value = f(std::nullopt);
   if (!value) return std::nullopt;
   Ratio out{*value, {}, {}};
+  if (timing_rounds(scene) > 0) out.low = out.high = *value;
   for (int k = 0; k < timing_rounds(scene); ++k) {
     const auto r = f(k);
     if (!r) return Ratio{*value, {}, {}};  // a round without a ratio: no range
-    out.low = std::min(out.low.value_or(*r), *r);
-    out.high = std::max(out.high.value_or(*r), *r);
+    out.low = std::min(*out.low, *r);
+    out.high = std::max(*out.high, *r);
   }
   return out;
 }

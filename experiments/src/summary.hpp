@@ -57,8 +57,9 @@ Best best_of(const SceneRuns& scene, Group group, std::optional<int> round = std
 /// Interleaved timing rounds of a scene: the most round_cpu entries of any run (0: none).
 int timing_rounds(const SceneRuns& scene);
 
-/// The best of group a over the best of group b, and its range over the interleaved timing
-/// rounds (each round's bests against each other): the measured noise of the ratio.
+/// The best of group a over the best of group b (each at its best time), and its range over the
+/// interleaved timing rounds (each round's bests against each other, and the ratio of the best
+/// times, which may come from different rounds): the measured noise of the ratio.
 struct Ratio {
   double value;
   std::optional<double> low, high;  ///< empty without interleaved rounds

@@ -250,7 +250,9 @@ std::string verdict_markdown(const std::vector<SceneRuns>& scenes,
        << timing_rounds(scenes.front())
        << " interleaved rounds after each scene's sweeps, round-robin, so that the methods "
           "compared see the same machine load; a CPU time is the best of the rounds, and "
-          "[low–high] is the range of the ratio over the rounds: its measured noise.";
+          "[low–high] is the range of the ratio over the rounds (each round's ratio, and that of "
+          "the "
+          "best times): its measured noise.";
   md << "\n\n";
   if (!scenes.empty()) {
     comparison_table(md, scenes);
