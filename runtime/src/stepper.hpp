@@ -335,7 +335,12 @@ class Stepper final : public StepperBase {
   // Newton with a dense LU up to this d, Newton-Krylov (GMRES) beyond it.
   static constexpr Eigen::Index kDenseNewtonMaxD = 256;
   static constexpr int kKrylovRestart = 30, kKrylovMaxIterations = 200;
-  static constexpr double kKrylovTolerance = 1e-6;
+  // GMRES's relative tolerance: kKrylovTolerance, loosened up to kMaxForcing where the linear
+  // residual may stay at kLinearShare * tolerance * |Q| (no solve below what the stage needs: a
+  // Newton iteration that only confirms convergence then costs 1-2 products instead of 5-12).
+  static constexpr double kKrylovTolerance = 1e-6, kMaxForcing = 0.1, kLinearShare = 0.1;
+  // Newton stops with an error after this many successive iterations that did not contract.
+  static constexpr int kMaxStalls = 2;
   static constexpr int kThetaRefresh = 8;
   static constexpr double kEps = std::numeric_limits<double>::epsilon();
 
@@ -372,7 +377,7 @@ class Stepper final : public StepperBase {
     Q_hat_ = r_hat_ - k_->abar(i, i) * guess_hat_;
     transform_.inverse(Q_hat_, Q_);
     double delta_old = 0, residual = 0;
-    int it = 1;
+    int it = 1, stalls = 0;
     for (; it <= options_.max_newton_iterations; ++it) {
       gradient(Q_, gU_, i, stats);
       g_ = gU_;
@@ -395,6 +400,7 @@ class Stepper final : public StepperBase {
         transform_.forward(g_, G(i));
         return;
       }
+      check_contraction(i, "Newton", delta, delta_old, it, stalls, residual);
       delta_old = delta;
     }
     not_converged(i, residual, it);
@@ -409,20 +415,36 @@ class Stepper final : public StepperBase {
            (it > 1 && theta >= 1 && delta <= options_.roundoff_level);
   }
 
-  [[noreturn]] void not_converged(int i, double residual, int iterations) const {
+  // Fails fast (instead of running out of iterations) once kMaxStalls successive iterations
+  // changed Q by at least as much as the one before them, above Options::roundoff_level: such an
+  // iteration sits at its own noise floor (round-off of F, directional differences) or diverges.
+  void check_contraction(int i, const char* solver, double delta, double delta_old, int it,
+                         int& stalls, double residual) const {
+    stalls = it > 1 && delta >= delta_old ? stalls + 1 : 0;
+    if (stalls < kMaxStalls) return;
+    not_converged(i, residual, it,
+                  std::string(": ") + solver + " stopped contracting (relative change " +
+                      format(delta, 3) + " in the last of " + std::to_string(kMaxStalls) +
+                      " iterations without contraction, above Options::roundoff_level = " +
+                      format(options_.roundoff_level, 3) + ")");
+  }
+
+  [[noreturn]] void not_converged(int i, double residual, int iterations,
+                                  const std::string& why = "") const {
     throw Error(
         "step " + std::to_string(step_number_) + " at t = " + format(t_) + ": stage " +
         std::to_string(i + 1) + " of " + std::string(method_.name()) +
         " did not converge (fixed-point iteration failed; Newton left a relative residual " +
         format(residual, 3) + " after " +
-        std::to_string(std::min(iterations, options_.max_newton_iterations)) +
-        " iterations); the state is unchanged");
+        std::to_string(std::min(iterations, options_.max_newton_iterations)) + " iterations" + why +
+        "); the state is unchanged");
   }
 
   // Newton on the same F for d > kDenseNewtonMaxD without any d x d matrix: each linear system
-  // J dQ = F is solved by GMRES with J v = v + h^2 abar_ii(V) K v, K v a directional difference
-  // of grad U (+ M v), right-preconditioned in M's eigenbasis by 1 + h^2 abar_ii(v_k) sigma,
-  // sigma = w^T K w the Hessian's Rayleigh quotient along the first residual w.
+  // J dQ = F is solved by (flexible) GMRES with J v = v + h^2 abar_ii(V) K v, K v a directional
+  // difference of grad U (+ M v), right-preconditioned in M's eigenbasis by
+  // 1 + h^2 abar_ii(v_k) sigma, sigma = w^T K w / w^T w the Hessian's Rayleigh quotient along the
+  // first residual w (measured by GMRES's first product, which is left unpreconditioned).
   void newton_krylov(int i, Statistics& stats) {
     if (!gmres_) {
       for (Eigen::VectorXd* x : {&r_, &F_, &gU_, &col_, &Q_new_, &Qe_, &ge_}) x->resize(d_);
@@ -433,34 +455,51 @@ class Stepper final : public StepperBase {
     Q_hat_ = r_hat_ - k_->abar(i, i) * guess_hat_;
     transform_.inverse(Q_hat_, Q_);
     double delta_old = 0, residual = 0;
-    int it = 1;
+    int it = 1, stalls = 0;
+    bool sigma_pending = true;
+    const auto apply = [&](const auto& v, Eigen::VectorXd& Jv) {
+      jacobian_times(i, v, Jv, stats);
+      if (!sigma_pending) return;
+      set_preconditioner(i, v.dot(ge_) / v.squaredNorm());  // (v != 0: GMRES's first vector)
+      sigma_pending = false;
+    };
+    const auto precondition = [&](const auto& v, auto&& z) {
+      if (sigma_pending) {
+        z = v;
+        return;
+      }
+      col_ = v;
+      transform_.forward(col_, col_hat_);
+      col_hat_ /= precond_;
+      transform_.inverse(col_hat_, col_);
+      z = col_;
+    };
     for (; it <= options_.max_newton_iterations; ++it) {
       force(Q_, i, stats);
       gU_ = g_;
       apply_abar(i, g_, F_);
       F_ += Q_ - r_;
       residual = F_.norm() / std::max(Q_.norm(), 1e-300);
-      if (it == 1) set_preconditioner(i, stats);
-      const auto apply = [&](const auto& v, Eigen::VectorXd& Jv) {
-        jacobian_times(i, v, Jv, stats);
-      };
-      const auto precondition = [&](const auto& v, auto&& z) {
-        col_ = v;
-        transform_.forward(col_, col_hat_);
-        col_hat_ /= precond_;
-        transform_.inverse(col_hat_, col_);
-        z = col_;
-      };
-      gmres_->solve(apply, precondition, F_, Q_new_, kKrylovTolerance, kKrylovMaxIterations);
+      const double forcing =
+          std::clamp(kLinearShare * options_.tolerance / residual, kKrylovTolerance, kMaxForcing);
+      gmres_->solve(apply, precondition, F_, Q_new_, forcing, kKrylovMaxIterations);
       Q_ -= Q_new_;
       ++stats.newton_iterations, ++stats.stage_iterations;
       const double delta = Q_new_.norm() / std::max(Q_.norm(), 1e-300);
       if (!std::isfinite(delta)) break;
+      // |Q_before - Q*| <= delta / (1 - theta): the iterate before this update may already be
+      // within the tolerance, and its gradient is known (no confirming evaluation).
+      if (it > 1 && delta < delta_old && delta / (1 - delta / delta_old) <= options_.tolerance) {
+        Q_ += Q_new_;
+        transform_.forward(gU_, G(i));
+        return;
+      }
       if (newton_converged(delta, delta_old, it)) {
         force(Q_, i, stats);
         transform_.forward(g_, G(i));
         return;
       }
+      check_contraction(i, "Newton-Krylov", delta, delta_old, it, stalls, residual);
       delta_old = delta;
     }
     not_converged(i, residual, it);
@@ -490,14 +529,7 @@ class Stepper final : public StepperBase {
   }
 
   // precond_ = 1 + h^2 abar_ii(v_k) sigma (entries near 0 replaced by 1: no division by ~0).
-  void set_preconditioner(int i, Statistics& stats) {
-    const double norm_F = F_.norm();
-    double sigma = 0;
-    if (norm_F > 0) {
-      Qe_ = Q_ + std::sqrt(std::numeric_limits<double>::epsilon()) * (1 + Q_.norm()) / norm_F * F_;
-      force(Qe_, i, stats);
-      sigma = (g_ - gU_).dot(F_) / (Qe_ - Q_).dot(F_);
-    }
+  void set_preconditioner(int i, double sigma) {
     precond_ = (Eigen::ArrayXd::Zero(m_) + k_->abar(i, i)) * sigma + 1.0;
     precond_ = (precond_.abs() < 1e-2).select(1.0, precond_);
   }
