@@ -149,6 +149,22 @@ class Stepper final : public StepperBase {
     }
   }
 
+  // x = inverse(y) and y = forward(x) of the stage path; with a fixed D, fixed-size copies.
+  template <class Y>
+  void to_physical(const Y& y, Eigen::VectorXd& x) {
+    if constexpr (kFixed)
+      Eigen::Map<Array>(x.data()) = y;
+    else
+      transform_.inverse(y, x);
+  }
+  template <class Y>
+  void to_eigen(const Eigen::VectorXd& x, Y&& y) {
+    if constexpr (kFixed)
+      y = Eigen::Map<const Array>(x.data());
+    else
+      transform_.forward(x, y);
+  }
+
   // A coefficient of k_ as the arrays see it: a number, or an array map (of fixed size when D
   // is, so that expressions mixing it with the stage arrays keep the fixed size).
   template <class V>
@@ -201,7 +217,7 @@ class Stepper final : public StepperBase {
     else
       guess_hat_.setZero();
     Q_hat_ = r_hat_ - co(k.abar(i, i)) * guess_hat_;
-    transform_.inverse(Q_hat_, Q_);
+    to_physical(Q_hat_, Q_);
   }
 
   // Stage i's nodes, most recent first: this step's stages j < i (at c_j), then those of the
@@ -280,9 +296,9 @@ class Stepper final : public StepperBase {
   bool fixed_point(int i, Statistics& stats) {
     double delta = 0, delta_old = 0, norm2_Q = 0;
     for (int it = 1; it <= options_.max_fixed_point_iterations; ++it) {
-      if (it > 1) transform_.inverse(Q_hat_, Q_);  // (start_stage did it for the guess)
+      if (it > 1) to_physical(Q_hat_, Q_);  // (start_stage did it for the guess)
       force(Q_, i, stats);
-      transform_.forward(g_, G(i));
+      to_eigen(g_, G(i));
       Q_hat_new_ = r_hat_ - co(k_->abar(i, i)) * G(i);
       ++stats.stage_iterations;
       // |dQ| / max(|Q_new|, |Q_old|) in eigen coordinates, so a converged stage needs no inverse
@@ -656,7 +672,7 @@ class Stepper final : public StepperBase {
   // four stage arrays, then the s stage gradients of this step and of the kHistory before it
   // (steps_[age]).
   Eigen::Index m_, stride_;
-  Storage spectral_;
+  alignas(EIGEN_MAX_ALIGN_BYTES) Storage spectral_;
   SpectralMap q_hat_, p_hat_, eq_hat_, ep_hat_, qw_hat_, pw_hat_;
   SpectralMap r_hat_, Q_hat_, Q_hat_new_, guess_hat_;
   std::array<Scalar*, kHistory + 1> steps_{};
