@@ -246,6 +246,7 @@ class Stepper final : public StepperBase {
 
   // Nodes of stage i whose gradients are known (the steps since set_state).
   int available_nodes(int i) const {
+    if (history_ == kHistory) return node_count_[i];  // (every node: the usual case)
     int n = 0;
     while (n < node_count_[i] && nodes_[i][n].age <= history_) ++n;
     return n;
