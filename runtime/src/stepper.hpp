@@ -42,7 +42,7 @@ class Stepper final : public StepperBase {
   using SpectralMap = Eigen::Map<Array, kFixed ? Eigen::Unaligned : Eigen::AlignedMax>;
   // The arrays' storage: one allocation, or (fixed dimension) inside the stepper, sized for
   // kMaxStages.
-  static constexpr int kSlots = 10;  // (the arrays before the stage gradients)
+  static constexpr int kSlots = 11;  // (the arrays before the stage gradients)
   // Steps back whose stage gradients the starting values extrapolate from. One: three predicted
   // better at fine h on P1-P3, but their higher degrees let the modes with large abar_ii of P1 at
   // N = 2048 diverge (SERKN3s4(1), h = 1/32: 9.4 evaluations per stage and 23 Newton fallbacks
@@ -77,7 +77,8 @@ class Stepper final : public StepperBase {
         r_hat_(slot(6), m_),
         Q_hat_(slot(7), m_),
         Q_hat_new_(slot(8), m_),
-        guess_hat_(slot(9), m_) {
+        guess_hat_(slot(9), m_),
+        g_first_hat_(slot(10), m_) {
     for (int age = 0; age <= kHistory; ++age) steps_[age] = slot(kSlots + age * s_);
     for (Eigen::VectorXd* x : {&Q_, &g_}) x->setZero(d);
     if (rkn_) Mq_.setZero(d);
@@ -295,7 +296,7 @@ class Stepper final : public StepperBase {
   // below Options::roundoff_level (a tolerance under the round-off noise); G(i) then holds the
   // gradient of the last iterate but one (no confirming evaluation).
   bool fixed_point(int i, Statistics& stats) {
-    double delta = 0, delta_old = 0, norm2_Q = 0;
+    double delta = 0, delta_old = 0, norm2_Q = 0, change_first = 0;
     for (int it = 1; it <= options_.max_fixed_point_iterations; ++it) {
       if (it > 1) to_physical(Q_hat_, Q_);  // (start_stage did it for the guess)
       force(Q_, i, stats);
@@ -313,12 +314,13 @@ class Stepper final : public StepperBase {
       delta = change2 == 0 ? 0.0 : std::sqrt(change2) / scale;
       norm2_Q = norm2_new;
       swap_views(Q_hat_, Q_hat_new_);
-      // A second update below round-off (delta = 0) bounds theta by about eps / delta_old. A first
-      // one proves nothing: the guess then holds the extrapolation's error below round-off, and
-      // stopping there let RKN3s4(2) drift in energy over 1e6 steps of P3 (h = 1e-3).
-      if (it == 2) record_contraction(i, (delta == 0 ? kEps : delta) / delta_old, delta_old);
+      if (it == 2 && change_first > 0) record_contraction(i, change_first, delta, delta_old);
+      // A first update below round-off (delta = 0) proves nothing: the guess then holds the
+      // extrapolation's error below round-off, and stopping there let RKN3s4(2) drift in energy
+      // over 1e6 steps of P3 (h = 1e-3).
       if (delta == 0 && it > 1) return true;
       if (it == 1 && delta > 0 && contraction_proves(i, delta)) return true;
+      if (it == 1 && theta_stale(i)) change_first = std::sqrt(change2), g_first_hat_ = G(i);
       if (it > 1) {
         const double theta = delta / delta_old;
         if (theta < 1 && theta / (1 - theta) * delta <= options_.tolerance) return true;
@@ -339,15 +341,15 @@ class Stepper final : public StepperBase {
   }
 
   // The contraction theta of stage i's iteration is a property of h, M and U near the solution:
-  // measured at a second iteration, it lets a later first iteration stop once
-  // theta/(1-theta) |dQ| weight_i <= kFirstShare * tolerance with theta = kThetaSafety times the
-  // measurement (no second evaluation to measure it again). Measured afresh every kThetaRefresh
-  // steps of that stage. The step then uses g(Q_0), whose error reaches (q, p) through bbar_i and
-  // b_i rather than abar_ii: weight_i = max(1, |bbar_i| / |abar_ii|, |b_i| / (h |abar_ii|)).
-  // kFirstShare: that error is the extrapolation's, systematic, so it adds up over the steps
-  // (a converged second iteration leaves round-off): at the full tolerance P1's error at 1e-9
-  // changed by up to 25% against stages iterated to round-off (erkn_stage_evaluations, "vs
-  // tol 0"), at a hundredth of it by < 2e-11.
+  // measured at a second iteration (record_contraction), it lets a later first iteration stop
+  // once theta/(1-theta) |dQ| weight_i <= kFirstShare * tolerance with theta = kThetaSafety times
+  // the measurement (no second evaluation to measure it again). Measured afresh at the next
+  // second iteration once kThetaRefresh solves of that stage old. The step then uses g(Q_0), whose
+  // error reaches (q, p) through bbar_i and b_i rather than abar_ii: weight_i = max(1, |bbar_i| /
+  // |abar_ii|, |b_i| / (h |abar_ii|)). kFirstShare: that error is the extrapolation's, systematic,
+  // so it adds up over the steps (a converged second iteration leaves round-off): at the full
+  // tolerance P1's error at 1e-9 changed by up to 25% against stages iterated to round-off
+  // (erkn_stage_evaluations, "vs tol 0"), at a hundredth of it by < 2e-11.
   static constexpr double kThetaSafety = 4, kFirstShare = 0.01;
   // Newton with a dense LU up to this d, Newton-Krylov (GMRES) beyond it.
   static constexpr Eigen::Index kDenseNewtonMaxD = 256;
@@ -361,21 +363,33 @@ class Stepper final : public StepperBase {
   static constexpr int kThetaRefresh = 8;
   static constexpr double kEps = std::numeric_limits<double>::epsilon();
 
+  bool theta_stale(int i) const { return theta_[i] < 0 || theta_age_[i] >= kThetaRefresh; }
+
   bool contraction_proves(int i, double delta) {
-    if (theta_[i] < 0 || ++theta_age_[i] >= kThetaRefresh) return false;
+    ++theta_age_[i];
+    if (theta_stale(i)) return false;
     const double theta = kThetaSafety * theta_[i];
     return theta < 0.5 &&
            theta / (1 - theta) * delta * weight_[i] <= kFirstShare * options_.tolerance;
   }
 
-  // A ratio of updates below ~1e3 round-offs measures noise, not theta: then it only confirms
-  // the old measurement (renews it) when it does not exceed what that one allowed.
-  void record_contraction(int i, double theta, double delta_first) {
+  // theta along the first update, |h^2 abar_ii (g(Q_1) - g(Q_0))| / |Q_1 - Q_0|, with g(Q_0) in
+  // g_first_hat_ and g(Q_1) in G(i). Not the ratio of the updates |Q_2 - Q_1| / |Q_1 - Q_0|: Q_2 =
+  // r_i - h^2 abar_ii g(Q_1) cancels against r_i, so once the guess is good that ratio measures
+  // the round-off of Q, not theta (P3, SERKN3s4(1), h = 1/4: |Q_1 - Q_0| ~ 1e-11 |Q|, the ratio
+  // 1e-5..1e-4 against theta ~ 1e-6), and the first-iteration stop seldom passed. Below ~1e3
+  // round-offs the first update is not measured: the old measurement is only renewed when the
+  // ratio does not exceed what it allowed. First-iteration stops on guesses that good keep their
+  // error systematic over millions of steps (RKN3s4(2) on P3 at h = 1e-3, 1e6 steps: the energy
+  // error grew 10-fold, 1.4e-12 -> 1.4e-11, when they were allowed; energy_test).
+  void record_contraction(int i, double change_first, double delta, double delta_first) {
     if (delta_first < 1e3 * kEps) {
-      if (theta_[i] >= 0 && theta <= kThetaSafety * theta_[i]) theta_age_[i] = 0;
+      const double ratio = (delta == 0 ? kEps : delta) / delta_first;
+      if (theta_[i] >= 0 && ratio <= kThetaSafety * theta_[i]) theta_age_[i] = 0;
       return;
     }
-    theta_[i] = theta;
+    g_first_hat_ = co(k_->abar(i, i)) * (G(i) - g_first_hat_);
+    theta_[i] = std::sqrt(squared_norm(g_first_hat_)) / change_first;
     theta_age_[i] = 0;
   }
 
@@ -670,12 +684,12 @@ class Stepper final : public StepperBase {
   std::array<double, kMaxStages> newton_cost_{};  // evaluations of its last Newton solve; 0: none
   // The arrays in eigen coordinates, m_ entries each and stride_ apart in spectral_ (one
   // allocation): the state (q, p) and its summation errors, the increments dq, dp of a step,
-  // four stage arrays, then the s stage gradients of this step and of the kHistory before it
+  // five stage arrays, then the s stage gradients of this step and of the kHistory before it
   // (steps_[age]).
   Eigen::Index m_, stride_;
   alignas(EIGEN_MAX_ALIGN_BYTES) Storage spectral_;
   SpectralMap q_hat_, p_hat_, eq_hat_, ep_hat_, qw_hat_, pw_hat_;
-  SpectralMap r_hat_, Q_hat_, Q_hat_new_, guess_hat_;
+  SpectralMap r_hat_, Q_hat_, Q_hat_new_, guess_hat_, g_first_hat_;
   std::array<Scalar*, kHistory + 1> steps_{};
   Eigen::VectorXd Q_, g_, Mq_;  // (Q_, g_ go to the callbacks)
   // Newton workspace, allocated at the first fallback.
