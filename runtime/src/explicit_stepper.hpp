@@ -3,23 +3,31 @@
 // the explicit family) and steps as one: exact flows of q'' + M q = 0 over tau_k =
 // h (c_k - c_{k-1}) (c_0 = 0 before the first node, c_{s+1} = 1 after the last) alternated with
 // kicks p -= h d_k g_k, g_k = grad U(Q_k) (+ M Q_k for RKN methods), each one pass over the
-// eigen coordinates (Kahan-compensated when enabled). The first pass reads the state and every
-// pass writes a second copy of it, which replaces the state once every gradient has been
-// evaluated: a failed step leaves the state unchanged. With c_1 = 0 and c_s = 1 the first kick
-// reuses the previous step's last gradient (FSAL). D: the dimension when it is a compile-time
-// constant (tiny systems with M's identity eigenbasis: every pass then unrolls).
+// eigen coordinates. With c_1 = 0 and c_s = 1 the first kick reuses the previous step's last
+// gradient (FSAL). The first pass reads the state and writes a second copy of it (on the stack
+// when D, the dimension, is a compile-time constant: tiny systems with M's identity eigenbasis,
+// whose passes then unroll), which replaces the state once every gradient has been evaluated and
+// the result is finite: a failed step leaves the state unchanged.
+//
+// Compensated summation (Options::compensated_summation) keeps with q and p the low-order parts
+// eq, ep that rounding has dropped (the state is q + eq, p + ep): each pass computes q and p as the
+// plain step does, and beside them the exact residual (q_old + dq) - q_new of the increment dq,
+// which it adds to eq (ep). The kicks, whose input g arrives last, fold the residuals into q and p
+// (q + eq rounded, and its rounding error as the new eq) from values already known before g: the
+// compensation costs flops but no latency on the step's chain of dependent operations.
 #pragma once
 
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <type_traits>
 #include <utility>
 
 #include "erkn/integrator.hpp"
+#include "flow_coefficients.hpp"
 #include "m_operator.hpp"
 #include "stage_checks.hpp"
-#include "step_coefficients.hpp"
 #include "stepper_base.hpp"
 
 namespace erkn::detail {
@@ -28,27 +36,35 @@ template <class Transform, class Coef, int D = Eigen::Dynamic>
 class ExplicitStepper final : public StepperBase {
   using Spectral = typename Transform::Spectral;
   using Scalar = typename Spectral::Scalar;
+  static constexpr bool kFixed = D != Eigen::Dynamic;
   // (Aligned when stride_ keeps the arrays aligned: in the dynamic-size storage.)
-  using SpectralMap =
-      Eigen::Map<Spectral, D == Eigen::Dynamic ? Eigen::AlignedMax : Eigen::Unaligned>;
+  static constexpr int kAlignment = kFixed ? Eigen::Unaligned : Eigen::AlignedMax;
+  using SpectralMap = Eigen::Map<Spectral, kAlignment>;
+  using ConstMap = Eigen::Map<const Spectral, kAlignment>;
   static constexpr bool kIdentity = std::is_same_v<Transform, IdentityTransform>;
-  static_assert(D == Eigen::Dynamic || kIdentity, "a fixed dimension needs the identity basis");
-  // The state and its copy (4 arrays each), the gradient of the current stage and the last
-  // stage's gradient of the previous step.
-  static constexpr int kArrays = 10;
+  static_assert(!kFixed || kIdentity, "a fixed dimension needs the identity basis");
+  // The state (q, p, eq, ep), the gradient of the current stage and the last stage's gradient of
+  // the previous step; with a dynamic dimension also the state's second copy (4 arrays).
+  static constexpr int kArrays = kFixed ? 6 : 10;
   // Their storage: one allocation, or (fixed dimension) inside the stepper.
-  using Storage = std::conditional_t<D == Eigen::Dynamic, Spectral,
-                                     std::array<Scalar, kArrays * std::max(D, 1)>>;
+  using Storage =
+      std::conditional_t<kFixed, std::array<Scalar, kArrays * std::max(D, 1)>, Spectral>;
 
-  /// One copy of the state in eigen coordinates: q, p and their summation errors.
+  /// One copy of the state in eigen coordinates: q, p and their summation errors; Values holds
+  /// them (fixed dimension).
   struct State {
     Scalar *q, *p, *eq, *ep;
+  };
+  using Fixed = Eigen::Array<Scalar, std::max(D, 1), 1>;
+  using FixedMap = Eigen::Map<Fixed>;
+  struct Values {
+    Fixed q, p, eq, ep;
   };
 
  public:
   /// lambda: M's eigenvalue of each eigen coordinate ({0} for RKN methods, whose force then
   /// includes M q).
-  ExplicitStepper(const Method& method, System system, double h, const Options& options,
+  ExplicitStepper(const Method& method, System&& system, double h, const Options& options,
                   Transform transform, const Eigen::VectorXd& lambda, Eigen::Index d)
       : method_(method),
         system_(std::move(system)),
@@ -61,16 +77,16 @@ class ExplicitStepper final : public StepperBase {
         transform_(std::move(transform)),
         M_(system_.M, d),
         m_(transform_.spectral_size(d)),
-        stride_(D == Eigen::Dynamic ? aligned_stride<Scalar>(m_) : D),
+        stride_(kFixed ? D : aligned_stride<Scalar>(m_)),
         spectral_(zeros(stride_)),
         state_{slot(0), slot(1), slot(2), slot(3)},
-        work_{slot(4), slot(5), slot(6), slot(7)},
-        G_(slot(8)),
-        G_last_(slot(9)),
+        G_(slot(4)),
+        G_last_(slot(5)),
+        work_{slot(6), slot(7), slot(8), slot(9)},
         Q_(Eigen::VectorXd::Zero(d)),
         g_(Eigen::VectorXd::Zero(d)) {
     for (int i = 0; i < s_; ++i) hd_[i] = h * method.table().d[i];
-    if (rkn_) Mq_.setZero(d);
+    if (rkn_) Mq_.resize(d);
   }
 
   ExplicitStepper(const ExplicitStepper&) = delete;  // (the pointers view its own buffer)
@@ -84,9 +100,19 @@ class ExplicitStepper final : public StepperBase {
     have_history_ = false;
   }
 
+  // q + eq and p + ep, rounded (with a dynamic dimension: summed in the second copy's slots,
+  // unused between steps).
   void get_state(Eigen::VectorXd& q, Eigen::VectorXd& p) override {
-    transform_.inverse(map(state_.q), q);
-    transform_.inverse(map(state_.p), p);
+    if constexpr (kFixed) {
+      q.resize(D), p.resize(D);
+      for (int e = 0; e < D; ++e)
+        q[e] = state_.q[e] + state_.eq[e], p[e] = state_.p[e] + state_.ep[e];
+    } else {
+      map(work_.q) = map(state_.q) + map(state_.eq);
+      map(work_.p) = map(state_.p) + map(state_.ep);
+      transform_.inverse(map(work_.q), q);
+      transform_.inverse(map(work_.p), p);
+    }
   }
 
   void step(long step_number, double t, Statistics& stats) override {
@@ -97,7 +123,6 @@ class ExplicitStepper final : public StepperBase {
       passes<true>(evaluations);
     else
       passes<false>(evaluations);
-    std::swap(state_, work_);
     std::swap(G_, G_last_);  // (FSAL: the last stage's gradient)
     have_history_ = true;
     ++stats.steps;
@@ -110,17 +135,35 @@ class ExplicitStepper final : public StepperBase {
 
  private:
   static Storage zeros(Eigen::Index stride) {
-    if constexpr (D == Eigen::Dynamic)
-      return Spectral::Zero(kArrays * stride);
-    else
+    if constexpr (kFixed)
       return Storage{};
+    else
+      return Spectral::Zero(kArrays * stride);
   }
 
-  // The flows and kicks from state_ into work_ (without summation errors when !kKahan: they
-  // then stay zero).
+  // One step into the second copy (a fixed dimension: whole arrays, which the compiler keeps
+  // in registers), checked, and then the state (without summation errors when !kKahan: they then
+  // stay zero).
   template <bool kKahan>
   void passes(long& evaluations) {
-    State from = state_;
+    if constexpr (kFixed) {
+      Values v{Fixed(state_.q), Fixed(state_.p), Fixed::Zero(), Fixed::Zero()};
+      if (kKahan) v.eq = Fixed(state_.eq), v.ep = Fixed(state_.ep);
+      stages<kKahan>(v, v, evaluations);
+      require_finite(v);
+      FixedMap(state_.q) = v.q, FixedMap(state_.p) = v.p;
+      if (kKahan) FixedMap(state_.eq) = v.eq, FixedMap(state_.ep) = v.ep;
+    } else {
+      stages<kKahan>(state_, work_, evaluations);
+      require_finite(work_);
+      std::swap(state_, work_);
+    }
+  }
+
+  // The flows and kicks from `start` into `to` (S: State or Values; start may be to).
+  template <bool kKahan, class S>
+  EIGEN_ALWAYS_INLINE void stages(const S& start, S& to, long& evaluations) {
+    const S* from = &start;
     for (int i = 0; i < s_; ++i) {
       const bool reuse = i == 0 && fsal_ && have_history_;
       // In the identity basis the flow writes the stage's Q_ as it goes and the kick saves the
@@ -128,69 +171,132 @@ class ExplicitStepper final : public StepperBase {
       double* const Q = kIdentity && !reuse ? Q_.data() : nullptr;
       bool have_Q = false;
       if (flows_.moves(i)) {
-        flow<kKahan>(i, from, Q);
-        from = work_;
+        flow<kKahan>(i, *from, to, Q);
+        from = &to;
         have_Q = Q != nullptr;
       }
       if (reuse)
-        kick<kKahan>(hd_[0], G_last_, from, nullptr);
+        kick<kKahan>(hd_[0], G_last_, *from, to, nullptr);
       else
-        kick<kKahan>(hd_[i], evaluate(from.q, have_Q, i, evaluations), from,
+        kick<kKahan>(hd_[i], evaluate(&from->q[0], have_Q, i, evaluations), *from, to,
                      kIdentity ? G_ : nullptr);
-      from = work_;
+      from = &to;
     }
-    if (flows_.moves(s_)) flow<kKahan>(s_, work_, nullptr);
-    const bool q_ok = all_finite(work_.q, n());
-    if (!q_ok || !all_finite(work_.p, n())) non_finite_result(q_ok, place_);
+    if (flows_.moves(s_)) flow<kKahan>(s_, *from, to, nullptr);
   }
 
-  // work_ = the exact flow over tau_k of `from` (which may be work_ itself); its q also to Q
-  // when given (identity basis only).
-  template <bool kKahan>
-  void flow(int k, const State& from, double* Q) {
-    const auto cm1 = flows_.cm1(k), sinc = flows_.sinc(k), msinc = flows_.msinc(k);
-    for (Eigen::Index e = 0; e < n(); ++e) {
-      const Scalar q = from.q[e], p = from.p[e];
-      const double c = at(cm1, e);
-      add<kKahan>(q, from.eq[e], c * q + at(sinc, e) * p, work_.q[e], work_.eq[e]);
-      add<kKahan>(p, from.ep[e], at(msinc, e) * q + c * p, work_.p[e], work_.ep[e]);
-      if constexpr (kIdentity)
-        if (Q) Q[e] = work_.q[e];
-    }
+  void require_finite(const Values& v) const {
+    const double big = std::numeric_limits<double>::max();
+    const bool q_ok = (v.q.abs() <= big).all();
+    if (!q_ok || !(v.p.abs() <= big).all()) non_finite_result(q_ok, place_);
+  }
+  template <class S>
+  void require_finite(const S& x) const {
+    const bool q_ok = all_finite(&x.q[0], n());
+    if (!q_ok || !all_finite(&x.p[0], n())) non_finite_result(q_ok, place_);
   }
 
-  // work_ = `from` with p -= hd g; g also to save when given.
-  template <bool kKahan>
-  void kick(double hd, const Scalar* g, const State& from, Scalar* save) {
-    for (Eigen::Index e = 0; e < n(); ++e) {
-      const Scalar ge = g[e];
-      add<kKahan>(from.p[e], from.ep[e], -hd * ge, work_.p[e], work_.ep[e]);
-      if (save) save[e] = ge;
-    }
-    if (from.q == work_.q) return;
-    std::copy_n(from.q, n(), work_.q);
-    if (kKahan) std::copy_n(from.eq, n(), work_.eq);
-  }
+  // The exact flow of (q, p) with coefficients cos, cos - 1, sin(w tau)/w, -w sin(w tau), for
+  // one coordinate (T = Scalar) or a whole fixed-size array; and the kick p += dp.
+  //
+  // Compensated, each adds the residual of q + dq (p + dp) to eq (ep), dq = (cos - 1) q + sinc p
+  // for the flow. The errors are folded into q and p where that costs the least: with a fixed
+  // dimension, where the step is a chain of dependent operations, both at the kick, from values
+  // known before dp (whose gradient comes last); with arrays, where the passes' memory traffic
+  // counts, eq in the flow (by the term of q) and ep at the kick, each pass touching only what
+  // it changes.
+  static constexpr bool kFoldAtKick = kFixed;
 
-  // x_out = x + dx, Kahan-compensated when kKahan (error: the low-order bits lost so far).
-  template <bool kKahan>
-  static void add(Scalar x, Scalar error, Scalar dx, Scalar& x_out, Scalar& error_out) {
+  template <bool kKahan, class T, class C>
+  EIGEN_ALWAYS_INLINE static void flow_update(const C& cos, const C& cm1, const C& sinc,
+                                              const C& msinc, T& q, T& p, T& eq, T& ep) {
+    const T q0 = q, p0 = p, sp = sinc * p0, mq = msinc * q0;
+    p = mq + cos * p0;
+    if constexpr (kKahan && !kFoldAtKick)
+      q = (cos * q0 + eq) + sp;
+    else
+      q = cos * q0 + sp;
     if constexpr (kKahan) {
-      const Scalar y = dx + error, t = x + y;
-      error_out = (x - t) + y;
-      x_out = t;
-    } else {
-      x_out = x + dx;
+      eq += (q0 - q) + (cm1 * q0 + sp);
+      ep += (p0 - p) + (mq + cm1 * p0);
     }
+  }
+
+  template <bool kKahan, class T>
+  EIGEN_ALWAYS_INLINE static void kick_update(const T& dp, T& q, T& p, T& eq, T& ep) {
+    if constexpr (kKahan) {
+      if constexpr (kFoldAtKick) {
+        const T q1 = q + eq;
+        eq = (q - q1) + eq;
+        q = q1;
+      }
+      const T p1 = p + ep, e1 = (p - p1) + ep;
+      p = p1 + dp;
+      ep = e1 + ((p1 - p) + dp);
+    } else {
+      p += dp;
+    }
+  }
+
+  // Flow k from `from` to `to` (which may be the same), coordinate by coordinate; its q also to
+  // Q when given (identity basis only).
+  template <bool kKahan>
+  EIGEN_ALWAYS_INLINE void flow(int k, const State& from, State& to, double* Q) {
+    const auto cos = flows_.cos(k), cm1 = flows_.cm1(k);
+    const auto sinc = flows_.sinc(k), msinc = flows_.msinc(k);
+    for (Eigen::Index e = 0; e < n(); ++e) {
+      Scalar q = from.q[e], p = from.p[e], eq = kKahan ? from.eq[e] : 0;
+      Scalar ep = kKahan ? from.ep[e] : 0;
+      flow_update<kKahan>(at(cos, e), at(cm1, e), at(sinc, e), at(msinc, e), q, p, eq, ep);
+      to.q[e] = q, to.p[e] = p;
+      if (kKahan) to.eq[e] = eq, to.ep[e] = ep;
+      if constexpr (kIdentity)
+        if (Q) Q[e] = q;
+    }
+  }
+  // (Fixed dimension: in place, whole arrays.)
+  template <bool kKahan>
+  EIGEN_ALWAYS_INLINE void flow(int k, const Values&, Values& v, double* Q) {
+    flow_update<kKahan>(fixed(flows_.cos(k)), fixed(flows_.cm1(k)), fixed(flows_.sinc(k)),
+                        fixed(flows_.msinc(k)), v.q, v.p, v.eq, v.ep);
+    if (Q)
+      for (int e = 0; e < D; ++e) Q[e] = v.q[e];
+  }
+
+  // The kick p -= hd g from `from` to `to`; g also to save when given.
+  template <bool kKahan>
+  EIGEN_ALWAYS_INLINE void kick(double hd, const Scalar* g, const State& from, State& to,
+                                Scalar* save) {
+    for (Eigen::Index e = 0; e < n(); ++e) {
+      Scalar q = 0, p = from.p[e], eq = 0, ep = kKahan ? from.ep[e] : 0;
+      kick_update<kKahan>(Scalar(-hd * g[e]), q, p, eq, ep);
+      to.p[e] = p;
+      if (kKahan) to.ep[e] = ep;
+      if (&from != &to) {
+        to.q[e] = from.q[e];
+        if (kKahan) to.eq[e] = from.eq[e];
+      }
+      if (save) save[e] = g[e];
+    }
+  }
+  template <bool kKahan>
+  EIGEN_ALWAYS_INLINE void kick(double hd, const Scalar* g, const Values&, Values& v,
+                                Scalar* save) {
+    Fixed ge;
+    for (int e = 0; e < D; ++e) ge[e] = g[e];
+    kick_update<kKahan>(Fixed(-hd * ge), v.q, v.p, v.eq, v.ep);
+    if (save)
+      for (int e = 0; e < D; ++e) save[e] = g[e];
   }
 
   // The force at the stage q (eigen coordinates; already in Q_ when have_Q), evaluated in
   // physical coordinates: in eigen coordinates in G_, or (identity basis) in g_.
-  const Scalar* evaluate(Scalar* q, bool have_Q, int i, long& evaluations) {
+  EIGEN_ALWAYS_INLINE const Scalar* evaluate(const Scalar* q, bool have_Q, int i,
+                                             long& evaluations) {
     if constexpr (kIdentity) {
       if (!have_Q) std::copy_n(q, n(), Q_.data());
     } else {
-      transform_.inverse(map(q), Q_);
+      transform_.inverse(ConstMap(q, m_), Q_);
     }
     checked_gradient<D>(system_, Q_, g_, d_, i, place_, evaluations);
     if (rkn_) {
@@ -207,19 +313,26 @@ class ExplicitStepper final : public StepperBase {
 
   // The number of eigen coordinates (a constant when D is).
   Eigen::Index n() const {
-    if constexpr (D == Eigen::Dynamic)
-      return m_;
-    else
+    if constexpr (kFixed)
       return D;
+    else
+      return m_;
   }
 
   static double at(double value, Eigen::Index) { return value; }
+  // A coefficient as a fixed-size array (or the one value of a scalar M).
+  static double fixed(double value) { return value; }
+  template <class Map>
+  static Fixed fixed(const Map& values) {
+    return Fixed(values.data());
+  }
   template <class Map>
   static double at(const Map& values, Eigen::Index e) {
     return values[e];
   }
 
-  Scalar* slot(int k) { return spectral_.data() + k * stride_; }
+  // Slot k of the storage (the second copy's slots 6..9 exist with a dynamic dimension only).
+  Scalar* slot(int k) { return k < kArrays ? spectral_.data() + k * stride_ : nullptr; }
   SpectralMap map(Scalar* x) const { return {x, m_}; }
 
   Method method_;
@@ -228,15 +341,16 @@ class ExplicitStepper final : public StepperBase {
   int s_;
   bool fsal_;
   Eigen::Index d_;
-  std::array<double, kMaxStages> hd_{};  // h d_i
+  std::array<double, kMaxStages> hd_;  // h d_i (i < s)
   FlowCoefficients<Coef> flows_;
   Transform transform_;
   MOperator M_;
   // kArrays arrays in eigen coordinates, m_ entries each and stride_ apart.
   Eigen::Index m_, stride_;
   Storage spectral_;
-  State state_, work_;
+  State state_;
   Scalar *G_, *G_last_;
+  State work_;                  // (dynamic dimension only)
   Eigen::VectorXd Q_, g_, Mq_;  // physical coordinates (Q_, g_ go to the callback)
   bool have_history_ = false;
   StepPlace place_{&method_, 0, 0};

@@ -53,43 +53,7 @@ class CoefficientSlots {
 
  private:
   Eigen::Index m_, stride_;
-  std::conditional_t<kScalar, std::array<double, kMax>, Eigen::ArrayXd> values_{};
-};
-
-/// The exact flow of q'' + M q = 0 over tau_k = h (c_k - c_{k-1}), k = 0..s (c_{-1} = 0,
-/// c_s = 1): an explicit method (abar_ii = 0) is this flow alternated with kicks
-/// p -= h d_k grad U(Q_k) (DESIGN.md section 1, the explicit family).
-template <class Coef>
-class FlowCoefficients {
-  using Slots = CoefficientSlots<Coef, 3 * (kMaxStages + 1)>;
-
- public:
-  using Value = typename Slots::Value;
-
-  FlowCoefficients(const Method& method, double h, const Eigen::VectorXd& lambda)
-      : s_(method.stages()), slots_(3 * (s_ + 1), lambda.size()) {
-    const double* c = method.table().c;
-    for (int k = 0; k <= s_; ++k) {
-      const double tau = h * ((k < s_ ? c[k] : 1.0) - (k > 0 ? c[k - 1] : 0.0));
-      moves_[k] = tau != 0;
-      for (Eigen::Index e = 0; e < lambda.size(); ++e) {
-        const double v = tau * tau * lambda[e], sinc = tau * phi1(v);
-        slots_.set(3 * k, e, phi0_minus_1(v));
-        slots_.set(3 * k + 1, e, sinc);
-        slots_.set(3 * k + 2, e, -lambda[e] * sinc);
-      }
-    }
-  }
-
-  bool moves(int k) const { return moves_[k]; }              ///< tau_k != 0
-  Value cm1(int k) const { return slots_.at(3 * k); }        ///< phi0(tau_k^2 M) - 1
-  Value sinc(int k) const { return slots_.at(3 * k + 1); }   ///< tau_k phi1(tau_k^2 M)
-  Value msinc(int k) const { return slots_.at(3 * k + 2); }  ///< -M tau_k phi1(tau_k^2 M)
-
- private:
-  int s_;
-  std::array<bool, kMaxStages + 1> moves_{};
-  Slots slots_;
+  std::conditional_t<kScalar, std::array<double, kMax>, Eigen::ArrayXd> values_;  // (set before read)
 };
 
 /// For each entry of lambda, the index of the first entry with exactly the same value (itself

@@ -1,0 +1,75 @@
+// The exact flow of q'' + M q = 0 over tau_k = h (c_k - c_{k-1}), k = 0..s (c_{-1} = 0,
+// c_s = 1): an explicit method (abar_ii = 0) is this flow alternated with kicks
+// p -= h d_k grad U(Q_k) (DESIGN.md section 1, the explicit family). Per eigenvalue lambda
+// (w = sqrt(lambda), x = w tau) the flow is [q; p] <- [cos x, sin(x)/w; -w sin x, cos x] [q; p];
+// cos x - 1 = -2 sin^2(x/2) is kept as well, without cancellation, for the increments of
+// compensated summation. One sincos of x/2 gives all of them (sin x = 2 sin(x/2) cos(x/2)), and a
+// tau_k equal to an earlier one (symmetric methods: every tau but the middle one) shares its
+// coefficients.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cmath>
+
+#include "erkn/method.hpp"
+#include "step_coefficients.hpp"
+
+namespace erkn::detail {
+
+template <class Coef>
+class FlowCoefficients {
+  using Slots = CoefficientSlots<Coef, 4 * (kMaxStages + 1)>;
+
+ public:
+  using Value = typename Slots::Value;
+
+  FlowCoefficients(const Method& method, double h, const Eigen::VectorXd& lambda)
+      : slots_(4 * distinct_taus(method, h), lambda.size()) {
+    for (int k = 0, next = 0; k <= method.stages(); ++k) {
+      if (slot_[k] != next) continue;  // (shares an earlier flow's coefficients)
+      ++next;
+      for (Eigen::Index e = 0; e < lambda.size(); ++e) {
+        const double w = std::sqrt(lambda[e]), half = 0.5 * w * tau_[k];
+        const double s = std::sin(half), c = std::cos(half);  // (one sincos)
+        const double cm1 = -2 * s * s, sinc = w == 0 ? tau_[k] : 2 * s * c / w;
+        slots_.set(4 * slot_[k], e, 1 + cm1);
+        slots_.set(4 * slot_[k] + 1, e, cm1);
+        slots_.set(4 * slot_[k] + 2, e, sinc);
+        slots_.set(4 * slot_[k] + 3, e, -lambda[e] * sinc);
+      }
+    }
+  }
+
+  bool moves(int k) const { return tau_[k] != 0; }                  ///< tau_k != 0
+  Value cos(int k) const { return slots_.at(4 * slot_[k]); }        ///< cos(w tau_k)
+  Value cm1(int k) const { return slots_.at(4 * slot_[k] + 1); }    ///< cos(w tau_k) - 1
+  Value sinc(int k) const { return slots_.at(4 * slot_[k] + 2); }   ///< sin(w tau_k) / w
+  Value msinc(int k) const { return slots_.at(4 * slot_[k] + 3); }  ///< -w sin(w tau_k)
+
+ private:
+  // Sets tau_ and slot_ (flow k's coefficients are those of distinct tau number slot_[k]);
+  // returns the number of distinct taus.
+  int distinct_taus(const Method& method, double h) {
+    const double* c = method.table().c;
+    const int s = method.stages();
+    int distinct = 0;
+    for (int k = 0; k <= s; ++k) {
+      tau_[k] = h * ((k < s ? c[k] : 1.0) - (k > 0 ? c[k - 1] : 0.0));
+      slot_[k] = distinct;
+      for (int j = 0; j < k; ++j)
+        if (tau_[j] == tau_[k]) {
+          slot_[k] = slot_[j];
+          break;
+        }
+      if (slot_[k] == distinct) ++distinct;
+    }
+    return distinct;
+  }
+
+  std::array<double, kMaxStages + 1> tau_;
+  std::array<int, kMaxStages + 1> slot_;
+  Slots slots_;
+};
+
+}  // namespace erkn::detail
