@@ -4,17 +4,16 @@
 // h (c_k - c_{k-1}) (c_0 = 0 before the first node, c_{s+1} = 1 after the last) alternated with
 // kicks p -= h d_k g_k, g_k = grad U(Q_k) (+ M Q_k for RKN methods), each one pass over the
 // eigen coordinates. With c_1 = 0 and c_s = 1 the first kick reuses the previous step's last
-// gradient (FSAL). The first pass reads the state and writes a second copy of it (on the stack
-// when D, the dimension, is a compile-time constant: tiny systems with M's identity eigenbasis,
-// whose passes then unroll), which replaces the state once every gradient has been evaluated and
-// the result is finite: a failed step leaves the state unchanged.
+// gradient (FSAL). The first pass reads the state and writes a second copy of it, which replaces
+// the state once every gradient has been evaluated and the result is finite: a failed step leaves
+// the state unchanged. When D, the dimension, is a compile-time constant (tiny systems with M's
+// identity eigenbasis) that copy is a set of fixed-size arrays the compiler keeps in registers.
 //
 // Compensated summation (Options::compensated_summation) keeps with q and p the low-order parts
 // eq, ep that rounding has dropped (the state is q + eq, p + ep): each pass computes q and p as the
-// plain step does, and beside them the exact residual (q_old + dq) - q_new of the increment dq,
-// which it adds to eq (ep). The kicks, whose input g arrives last, fold the residuals into q and p
-// (q + eq rounded, and its rounding error as the new eq) from values already known before g: the
-// compensation costs flops but no latency on the step's chain of dependent operations.
+// plain step does and adds the exact residual (q_old + dq) - q_new of its increment to eq (ep);
+// the errors are folded back where that adds no latency to the step's chain of dependent
+// operations (flow_update, kick_update). get_state returns q + eq and p + ep.
 #pragma once
 
 #include <Eigen/Core>
