@@ -297,11 +297,12 @@ class Stepper final : public StepperBase {
   // gradient of the last iterate but one (no confirming evaluation).
   bool fixed_point(int i, Statistics& stats) {
     double delta = 0, delta_old = 0, norm2_Q = 0, change_first = 0;
+    const auto abar_ii = co(k_->abar(i, i));
     for (int it = 1; it <= options_.max_fixed_point_iterations; ++it) {
       if (it > 1) to_physical(Q_hat_, Q_);  // (start_stage did it for the guess)
       force(Q_, i, stats);
       to_eigen(g_, G(i));
-      Q_hat_new_ = r_hat_ - co(k_->abar(i, i)) * G(i);
+      Q_hat_new_ = r_hat_ - abar_ii * G(i);
       ++stats.stage_iterations;
       // |dQ| / max(|Q_new|, |Q_old|) in eigen coordinates, so a converged stage needs no inverse
       // transform. Both iterates: an iterate at 0 (a 2-cycle r -> 0 -> r) must not make delta
