@@ -321,7 +321,7 @@ class Stepper final : public StepperBase {
       // over 1e6 steps of P3 (h = 1e-3).
       if (delta == 0 && it > 1) return true;
       if (it == 1 && delta > 0 && contraction_proves(i, delta)) return true;
-      if (it == 1 && theta_stale(i)) change_first = std::sqrt(change2), g_first_hat_ = G(i);
+      if (it == 1) change_first = std::sqrt(change2), g_first_hat_ = G(i);
       if (it > 1) {
         const double theta = delta / delta_old;
         if (theta < 1 && theta / (1 - theta) * delta <= options_.tolerance) return true;
@@ -344,13 +344,13 @@ class Stepper final : public StepperBase {
   // The contraction theta of stage i's iteration is a property of h, M and U near the solution:
   // measured at a second iteration (record_contraction), it lets a later first iteration stop
   // once theta/(1-theta) |dQ| weight_i <= kFirstShare * tolerance with theta = kThetaSafety times
-  // the measurement (no second evaluation to measure it again). Measured afresh at the next
-  // second iteration once kThetaRefresh solves of that stage old. The step then uses g(Q_0), whose
-  // error reaches (q, p) through bbar_i and b_i rather than abar_ii: weight_i = max(1, |bbar_i| /
-  // |abar_ii|, |b_i| / (h |abar_ii|)). kFirstShare: that error is the extrapolation's, systematic,
-  // so it adds up over the steps (a converged second iteration leaves round-off): at the full
-  // tolerance P1's error at 1e-9 changed by up to 25% against stages iterated to round-off
-  // (erkn_stage_evaluations, "vs tol 0"), at a hundredth of it by < 2e-11.
+  // the measurement (no second evaluation to measure it again). Measured afresh at every second
+  // iteration, and forced by one every kThetaRefresh solves of that stage. The step then uses
+  // g(Q_0), whose error reaches (q, p) through bbar_i and b_i rather than abar_ii: weight_i =
+  // max(1, |bbar_i| / |abar_ii|, |b_i| / (h |abar_ii|)). kFirstShare: that error is the
+  // extrapolation's, systematic, so it adds up over the steps (a converged second iteration leaves
+  // round-off): at the full tolerance P1's error at 1e-9 changed by up to 25% against stages
+  // iterated to round-off (erkn_stage_evaluations, "vs tol 0"), at a hundredth of it by < 2e-11.
   static constexpr double kThetaSafety = 4, kFirstShare = 0.01;
   // Newton with a dense LU up to this d, Newton-Krylov (GMRES) beyond it.
   static constexpr Eigen::Index kDenseNewtonMaxD = 256;
@@ -364,11 +364,8 @@ class Stepper final : public StepperBase {
   static constexpr int kThetaRefresh = 8;
   static constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-  bool theta_stale(int i) const { return theta_[i] < 0 || theta_age_[i] >= kThetaRefresh; }
-
   bool contraction_proves(int i, double delta) {
-    ++theta_age_[i];
-    if (theta_stale(i)) return false;
+    if (theta_[i] < 0 || ++theta_age_[i] >= kThetaRefresh) return false;
     const double theta = kThetaSafety * theta_[i];
     return theta < 0.5 &&
            theta / (1 - theta) * delta * weight_[i] <= kFirstShare * options_.tolerance;
