@@ -72,6 +72,7 @@ class ExplicitStepper final : public StepperBase {
         s_(method.stages()),
         fsal_(s_ > 1 && method.table().c[0] == 0 && method.table().c[s_ - 1] == 1),
         d_(d),
+        h_(h),
         flows_(method, h, lambda),
         transform_(std::move(transform)),
         M_(system_.M, d),
@@ -84,7 +85,6 @@ class ExplicitStepper final : public StepperBase {
         work_{slot(6), slot(7), slot(8), slot(9)},
         Q_(Eigen::VectorXd::Zero(d)),
         g_(Eigen::VectorXd::Zero(d)) {
-    for (int i = 0; i < s_; ++i) hd_[i] = h * method.table().d[i];
     if (rkn_) Mq_.resize(d);
   }
 
@@ -175,10 +175,10 @@ class ExplicitStepper final : public StepperBase {
         have_Q = Q != nullptr;
       }
       if (reuse)
-        kick<kKahan>(hd_[0], G_last_, *from, to, nullptr);
+        kick<kKahan>(h_ * method_.table().d[0], G_last_, *from, to, nullptr);
       else
-        kick<kKahan>(hd_[i], evaluate(&from->q[0], have_Q, i, evaluations), *from, to,
-                     kIdentity ? G_ : nullptr);
+        kick<kKahan>(h_ * method_.table().d[i], evaluate(&from->q[0], have_Q, i, evaluations),
+                     *from, to, kIdentity ? G_ : nullptr);
       from = &to;
     }
     if (flows_.moves(s_)) flow<kKahan>(s_, *from, to, nullptr);
@@ -340,7 +340,7 @@ class ExplicitStepper final : public StepperBase {
   int s_;
   bool fsal_;
   Eigen::Index d_;
-  std::array<double, kMaxStages> hd_;  // h d_i (i < s)
+  double h_;  // (the kicks' h d_i are formed as they are used)
   FlowCoefficients<Coef> flows_;
   Transform transform_;
   MOperator M_;

@@ -11,6 +11,8 @@
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include "erkn/method.hpp"
 #include "step_coefficients.hpp"
@@ -26,13 +28,14 @@ class FlowCoefficients {
 
   FlowCoefficients(const Method& method, double h, const Eigen::VectorXd& lambda)
       : slots_(4 * distinct_taus(method, h), lambda.size()) {
-    for (int k = 0, next = 0; k <= method.stages(); ++k) {
-      if (slot_[k] != next) continue;  // (shares an earlier flow's coefficients)
-      ++next;
-      for (Eigen::Index e = 0; e < lambda.size(); ++e) {
-        const double w = std::sqrt(lambda[e]), half = 0.5 * w * tau_[k];
+    for (Eigen::Index e = 0; e < lambda.size(); ++e) {
+      const double w = std::sqrt(lambda[e]), inv_w = w == 0 ? 0 : 1 / w;
+      for (int k = 0, next = 0; k <= method.stages(); ++k) {
+        if (slot_[k] != next) continue;  // (shares an earlier flow's coefficients)
+        ++next;
+        const double t = tau(method, h, k), half = 0.5 * w * t;
         const double s = std::sin(half), c = std::cos(half);  // (one sincos)
-        const double cm1 = -2 * s * s, sinc = w == 0 ? tau_[k] : 2 * s * c / w;
+        const double cm1 = -2 * s * s, sinc = w == 0 ? t : 2 * s * c * inv_w;
         slots_.set(4 * slot_[k], e, 1 + cm1);
         slots_.set(4 * slot_[k] + 1, e, cm1);
         slots_.set(4 * slot_[k] + 2, e, sinc);
@@ -41,24 +44,36 @@ class FlowCoefficients {
     }
   }
 
-  bool moves(int k) const { return tau_[k] != 0; }                  ///< tau_k != 0
+  bool moves(int k) const { return moves_[k]; }                     ///< tau_k != 0
   Value cos(int k) const { return slots_.at(4 * slot_[k]); }        ///< cos(w tau_k)
   Value cm1(int k) const { return slots_.at(4 * slot_[k] + 1); }    ///< cos(w tau_k) - 1
   Value sinc(int k) const { return slots_.at(4 * slot_[k] + 2); }   ///< sin(w tau_k) / w
   Value msinc(int k) const { return slots_.at(4 * slot_[k] + 3); }  ///< -w sin(w tau_k)
 
  private:
-  // Sets tau_ and slot_ (flow k's coefficients are those of distinct tau number slot_[k]);
-  // returns the number of distinct taus.
-  int distinct_taus(const Method& method, double h) {
+  static double tau(const Method& method, double h, int k) {
     const double* c = method.table().c;
     const int s = method.stages();
+    return h * ((k < s ? c[k] : 1.0) - (k > 0 ? c[k - 1] : 0.0));
+  }
+
+  // Two taus within the rounding of the nodes c (each within eps/2 of its exact value, and
+  // tau_k h times a difference of two) are the same drift: a symmetric method's c_k - c_(k-1)
+  // and its mirror image 1 - c_(s-k) ... differ by that much. Distinct drifts of the registry's
+  // methods differ by more than 1e-3 h.
+  static constexpr double kSameTau = 4 * std::numeric_limits<double>::epsilon();
+
+  // Sets moves_ and slot_ (flow k's coefficients are those of distinct tau number slot_[k]);
+  // returns the number of distinct taus.
+  int distinct_taus(const Method& method, double h) {
+    std::array<double, kMaxStages + 1> taus;
     int distinct = 0;
-    for (int k = 0; k <= s; ++k) {
-      tau_[k] = h * ((k < s ? c[k] : 1.0) - (k > 0 ? c[k - 1] : 0.0));
-      slot_[k] = distinct;
+    for (int k = 0; k <= method.stages(); ++k) {
+      taus[k] = tau(method, h, k);
+      moves_[k] = taus[k] != 0;
+      slot_[k] = std::int8_t(distinct);
       for (int j = 0; j < k; ++j)
-        if (tau_[j] == tau_[k]) {
+        if (std::abs(taus[j] - taus[k]) <= kSameTau * h) {
           slot_[k] = slot_[j];
           break;
         }
@@ -67,8 +82,8 @@ class FlowCoefficients {
     return distinct;
   }
 
-  std::array<double, kMaxStages + 1> tau_;
-  std::array<int, kMaxStages + 1> slot_;
+  std::array<bool, kMaxStages + 1> moves_;
+  std::array<std::int8_t, kMaxStages + 1> slot_;
   Slots slots_;
 };
 

@@ -8,7 +8,7 @@ MOperator::MOperator(const Stiffness& M, Eigen::Index d) : M_(M) {
   if (M.structure() != Stiffness::Structure::circulant) return;
   // (N < 4: the stencil; a real FFT of size 1 crashed Eigen's kissfft, found by the API fuzz.)
   if (d < 4 || double(M.nonzeros().size()) <= 2 * std::log2(double(d))) return;
-  fft_.emplace(d);
+  fft_ = std::make_unique<RealFftTransform>(d);
   spectrum_.resize(d / 2 + 1);
 }
 

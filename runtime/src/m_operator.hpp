@@ -5,7 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <optional>
+#include <memory>
 
 #include "erkn/stiffness.hpp"
 #include "transforms.hpp"
@@ -21,7 +21,7 @@ class MOperator {
   void apply_grid(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
 
   Stiffness M_;
-  std::optional<RealFftTransform> fft_;  // set for a circulant M applied through the FFT
+  std::unique_ptr<RealFftTransform> fft_;  // set for a circulant M applied through the FFT
   Eigen::ArrayXcd spectrum_;
 };
 

@@ -53,7 +53,8 @@ class CoefficientSlots {
 
  private:
   Eigen::Index m_, stride_;
-  std::conditional_t<kScalar, std::array<double, kMax>, Eigen::ArrayXd> values_;  // (set before read)
+  // (Not value-initialised: every slot is set before it is read.)
+  std::conditional_t<kScalar, std::array<double, kMax>, Eigen::ArrayXd> values_;
 };
 
 /// For each entry of lambda, the index of the first entry with exactly the same value (itself

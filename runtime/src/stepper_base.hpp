@@ -3,7 +3,6 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <string_view>
 
 #include "erkn/integrator.hpp"
 
@@ -14,9 +13,10 @@ namespace erkn::detail {
 /// kicks (DESIGN.md section 1).
 inline bool explicit_stages(const Method& method) {
   const int s = method.stages();
-  for (int i = 0; i < s; ++i)
-    if (std::string_view(method.table().closed_forms[2 * s + i * (i + 1) / 2 + i]) != "0")
-      return false;
+  for (int i = 0; i < s; ++i) {
+    const char* form = method.table().closed_forms[2 * s + i * (i + 1) / 2 + i];
+    if (form[0] != '0' || form[1] != '\0') return false;
+  }
   return true;
 }
 

@@ -53,7 +53,7 @@ Stiffness Stiffness::scalar(double omega2) {
   const auto make = [](double w2) {
     auto d = std::make_shared<Data>();
     d->structure = Structure::scalar;
-    d->eigenvalues = d->entries = Eigen::VectorXd::Constant(1, w2);
+    d->eigenvalues = Eigen::VectorXd::Constant(1, w2);  // (also its entries: see entries())
     return d;
   };
   // M = 0 (System's default) shares one record: a default System allocates nothing.
@@ -204,7 +204,9 @@ Stiffness::Structure Stiffness::structure() const { return data_->structure; }
 Eigen::Index Stiffness::dim() const { return data_->dim; }
 const Eigen::VectorXd& Stiffness::eigenvalues() const { return data_->eigenvalues; }
 const Eigen::MatrixXd& Stiffness::eigenvectors() const { return data_->eigenvectors; }
-const Eigen::VectorXd& Stiffness::entries() const { return data_->entries; }
+const Eigen::VectorXd& Stiffness::entries() const {
+  return data_->structure == Structure::scalar ? data_->eigenvalues : data_->entries;
+}
 const Eigen::MatrixXd& Stiffness::matrix() const { return data_->matrix; }
 const Eigen::VectorXi& Stiffness::nonzeros() const { return data_->nonzeros; }
 const std::vector<GridAxis>& Stiffness::axes() const { return data_->axes; }
@@ -243,7 +245,7 @@ Eigen::MatrixXd grid_to_dense(const std::vector<GridAxis>& axes, double shift, E
 Eigen::MatrixXd Stiffness::to_dense(Eigen::Index d) const {
   switch (data_->structure) {
     case Structure::scalar:
-      return data_->entries[0] * Eigen::MatrixXd::Identity(d, d);
+      return data_->eigenvalues[0] * Eigen::MatrixXd::Identity(d, d);
     case Structure::diagonal:
       return data_->entries.asDiagonal();
     case Structure::dense:
