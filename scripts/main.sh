@@ -14,6 +14,10 @@ cmake --build "$build" -j 2
 "$build"/runtime/cli/erkn stability all --out docs/charts
 "$build"/experiments/erkn_stability_hmax docs/stability.md
 "$build"/scaling/erkn-ensemble-speedup --out docs
+# The explicit path against hand-written splitting peers (issue 9's per grad U and setup ratios;
+# a short run, ~15 s): docs/benchmarks.md.
+"$build"/bench/erkn_explicit_benchmark --benchmark_repetitions=3 --benchmark_min_time=0.05 \
+  --summary_markdown=docs/benchmarks.md > /dev/null
 if [ -x "$build"/runtime/mpi/erkn-mpi ]; then  # MPI scaling on 1, 2 and 4 ranks (erkn::mpi built)
   [ "$(id -u)" -ne 0 ] || export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
   export OMPI_MCA_btl_vader_single_copy_mechanism=none  # (CMA fails in containers)
