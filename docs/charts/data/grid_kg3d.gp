@@ -28,10 +28,10 @@ set terminal pngcairo size 1000,620 font 'DejaVu Sans,11'
 set output 'grid_kg3d_step.png'
 plot 'data/grid_kg3d_step_aba1064.dat' u 1:2 w p pt 7 ps 1.3 t 'ABA1064', 'data/grid_kg3d_step_aba1064.dat' u 1:3 w l lw 1.5 t 'ABA1064: fit c d log2 d', \
   'data/grid_kg3d_step_serkn2s4.dat' u 1:2 w p pt 7 ps 1.3 t 'SERKN2s4', 'data/grid_kg3d_step_serkn2s4.dat' u 1:3 w l lw 1.5 t 'SERKN2s4: fit c d log2 d', \
-  'data/grid_kg3d_step_blanes_moan_srkn14a.dat' u 1:2 w p pt 7 ps 1.3 t 'Blanes–Moan SRKN14a', 'data/grid_kg3d_step_blanes_moan_srkn14a.dat' u 1:3 w l lw 1.5 t 'Blanes–Moan SRKN14a: fit c d log2 d'
+  'data/grid_kg3d_step_blanes_moan_srkn6b.dat' u 1:2 w p pt 7 ps 1.3 t 'Blanes–Moan SRKN6b', 'data/grid_kg3d_step_blanes_moan_srkn6b.dat' u 1:3 w l lw 1.5 t 'Blanes–Moan SRKN6b: fit c d log2 d'
 set terminal svg size 1000,620 dynamic font 'DejaVu Sans,11'
 set output 'grid_kg3d_step.svg'
 plot 'data/grid_kg3d_step_aba1064.dat' u 1:2 w p pt 7 ps 1.3 t 'ABA1064', 'data/grid_kg3d_step_aba1064.dat' u 1:3 w l lw 1.5 t 'ABA1064: fit c d log2 d', \
   'data/grid_kg3d_step_serkn2s4.dat' u 1:2 w p pt 7 ps 1.3 t 'SERKN2s4', 'data/grid_kg3d_step_serkn2s4.dat' u 1:3 w l lw 1.5 t 'SERKN2s4: fit c d log2 d', \
-  'data/grid_kg3d_step_blanes_moan_srkn14a.dat' u 1:2 w p pt 7 ps 1.3 t 'Blanes–Moan SRKN14a', 'data/grid_kg3d_step_blanes_moan_srkn14a.dat' u 1:3 w l lw 1.5 t 'Blanes–Moan SRKN14a: fit c d log2 d'
+  'data/grid_kg3d_step_blanes_moan_srkn6b.dat' u 1:2 w p pt 7 ps 1.3 t 'Blanes–Moan SRKN6b', 'data/grid_kg3d_step_blanes_moan_srkn6b.dat' u 1:3 w l lw 1.5 t 'Blanes–Moan SRKN6b: fit c d log2 d'
 unset output
