@@ -4,11 +4,14 @@
 // the step size h; and the thread CPU timer both use.
 #pragma once
 
+#include <benchmark/benchmark.h>
+
 #include <Eigen/Core>
 #include <cmath>
 #include <ctime>
 #include <erkn/erkn.hpp>
 #include <numbers>
+#include <vector>
 
 #include "splitting_peer.hpp"
 
@@ -102,6 +105,41 @@ erkn::Integrator make_erkn(const erkn::Method& m, bool compensated) {
   erkn::Options o;
   o.compensated_summation = compensated;
   return erkn::Integrator(m, make_system<P>(), P::h, P::q0(), P::p0(), o);
+}
+
+// CPU seconds of the timed loop shared by the per-evaluation benchmarks: batches of steps of
+// erkn (plain and compensated) and of the peer, and the bare gradient at states along the
+// trajectory (one per step of an untimed twin), so its inputs vary as they do in a run.
+struct BatchTimes {
+  double plain = 0, kahan = 0, peer = 0, grad = 0;
+  static constexpr int kBatch = 256;
+};
+
+template <class P, class State, class Peer>
+BatchTimes time_batches(State& state, erkn::Integrator& plain, erkn::Integrator& kahan, Peer& peer,
+                        erkn::Integrator& twin) {
+  BatchTimes t;
+  std::vector<Eigen::VectorXd> states(BatchTimes::kBatch);
+  Eigen::VectorXd g = P::q0();
+  for (auto _ : state) {
+    t.plain += seconds([&] {
+      for (int k = 0; k < BatchTimes::kBatch; ++k) plain.step();
+    });
+    t.kahan += seconds([&] {
+      for (int k = 0; k < BatchTimes::kBatch; ++k) kahan.step();
+    });
+    t.peer += seconds([&] {
+      for (int k = 0; k < BatchTimes::kBatch; ++k) peer.step();
+    });
+    for (Eigen::VectorXd& q : states) twin.step(), q = twin.q();
+    t.grad += seconds([&] {
+      for (const Eigen::VectorXd& q : states) {
+        P::grad(q, g);
+        benchmark::DoNotOptimize(g.data());
+      }
+    });
+  }
+  return t;
 }
 
 }  // namespace bench

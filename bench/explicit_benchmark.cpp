@@ -30,6 +30,7 @@
 
 namespace {
 
+using bench::BatchTimes;
 using bench::make_erkn;
 using bench::make_peer;
 using bench::make_system;
@@ -37,6 +38,7 @@ using bench::P1;
 using bench::P2;
 using bench::P3;
 using bench::seconds;
+using bench::time_batches;
 
 std::vector<erkn::Method> explicit_methods() {
   std::vector<erkn::Method> out;
@@ -54,42 +56,21 @@ void per_evaluation(benchmark::State& state) {
   state.SetLabel(std::string(m.name()));
   erkn::Integrator plain = make_erkn<P>(m, false), kahan = make_erkn<P>(m, true);
   auto peer = make_peer<P>(m);
-  const int batch = 256;
-  double t_plain = 0, t_kahan = 0, t_peer = 0, t_grad = 0;
   long e0 = plain.statistics().gradient_evaluations, p0 = peer.evaluations();
   erkn::Integrator twin = make_erkn<P>(m, false);
-  std::vector<Eigen::VectorXd> states(batch);
-  Eigen::VectorXd g = P::q0();
-  for (auto _ : state) {
-    t_plain += seconds([&] {
-      for (int k = 0; k < batch; ++k) plain.step();
-    });
-    t_kahan += seconds([&] {
-      for (int k = 0; k < batch; ++k) kahan.step();
-    });
-    t_peer += seconds([&] {
-      for (int k = 0; k < batch; ++k) peer.step();
-    });
-    for (Eigen::VectorXd& q : states) twin.step(), q = twin.q();
-    t_grad += seconds([&] {
-      for (const Eigen::VectorXd& q : states) {
-        P::grad(q, g);
-        benchmark::DoNotOptimize(g.data());
-      }
-    });
-  }
+  const BatchTimes t = time_batches<P>(state, plain, kahan, peer, twin);
   const double evals = double(plain.statistics().gradient_evaluations - e0);
   const double peer_evals = double(peer.evaluations() - p0);
-  const double per_grad = t_grad / (double(state.iterations()) * batch);
+  const double per_grad = t.grad / (double(state.iterations()) * BatchTimes::kBatch);
   state.counters["grad_ns"] = 1e9 * per_grad;
-  state.counters["erkn_ns/eval"] = 1e9 * t_plain / evals;
-  state.counters["erkn_kahan_ns/eval"] = 1e9 * t_kahan / evals;
-  state.counters["peer_ns/eval"] = 1e9 * t_peer / peer_evals;
-  state.counters["ratio"] = (t_plain / evals) / (t_peer / peer_evals);
-  state.counters["ratio_kahan"] = (t_kahan / evals) / (t_peer / peer_evals);
-  state.counters["erkn_outside_gradU"] = 1 - per_grad * evals / t_plain;
-  state.counters["erkn_kahan_outside_gradU"] = 1 - per_grad * evals / t_kahan;
-  state.counters["peer_outside_gradU"] = 1 - per_grad * peer_evals / t_peer;
+  state.counters["erkn_ns/eval"] = 1e9 * t.plain / evals;
+  state.counters["erkn_kahan_ns/eval"] = 1e9 * t.kahan / evals;
+  state.counters["peer_ns/eval"] = 1e9 * t.peer / peer_evals;
+  state.counters["ratio"] = (t.plain / evals) / (t.peer / peer_evals);
+  state.counters["ratio_kahan"] = (t.kahan / evals) / (t.peer / peer_evals);
+  state.counters["erkn_outside_gradU"] = 1 - per_grad * evals / t.plain;
+  state.counters["erkn_kahan_outside_gradU"] = 1 - per_grad * evals / t.kahan;
+  state.counters["peer_outside_gradU"] = 1 - per_grad * peer_evals / t.peer;
   benchmark::DoNotOptimize(peer.q().data());
 }
 

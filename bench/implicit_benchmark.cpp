@@ -24,9 +24,11 @@
 
 namespace {
 
+using bench::BatchTimes;
 using bench::make_erkn;
 using bench::make_peer;
 using bench::seconds;
+using bench::time_batches;
 
 std::vector<erkn::Method> implicit_methods() {
   std::vector<erkn::Method> out;
@@ -52,44 +54,23 @@ void per_evaluation(benchmark::State& state) {
   state.SetLabel(std::string(m.name()));
   erkn::Integrator plain = make_erkn<P>(m, false), kahan = make_erkn<P>(m, true);
   auto peer = make_peer<P>(peer_method());
-  const int batch = 256;
-  double t_plain = 0, t_kahan = 0, t_peer = 0, t_grad = 0;
   const erkn::Statistics s0 = plain.statistics();
   const long k0 = kahan.statistics().gradient_evaluations, p0 = peer.evaluations();
   erkn::Integrator twin = make_erkn<P>(m, false);
-  std::vector<Eigen::VectorXd> states(batch);
-  Eigen::VectorXd g = P::q0();
-  for (auto _ : state) {
-    t_plain += seconds([&] {
-      for (int k = 0; k < batch; ++k) plain.step();
-    });
-    t_kahan += seconds([&] {
-      for (int k = 0; k < batch; ++k) kahan.step();
-    });
-    t_peer += seconds([&] {
-      for (int k = 0; k < batch; ++k) peer.step();
-    });
-    for (Eigen::VectorXd& q : states) twin.step(), q = twin.q();
-    t_grad += seconds([&] {
-      for (const Eigen::VectorXd& q : states) {
-        P::grad(q, g);
-        benchmark::DoNotOptimize(g.data());
-      }
-    });
-  }
+  const BatchTimes t = time_batches<P>(state, plain, kahan, peer, twin);
   const erkn::Statistics& s = plain.statistics();
   const double evals = double(s.gradient_evaluations - s0.gradient_evaluations);
   const double kahan_evals = double(kahan.statistics().gradient_evaluations - k0);
-  const double peer_per_eval = t_peer / double(peer.evaluations() - p0);
-  const double per_grad = t_grad / (double(state.iterations()) * batch);
+  const double peer_per_eval = t.peer / double(peer.evaluations() - p0);
+  const double per_grad = t.grad / (double(state.iterations()) * BatchTimes::kBatch);
   state.counters["grad_ns"] = 1e9 * per_grad;
-  state.counters["erkn_ns/eval"] = 1e9 * t_plain / evals;
+  state.counters["erkn_ns/eval"] = 1e9 * t.plain / evals;
   state.counters["peer_ns/eval"] = 1e9 * peer_per_eval;
-  state.counters["ratio"] = t_plain / evals / peer_per_eval;
-  state.counters["ratio_kahan"] = t_kahan / kahan_evals / peer_per_eval;
+  state.counters["ratio"] = t.plain / evals / peer_per_eval;
+  state.counters["ratio_kahan"] = t.kahan / kahan_evals / peer_per_eval;
   state.counters["gradU/stage"] = evals / double(s.steps - s0.steps) / m.stages();
   state.counters["newton"] = double(s.newton_fallbacks - s0.newton_fallbacks);
-  state.counters["erkn_outside_gradU"] = 1 - per_grad * evals / t_plain;
+  state.counters["erkn_outside_gradU"] = 1 - per_grad * evals / t.plain;
   benchmark::DoNotOptimize(peer.q().data());
 }
 
