@@ -17,6 +17,11 @@ struct SeriesTableau {
   std::vector<Qs> c;
   std::vector<std::vector<Qs>> b, bbar;  ///< [i][k]: coefficient of V^k
   std::vector<std::vector<Qs>> abar;     ///< [i(i+1)/2 + j][k], j <= i (0-based)
+  /// Modified kicks (empty: none). Stage i's force is d_i f(Q_i) + h^2 et_i f'(Q_i) f(Q_i),
+  /// f = -grad U; b_mod, bbar_mod, abar_mod are the kernels of b, bbar, abar that multiply
+  /// the second term (for an explicit method the same phi-kernels with et_i in place of d_i).
+  std::vector<std::vector<Qs>> b_mod, bbar_mod, abar_mod;
+  bool modified() const { return !b_mod.empty(); }
 };
 
 struct CheckedCondition {
@@ -44,8 +49,17 @@ std::vector<Qs> residuals(const SeriesTableau& t, const std::vector<SenTree>& tr
 
 /// The Taylor coefficients (to V^(terms-1)) of the explicit method with nodes c and weights d:
 /// b_i = d_i phi0((1-c_i)^2 V), bbar_i = d_i (1-c_i) phi1((1-c_i)^2 V),
-/// abar_ij = d_j (c_i-c_j) phi1((c_i-c_j)^2 V) (j < i), abar_ii = 0.
-SeriesTableau explicit_series(const std::vector<Qs>& c, const std::vector<Qs>& d, int terms);
+/// abar_ij = d_j (c_i-c_j) phi1((c_i-c_j)^2 V) (j < i), abar_ii = 0; with modified-kick
+/// coefficients e (empty or all zero: none) the same kernels with -2 e_i in place of d_i
+/// (modified_kick_weight) in b_mod, bbar_mod, abar_mod.
+SeriesTableau explicit_series(const std::vector<Qs>& c, const std::vector<Qs>& d, int terms,
+                              const std::vector<Qs>& e = {});
+
+/// The factor et/e between the coefficient et of f'(Q) f(Q) in a stage's force (the form the
+/// tree expansion uses, f = -grad U) and the spec's e in p -= h (d grad U + h^2 e grad(|grad
+/// U|^2)): grad(|grad U|^2) = 2 Hess(U) grad U = 2 f' f, so -h^3 e grad(|grad U|^2) = h^3 (-2 e) f'
+/// f.
+inline constexpr int modified_kick_weight = -2;
 
 /// Every condition of power <= max_power, exactly or, if a coefficient is approximate, in
 /// Qs::kApproxDigits digits with |residual| <= Qs::approx_zero() for "holds".
