@@ -1,11 +1,13 @@
-// The grid transforms through FFTW (compiled when erkn is built with ERKN_WITH_FFTW): one
-// multi-dimensional r2r plan each way, made once per grid and process and shared by every
-// Integrator on that grid (setup then plans nothing: at N = 32 planning from wisdom cost ~6 us,
-// more than the rest of the setup). FFTW's planner is not thread-safe (ensembles construct
-// integrators on threads), so planning holds one mutex; executing a plan on new arrays of the
-// planned alignment (fftw_execute_r2r; every buffer here is fftw_alloc'ed) is thread-safe.
+// The grid transforms through FFTW (compiled when erkn is built with ERKN_WITH_FFTW): per grid
+// one multi-dimensional plan each way, r2r (GridBackend) or, where every axis is periodic, r2c and
+// c2r (HalfSpectrumBackend), made once per grid and process and shared by every Integrator on
+// that grid (setup then plans nothing: at N = 32 planning from wisdom cost ~6 us, more than the
+// rest of the setup). FFTW's planner is not thread-safe (ensembles construct integrators on
+// threads), so planning holds one mutex; executing a plan on new arrays of the planned alignment
+// (fftw_execute_r2r, fftw_execute_dft_r2c/c2r; every buffer here is fftw_alloc'ed) is thread-safe.
 #include <fftw3.h>
 
+#include <complex>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -65,9 +67,12 @@ struct Plans {
   fftw_plan forward = nullptr, inverse = nullptr;
 };
 
+// A grid's plans by its sizes and r2r kinds (forward kinds; none: r2c/c2r).
+using PlanKey = std::pair<std::vector<int>, std::vector<int>>;
+
 // Every grid's plans, kept for the process and destroyed at its exit (static destruction).
 struct PlanCache {
-  std::map<std::pair<std::vector<int>, std::vector<int>>, Plans> plans;
+  std::map<PlanKey, Plans> plans;
   ~PlanCache() {
     for (auto& entry : plans) {
       fftw_destroy_plan(entry.second.forward);
@@ -76,21 +81,16 @@ struct PlanCache {
   }
 };
 
-// The plans of a grid (sizes n, forward kinds fk, inverse kinds ik), planned on in/out at the
-// first request and kept for the process (a handful of grids).
-Plans shared_plans(const std::vector<int>& n, const std::vector<fftw_r2r_kind>& fk,
-                   const std::vector<fftw_r2r_kind>& ik, double* in, double* out) {
+// The plans of key, made by make() (on the caller's buffers) at the first request and kept for
+// the process (a handful of grids). FFTW_MEASURE: erkn_fftw_planner_benchmark measured a
+// transform pair 1.2-3.0x faster than with FFTW_ESTIMATE at 256^2..128^3, for 0.2-1.9 s of
+// planning once per grid and process.
+template <class Make>
+Plans shared_plans(PlanKey key, Make&& make) {
   static PlanCache cache;
-  std::pair<std::vector<int>, std::vector<int>> key{n, std::vector<int>(fk.begin(), fk.end())};
   std::lock_guard lock(planner_mutex());
   if (auto it = cache.plans.find(key); it != cache.plans.end()) return it->second;
-  // Out of place; the input is a private copy, so FFTW may destroy it (faster for HC2R).
-  // FFTW_MEASURE: erkn_fftw_planner_benchmark measured a transform pair 1.2-3.0x faster than
-  // with FFTW_ESTIMATE at 256^2..128^3, for 0.2-1.9 s of planning once per grid and process.
-  const unsigned flags = FFTW_MEASURE | FFTW_DESTROY_INPUT;
-  Plans plans;
-  plans.forward = fftw_plan_r2r(int(n.size()), n.data(), in, out, fk.data(), flags);
-  plans.inverse = fftw_plan_r2r(int(n.size()), n.data(), in, out, ik.data(), flags);
+  const Plans plans = make();
   if (!plans.forward || !plans.inverse) {
     if (plans.forward) fftw_destroy_plan(plans.forward);
     if (plans.inverse) fftw_destroy_plan(plans.inverse);
@@ -99,49 +99,73 @@ Plans shared_plans(const std::vector<int>& n, const std::vector<fftw_r2r_kind>& 
   return cache.plans.emplace(std::move(key), plans).first->second;
 }
 
+// FFTW's sizes of the axes (int), refusing an axis too long for them.
+std::vector<int> fftw_sizes(const std::vector<GridAxis>& axes) {
+  std::vector<int> n;
+  for (const GridAxis& axis : axes) {
+    if (axis.n > std::numeric_limits<int>::max())
+      throw Error("FFTW: a grid axis of " + std::to_string(axis.n) + " points is too long");
+    n.push_back(int(axis.n));
+  }
+  return n;
+}
+
+Eigen::Index size(const std::vector<GridAxis>& axes) {
+  Eigen::Index d = 1;
+  for (const GridAxis& axis : axes) d *= axis.n;
+  return d;
+}
+
+// An FFTW-aligned array of n T (double or fftw_complex).
+template <class T>
 struct Buffer {
-  explicit Buffer(Eigen::Index d) : data(fftw_alloc_real(std::size_t(d))) {
+  explicit Buffer(Eigen::Index n)
+      : data(static_cast<T*>(fftw_malloc(sizeof(T) * std::size_t(std::max<Eigen::Index>(n, 1))))) {
     if (!data)
-      throw Error("FFTW could not allocate a grid buffer of " + std::to_string(d) + " doubles");
+      throw Error("FFTW could not allocate a grid buffer of " + std::to_string(n) + " numbers");
   }
   ~Buffer() { fftw_free(data); }
   Buffer(const Buffer&) = delete;
   Buffer& operator=(const Buffer&) = delete;
-  double* data;
+  T* data;
 };
+
+// True when p has the alignment of the planned array `planned` (fftw_execute_*'s rule).
+template <class T>
+bool planned_alignment(const T* p, T* planned) {
+  return fftw_alignment_of(reinterpret_cast<double*>(const_cast<T*>(p))) ==
+         fftw_alignment_of(reinterpret_cast<double*>(planned));
+}
 
 class FftwBackend final : public GridBackend {
  public:
   explicit FftwBackend(const std::vector<GridAxis>& axes) : d_(size(axes)), in_(d_), out_(d_) {
-    std::vector<int> n;
+    const std::vector<int> n = fftw_sizes(axes);
     std::vector<fftw_r2r_kind> fk, ik;
     for (const GridAxis& axis : axes) {
-      if (axis.n > std::numeric_limits<int>::max())
-        throw Error("FFTW: a grid axis of " + std::to_string(axis.n) + " points is too long");
-      n.push_back(int(axis.n));
       fk.push_back(forward_kind(axis.boundary));
       ik.push_back(inverse_kind(axis.boundary));
       scale_ /= logical_size(axis);
     }
-    plans_ = shared_plans(n, fk, ik, in_.data, out_.data);
+    // Out of place; the input is a private copy, so FFTW may destroy it (faster for HC2R).
+    const unsigned flags = FFTW_MEASURE | FFTW_DESTROY_INPUT;
+    plans_ = shared_plans({n, std::vector<int>(fk.begin(), fk.end())}, [&] {
+      const int rank = int(n.size());
+      return Plans{fftw_plan_r2r(rank, n.data(), in_.data, out_.data, fk.data(), flags),
+                   fftw_plan_r2r(rank, n.data(), in_.data, out_.data, ik.data(), flags)};
+    });
   }
 
   void forward(const double* x, double* y) override { run(plans_.forward, x, y, 1.0); }
   void inverse(const double* y, double* x) override { run(plans_.inverse, y, x, scale_); }
 
  private:
-  static Eigen::Index size(const std::vector<GridAxis>& axes) {
-    Eigen::Index d = 1;
-    for (const GridAxis& axis : axes) d *= axis.n;
-    return d;
-  }
-
   // to = factor * plan(from): from is copied (r2r plans may overwrite their input); the output
   // goes straight to `to` when its alignment is the planned one (fftw_execute_r2r's rule).
   void run(fftw_plan plan, const double* from, double* to, double factor) {
     Eigen::Map<Eigen::VectorXd>(in_.data, d_) = Eigen::Map<const Eigen::VectorXd>(from, d_);
     Eigen::Map<Eigen::VectorXd> result(to, d_);
-    if (fftw_alignment_of(to) == fftw_alignment_of(out_.data)) {
+    if (planned_alignment(to, out_.data)) {
       fftw_execute_r2r(plan, in_.data, to);
       if (factor != 1.0) result *= factor;
     } else {
@@ -151,8 +175,59 @@ class FftwBackend final : public GridBackend {
   }
 
   Eigen::Index d_;
-  Buffer in_, out_;
+  Buffer<double> in_, out_;
   double scale_ = 1;
+  Plans plans_;
+};
+
+class FftwHalfSpectrum final : public HalfSpectrumBackend {
+ public:
+  explicit FftwHalfSpectrum(const std::vector<GridAxis>& axes)
+      : d_(size(axes)), m_(half_spectrum_size(axes)), real_(d_), spectrum_(m_) {
+    const std::vector<int> n = fftw_sizes(axes);
+    plans_ = shared_plans({n, {}}, [&] {
+      const int rank = int(n.size());
+      // r2c keeps its input (FFTW's default out of place), so forward reads the caller's x;
+      // c2r may destroy it (its default), inverse gives it a scaled copy.
+      return Plans{fftw_plan_dft_r2c(rank, n.data(), real_.data, spectrum_.data, FFTW_MEASURE),
+                   fftw_plan_dft_c2r(rank, n.data(), spectrum_.data, real_.data,
+                                     FFTW_MEASURE | FFTW_DESTROY_INPUT)};
+    });
+  }
+
+  // Straight from x to y when both have the planned alignment (no copy), else through buffers.
+  void forward(const double* x, std::complex<double>* y) override {
+    auto* out = reinterpret_cast<fftw_complex*>(y);
+    if (planned_alignment(x, real_.data) && planned_alignment(out, spectrum_.data)) {
+      fftw_execute_dft_r2c(plans_.forward, const_cast<double*>(x), out);
+      return;
+    }
+    Eigen::Map<Eigen::VectorXd>(real_.data, d_) = Eigen::Map<const Eigen::VectorXd>(x, d_);
+    fftw_execute_dft_r2c(plans_.forward, real_.data, spectrum_.data);
+    complex_map(out) = complex_map(spectrum_.data);
+  }
+
+  // y / d into the buffer c2r may destroy (the copy and the normalisation in one pass), then
+  // straight to x when it has the planned alignment.
+  void inverse(const std::complex<double>* y, double* x) override {
+    complex_map(spectrum_.data) = scale() * Eigen::Map<const Eigen::VectorXcd>(y, m_);
+    if (planned_alignment(x, real_.data)) {
+      fftw_execute_dft_c2r(plans_.inverse, spectrum_.data, x);
+      return;
+    }
+    fftw_execute_dft_c2r(plans_.inverse, spectrum_.data, real_.data);
+    Eigen::Map<Eigen::VectorXd>(x, d_) = Eigen::Map<const Eigen::VectorXd>(real_.data, d_);
+  }
+
+ private:
+  double scale() const { return 1 / double(d_); }
+  Eigen::Map<Eigen::VectorXcd> complex_map(fftw_complex* z) const {
+    return {reinterpret_cast<std::complex<double>*>(z), m_};
+  }
+
+  Eigen::Index d_, m_;
+  Buffer<double> real_;
+  Buffer<fftw_complex> spectrum_;
   Plans plans_;
 };
 
@@ -162,5 +237,16 @@ std::unique_ptr<GridBackend> make_grid_backend(const std::vector<GridAxis>& axes
   return std::make_unique<FftwBackend>(axes);
 }
 bool grid_backend_is_fftw() { return true; }
+
+bool half_spectrum_available(const std::vector<GridAxis>& axes) {
+  for (const GridAxis& axis : axes)
+    if (axis.boundary != GridAxis::Boundary::periodic) return false;
+  return !axes.empty();
+}
+
+std::unique_ptr<HalfSpectrumBackend> make_half_spectrum_backend(const std::vector<GridAxis>& axes) {
+  if (!half_spectrum_available(axes)) throw Error("no real-to-complex transform for these axes");
+  return std::make_unique<FftwHalfSpectrum>(axes);
+}
 
 }  // namespace erkn::detail

@@ -3,6 +3,12 @@
 #include <cmath>
 #include <numbers>
 
+#include "erkn/error.hpp"
+
+#ifndef ERKN_WITH_FFTW
+#include <unsupported/Eigen/FFT>
+#endif
+
 namespace erkn::detail {
 
 Eigen::MatrixXd axis_forward_matrix(const GridAxis& axis) {
@@ -48,6 +54,37 @@ Eigen::ArrayXd axis_weights(const GridAxis& axis) {
     }
   }
   return {};
+}
+
+Eigen::Index half_spectrum_size(const std::vector<GridAxis>& axes) {
+  Eigen::Index m = axes.back().n / 2 + 1;
+  for (std::size_t a = 0; a + 1 < axes.size(); ++a) m *= axes[a].n;
+  return m;
+}
+
+Eigen::ArrayXd half_spectrum_weights(const std::vector<GridAxis>& axes) {
+  const Eigen::Index n = axes.back().n, half = n / 2 + 1, m = half_spectrum_size(axes);
+  const double d = double(m / half) * double(n);
+  Eigen::ArrayXd w = Eigen::ArrayXd::Constant(m, 2 / d);
+  for (Eigen::Index row = 0; row < m; row += half) {
+    w[row] = 1 / d;
+    if (n % 2 == 0) w[row + n / 2] = 1 / d;
+  }
+  return w;
+}
+
+Eigen::VectorXd half_spectrum_eigenvalues(const std::vector<GridAxis>& axes, double shift) {
+  // Built one axis at a time (row-major), as Stiffness::grid does over the whole spectrum.
+  Eigen::ArrayXd lambda = Eigen::ArrayXd::Constant(1, shift);
+  for (const GridAxis& axis : axes) {
+    const bool last = &axis == &axes.back();
+    const Eigen::ArrayXd mu = axis.eigenvalues().head(last ? axis.n / 2 + 1 : axis.n).array();
+    Eigen::ArrayXd next(lambda.size() * mu.size());
+    for (Eigen::Index i = 0; i < lambda.size(); ++i)
+      next.segment(i * mu.size(), mu.size()) = mu + lambda[i];
+    lambda.swap(next);
+  }
+  return lambda.max(0.0).matrix();  // (round-off negatives, as Stiffness::grid's)
 }
 
 namespace {
@@ -104,6 +141,33 @@ std::unique_ptr<GridBackend> make_grid_backend(const std::vector<GridAxis>& axes
   return make_separable_backend(axes);
 }
 bool grid_backend_is_fftw() { return false; }
+
+namespace {
+
+// One periodic axis through Eigen's FFT (kissfft; its inverse divides by n).
+class EigenHalfSpectrum final : public HalfSpectrumBackend {
+ public:
+  explicit EigenHalfSpectrum(Eigen::Index n) : n_(n) {
+    fft_.SetFlag(Eigen::FFT<double>::HalfSpectrum);
+  }
+  void forward(const double* x, std::complex<double>* y) override { fft_.fwd(y, x, n_); }
+  void inverse(const std::complex<double>* y, double* x) override { fft_.inv(x, y, n_); }
+
+ private:
+  Eigen::Index n_;
+  Eigen::FFT<double> fft_;
+};
+
+}  // namespace
+
+bool half_spectrum_available(const std::vector<GridAxis>& axes) {
+  return axes.size() == 1 && axes[0].boundary == GridAxis::Boundary::periodic && axes[0].n >= 4;
+}
+
+std::unique_ptr<HalfSpectrumBackend> make_half_spectrum_backend(const std::vector<GridAxis>& axes) {
+  if (!half_spectrum_available(axes)) throw Error("no real-to-complex transform for these axes");
+  return std::make_unique<EigenHalfSpectrum>(axes[0].n);
+}
 #endif
 
 }  // namespace erkn::detail

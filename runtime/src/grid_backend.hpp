@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <complex>
 #include <memory>
 #include <vector>
 
@@ -32,5 +33,34 @@ std::unique_ptr<GridBackend> make_separable_backend(const std::vector<GridAxis>&
 std::unique_ptr<GridBackend> make_grid_backend(const std::vector<GridAxis>& axes);
 /// True when make_grid_backend uses FFTW.
 bool grid_backend_is_fftw();
+
+/// The complex half spectrum of a grid whose axes are all periodic (a circulant M: one axis):
+/// forward y = the unnormalised DFT X_k = sum_j x_j e^{-2 pi i k.j/n} at k_0..k_{K-2} = 0..n_a-1
+/// and k_{K-1} = 0..n/2 (the other X_k are conj(X_{-k})), row-major, m = d / n (n/2 + 1) of
+/// them; inverse is its exact inverse and reads only what a real x can produce (the imaginary
+/// parts that must vanish are ignored). Real to complex: FFTW's r2c/c2r, whose SIMD codelets
+/// halfcomplex r2r lacks.
+class HalfSpectrumBackend {
+ public:
+  virtual ~HalfSpectrumBackend() = default;
+  /// y = F x; x holds d doubles, y m complex numbers; they may not overlap. x is not changed.
+  virtual void forward(const double* x, std::complex<double>* y) = 0;
+  /// x = F^{-1} y; y is not changed.
+  virtual void inverse(const std::complex<double>* y, double* x) = 0;
+};
+
+/// True when every axis is periodic and, without FFTW, there is one axis of n >= 4 (Eigen's
+/// real FFT: of size 1 it crashed, found by the API fuzz).
+bool half_spectrum_available(const std::vector<GridAxis>& axes);
+/// FFTW's r2c/c2r, or without FFTW Eigen's real FFT; throws unless half_spectrum_available.
+std::unique_ptr<HalfSpectrumBackend> make_half_spectrum_backend(const std::vector<GridAxis>& axes);
+/// The number m of half-spectrum coordinates.
+Eigen::Index half_spectrum_size(const std::vector<GridAxis>& axes);
+/// Weights w with |x|^2 = sum_k w_k |y_k|^2 (Parseval): 1/d where X_k is its own conjugate's
+/// partner (k_{K-1} = 0, or n/2 for even n), else 2/d (X_k stands for X_k and X_{-k}).
+Eigen::ArrayXd half_spectrum_weights(const std::vector<GridAxis>& axes);
+/// The eigenvalue shift + sum_a mu_a(k_a) of each coordinate (GridAxis::eigenvalues: wave number
+/// k_a and n_a - k_a share one).
+Eigen::VectorXd half_spectrum_eigenvalues(const std::vector<GridAxis>& axes, double shift);
 
 }  // namespace erkn::detail

@@ -47,7 +47,7 @@ double grid_tolerance(double t, double t_end, double h) {
 }
 
 // Circulant M: the explicit Fourier basis (folded matrix-vector products, O(N^2)) up to N =
-// kFourierBasisMaxN, beyond it FFTW's real transform (GridTransform) or else Eigen's FFT; explicit
+// kFourierBasisMaxN, beyond it the real FFT's half spectrum (FFTW's r2c, or else Eigen's); explicit
 // methods built with FFTW use it from N = kFftwMinN on. Thread CPU time per step (median of 15 x
 // 2000 steps, sine-Gordon, h = 0.8/N), basis vs FFTW: SABA2 N = 4 289 vs 217 ns, N = 32 1415 vs
 // 1139 ns, N = 64 3064 vs 2276 ns; SERKN3s4(1) N = 4 1025 vs 775 ns, N = 32 2573 vs 2091 ns,
@@ -103,19 +103,21 @@ std::unique_ptr<detail::StepperBase> make_stepper(const Method& method, System s
       return stepper_of<OrthogonalTransform, Eigen::ArrayXd>(
           x, d, method, std::move(system), h, options, OrthogonalTransform{&M.eigenvectors()},
           lambda);
-    case Stiffness::Structure::circulant:
-      if (d < (x && grid_backend_is_fftw() ? kFftwMinN : kFourierBasisMaxN + 1))
+    case Stiffness::Structure::circulant: {
+      const std::vector<GridAxis> axis{{d, 1.0, GridAxis::Boundary::periodic}};
+      if (d < (x && grid_backend_is_fftw() ? kFftwMinN : kFourierBasisMaxN + 1) ||
+          !half_spectrum_available(axis))
         return stepper_of<FourierBasisTransform, Eigen::ArrayXd>(
             x, d, method, std::move(system), h, options, FourierBasisTransform(d),
             FourierBasisTransform::coordinate_eigenvalues(lambda, d));
-      if (grid_backend_is_fftw())
-        return stepper_of<GridTransform, Eigen::ArrayXd>(
-            x, d, method, std::move(system), h, options,
-            GridTransform({{d, 1.0, GridAxis::Boundary::periodic}}),
-            GridTransform::halfcomplex_eigenvalues(lambda, d));
-      return stepper_of<RealFftTransform, Eigen::ArrayXd>(x, d, method, std::move(system), h,
-                                                          options, RealFftTransform(d), lambda);
+      return stepper_of<HalfSpectrumTransform, Eigen::ArrayXd>(
+          x, d, method, std::move(system), h, options, HalfSpectrumTransform(axis), lambda);
+    }
     case Stiffness::Structure::grid:
+      if (half_spectrum_available(M.axes()))
+        return stepper_of<HalfSpectrumTransform, Eigen::ArrayXd>(
+            x, d, method, std::move(system), h, options, HalfSpectrumTransform(M.axes()),
+            half_spectrum_eigenvalues(M.axes(), M.shift()));
       return stepper_of<GridTransform, Eigen::ArrayXd>(x, d, method, std::move(system), h, options,
                                                        GridTransform(M.axes()), lambda);
   }

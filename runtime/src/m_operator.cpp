@@ -6,9 +6,10 @@ namespace erkn::detail {
 
 MOperator::MOperator(const Stiffness& M, Eigen::Index d) : M_(M) {
   if (M.structure() != Stiffness::Structure::circulant) return;
-  // (N < 4: the stencil; a real FFT of size 1 crashed Eigen's kissfft, found by the API fuzz.)
-  if (d < 4 || double(M.nonzeros().size()) <= 2 * std::log2(double(d))) return;
-  fft_ = std::make_unique<RealFftTransform>(d);
+  const std::vector<GridAxis> axis{{d, 1.0, GridAxis::Boundary::periodic}};
+  if (!half_spectrum_available(axis) || double(M.nonzeros().size()) <= 2 * std::log2(double(d)))
+    return;
+  fft_ = std::make_unique<HalfSpectrumTransform>(axis);
   spectrum_.resize(d / 2 + 1);
 }
 

@@ -21,7 +21,7 @@ class MOperator {
   void apply_grid(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
 
   Stiffness M_;
-  std::unique_ptr<RealFftTransform> fft_;  // set for a circulant M applied through the FFT
+  std::unique_ptr<HalfSpectrumTransform> fft_;  // set for a circulant M applied through the FFT
   Eigen::ArrayXcd spectrum_;
 };
 

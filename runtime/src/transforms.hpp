@@ -8,7 +8,6 @@
 #include <complex>
 #include <memory>
 #include <numbers>
-#include <unsupported/Eigen/FFT>
 #include <vector>
 
 #include "grid_backend.hpp"
@@ -110,35 +109,38 @@ struct FourierBasisTransform {
   }
 };
 
-/// Symmetric circulant M: the real DFT (bins 0..N/2) diagonalises it.
-struct RealFftTransform {
+/// Circulant M (one periodic axis) and grid M whose axes are all periodic: the complex half
+/// spectrum of grid_backend.hpp (FFTW's r2c/c2r, or Eigen's real FFT for one axis without FFTW).
+/// Eigen coordinates are the DFT coefficients X_k, m = d / n (n/2 + 1) complex numbers (n: the
+/// last axis's); X_k's eigenvalue is that of its wave numbers (circulant: lambda_k =
+/// Stiffness::eigenvalues()[k]; grid: half_spectrum_eigenvalues), and the real coefficients of
+/// the steppers act on the complex entries. Norms count each X_k once or twice (Parseval).
+struct HalfSpectrumTransform {
   using Spectral = Eigen::ArrayXcd;
-  explicit RealFftTransform(Eigen::Index n) : n(n) {
-    fft.SetFlag(Eigen::FFT<double>::HalfSpectrum);
-  }
-  Eigen::Index n;
-  Eigen::FFT<double> fft;
-  Eigen::Index spectral_size(Eigen::Index) const { return n / 2 + 1; }
+  /// Throws unless half_spectrum_available(axes).
+  explicit HalfSpectrumTransform(const std::vector<GridAxis>& axes)
+      : backend(make_half_spectrum_backend(axes)), weight(half_spectrum_weights(axes)) {}
+  std::unique_ptr<HalfSpectrumBackend> backend;
+  Eigen::ArrayXd weight;  // half_spectrum_weights
+  Eigen::Index spectral_size(Eigen::Index) const { return weight.size(); }
   template <class X, class Y>
   void forward(const X& x, Y&& y) {
-    fft.fwd(y.data(), x.data(), n);
+    backend->forward(x.data(), y.data());
   }
   template <class Y, class X>
   void inverse(const Y& y, X&& x) {
-    fft.inv(x.data(), y.data(), n);
+    backend->inverse(y.data(), x.data());
   }
-  /// The 2-norm of the physical vector (Parseval; bins 1..ceil(N/2)-1 stand for two bins each).
+  /// The 2-norm of the physical vector.
   template <class Y>
   double norm(const Y& y) const {
-    double sum = 2 * y.abs2().sum() - std::norm(y.coeff(0));
-    if (n % 2 == 0) sum -= std::norm(y.coeff(n / 2));
-    return std::sqrt(sum / double(n));
+    return std::sqrt((weight * y.abs2()).sum());
   }
 };
 
-/// Grid M (Stiffness::grid), and circulant M beyond the Fourier basis size when built with FFTW
-/// (one periodic axis): the separable real transform of grid_backend.hpp. Eigen coordinates are
-/// real, d of them, in the transform's order (row-major over the axes' coordinates k).
+/// Grid M (Stiffness::grid) with a Dirichlet or Neumann axis, or without FFTW: the separable real
+/// transform of grid_backend.hpp. Eigen coordinates are real, d of them, in the transform's order
+/// (row-major over the axes' coordinates k).
 struct GridTransform {
   using Spectral = Eigen::ArrayXd;
   explicit GridTransform(const std::vector<GridAxis>& axes)
@@ -151,13 +153,6 @@ struct GridTransform {
         next.segment(i * axis.n, axis.n) = weight[i] * w;
       weight.swap(next);
     }
-  }
-  /// The eigenvalue of each coordinate of a circulant M with one periodic axis (halfcomplex
-  /// order) from lambda_0..lambda_{N/2} (Stiffness::eigenvalues()).
-  static Eigen::VectorXd halfcomplex_eigenvalues(const Eigen::VectorXd& lambda, Eigen::Index n) {
-    Eigen::VectorXd all(n);
-    for (Eigen::Index k = 0; k < n; ++k) all[k] = lambda[std::min(k, n - k)];
-    return all;
   }
   std::unique_ptr<GridBackend> backend;
   Eigen::ArrayXd weight;
