@@ -6,9 +6,8 @@
 
 namespace ex {
 
-/// 2-D sine-Gordon u_tt = Lap u - sin u, periodic on [-6, 6)^2 with n x n points:
-/// u0 = 2.5 exp(-(x^2 + y^2)), u_t(0) = 0; U = -sum cos u. Error at t = 1.
-Problem sine_gordon_2d(int n);
+/// 2-D sine-Gordon (the problems library's; shared with the benchmarks).
+using erkn::problems::sine_gordon_2d;
 
 /// 3-D Klein-Gordon / phi^4 u_tt = Lap u - u - u^3 on [0, 1]^3, Dirichlet, n^3 interior points:
 /// u0 = 2 sin(pi x) sin(pi y) sin(pi z) + exp(-100 |x - (0.3, 0.4, 0.5)|^2), u_t(0) = 0;

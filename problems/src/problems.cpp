@@ -120,6 +120,26 @@ Problem stellar_orbits(double eps) {
   return p;
 }
 
+Problem sine_gordon_2d(int n) {
+  const double L = 12, dx = L / n;
+  Problem p;
+  p.key = "SG2D";
+  p.title = "2-D sine-Gordon, periodic, " + std::to_string(n) + "^2";
+  p.M = LinearPart::grid(
+      {{n, dx, GridAxis::Boundary::periodic}, {n, dx, GridAxis::Boundary::periodic}}, 0.0);
+  p.q0.resize(n * n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double x = -L / 2 + i * dx, y = -L / 2 + j * dx;
+      p.q0[i * n + j] = 2.5 * std::exp(-(x * x + y * y));
+    }
+  p.p0 = Vec::Zero(n * n);
+  p.t_error = 1;
+  p.grad_u = [](const Vec& q, Vec& g) { g = q.array().sin(); };
+  p.potential = [](const Vec& q) { return -q.array().cos().sum(); };
+  return p;
+}
+
 Problem problem_by_key(const std::string& key) {
   if (key == "P1") return sine_gordon(32);
   if (key == "P2") return duffing();

@@ -52,6 +52,10 @@ Problem sine_gordon(int n, double kappa = 1);
 Problem duffing(double k = 0.03);
 /// P3: stellar orbits q1'' + 4 q1 = eps q2^2, q2'' + q2 = 2 eps q1 q2, q(0) = (1, 1), q'(0) = 0.
 Problem stellar_orbits(double eps = 1e-3);
+/// 2-D sine-Gordon u_tt = Lap u - sin u, periodic on [-6, 6)^2 with n x n points (row-major,
+/// x along the first axis): u0 = 2.5 exp(-(x^2 + y^2)), u_t(0) = 0; U = -sum cos u; error at
+/// t = 1. No Hessian (no d x d matrix on a grid).
+Problem sine_gordon_2d(int n);
 /// FPU: Hairer-Lubich-Wanner's Fermi-Pasta-Ulam chain (GNI section I.5.1) of m stiff springs,
 /// q = (x0_1..x0_m, x1_1..x1_m), M = diag(0, omega^2), U = 1/4 sum_i u_i^4 with the elongations
 /// u_0 = x0_1 - x1_1, u_i = x0_{i+1} - x1_{i+1} - x0_i - x1_i, u_m = x0_m + x1_m;

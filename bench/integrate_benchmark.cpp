@@ -1,0 +1,64 @@
+// What users call against the loop a specialist writes (issue 17): for every explicit registry
+// method, erkn::Integrator construction + integrate(t_end) against the specialist's splitting
+// loop of the same method (bench/specialist_peer.hpp) doing the same steps from the same initial
+// data, setup included on both sides (the peer's FFTW plans, like erkn's per-process plans, are
+// made before timing). Three ratios per method and scene, erkn / peer:
+//   plain    compensated summation off             target <= 1.0
+//   default  erkn's default Options                target <= 1.05
+//   output   default, integrate(t_end, times, observer) with 20 output times on the grid,
+//            against the peer stopping there and transforming back          target <= 1.05
+// and for every implicit registry method its CPU per grad U against the explicit path's (the
+// median over explicit methods, same scene, same rounds; defaults) on P2, P3 and sine-Gordon
+// N = 32 (target <= 1.2). Scenes: Duffing (P2), stellar orbits (P3), sine-Gordon N = 32, 512,
+// 2048, 8192 (problems::sine_gordon) and the 2-D periodic sine-Gordon 256^2.
+//
+//   erkn_integrate_benchmark [--short] [--markdown FILE] [--csv FILE] [--compare CSV]
+// --short: fewer steps (down to 10 per run) and rounds (scripts/main.sh), every method and scene;
+// --csv: every cell's ratios; --compare: a previous run's csv, the per-cell spread reported.
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+#include "integrate_cells.hpp"
+#include "integrate_markdown.hpp"
+#include "integrate_report.hpp"
+
+namespace {
+
+using bench::Config;
+
+Config parse(int argc, char** argv) {
+  Config cfg;
+  for (int k = 1; k < argc; ++k) {
+    const std::string a = argv[k];
+    const bool has_value = k + 1 < argc;
+    if (a == "--short") {
+      cfg.short_mode = true;
+    } else if (a == "--markdown" && has_value) {
+      cfg.markdown = argv[++k];
+    } else if (a == "--csv" && has_value) {
+      cfg.csv = argv[++k];
+    } else if (a == "--compare" && has_value) {
+      cfg.compare = argv[++k];
+    } else {
+      std::fprintf(stderr, "erkn_integrate_benchmark: unknown or incomplete argument '%s'\n",
+                   a.c_str());
+      std::exit(2);
+    }
+  }
+  cfg.command = "erkn_integrate_benchmark";
+  for (int k = 1; k < argc; ++k) cfg.command += std::string(" ") + argv[k];
+  return cfg;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Config cfg = parse(argc, argv);
+  const bench::Results results = bench::measure_all(cfg);
+  bench::print_text(results, cfg, stdout);
+  if (!cfg.csv.empty()) bench::write_csv(results, cfg.csv);
+  if (!cfg.markdown.empty()) bench::write_markdown(results, cfg);
+  return 0;
+}

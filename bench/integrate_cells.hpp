@@ -1,0 +1,179 @@
+// erkn_integrate_benchmark's measurements: the scenes, and per scene and method the timed
+// contenders (bench/integrate_timing.hpp) and their ratios.
+#pragma once
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cstdio>
+#include <erkn/erkn.hpp>
+#include <erkn/problems.hpp>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "integrate_timing.hpp"
+#include "scenes.hpp"
+
+namespace bench {
+
+struct Config {
+  bool short_mode = false;
+  std::string markdown, csv, compare, command;
+  TimingPlan plan() const { return short_mode ? TimingPlan{5, 2e-3} : TimingPlan{7, 5e-3}; }
+};
+
+/// Output times per run of the output column (on the grid), where the steps allow.
+inline constexpr long kOutputs = 20;
+
+struct Scene {
+  std::string label;
+  erkn::problems::Problem problem;
+  double h;
+  long steps;  // a multiple of outputs()
+  long outputs() const { return std::min(steps, kOutputs); }
+};
+
+/// The scenes; --short takes fewer steps (down to 10), never fewer methods or scenes.
+inline std::vector<Scene> scenes(bool short_mode) {
+  namespace pr = erkn::problems;
+  auto steps = [&](long full, long brief) { return short_mode ? brief : full; };
+  return {{"Duffing (P2)", pr::duffing(), 1.0 / 100, steps(1000, 200)},
+          {"stellar orbits (P3)", pr::stellar_orbits(), 1.0 / 40, steps(400, 100)},
+          {"sine-Gordon N = 32", pr::sine_gordon(32), 1.0 / 40, steps(400, 100)},
+          {"sine-Gordon N = 512", pr::sine_gordon(512), 1.0 / 100, steps(200, 40)},
+          {"sine-Gordon N = 2048", pr::sine_gordon(2048), 1.0 / 100, steps(100, 20)},
+          {"sine-Gordon N = 8192", pr::sine_gordon(8192), 1.0 / 100, steps(40, 10)},
+          {"2-D sine-Gordon 256^2", pr::sine_gordon_2d(256), 1.0 / 40, steps(20, 10)}};
+}
+
+/// One explicit method on one scene: the contenders' median CPU ms per run and the ratios.
+struct Cell {
+  std::string scene, method;
+  long steps = 0;
+  double peer_ms = 0, plain = 0, deflt = 0, output = 0;
+};
+/// One implicit method's CPU per grad U against the explicit path's on a scene.
+struct ImplicitCell {
+  std::string scene, method;
+  double us_per_grad = 0, explicit_us_per_grad = 0, ratio = 0;
+};
+struct Results {
+  std::vector<Cell> cells;
+  std::vector<ImplicitCell> implicit_cells;
+};
+
+/// construct + integrate(t_end) with the given options and read the final state (one whole
+/// run, as a user calls it); returns the gradient evaluations.
+inline long erkn_run(const erkn::Method& m, const erkn::System& sys, const Scene& s,
+                     const erkn::Options& o, volatile double& sink) {
+  erkn::Integrator run(m, sys, s.h, s.problem.q0, s.problem.p0, o);
+  run.integrate(s.h * double(s.steps));
+  sink = sink + run.q()[0] + run.p()[0];
+  return run.statistics().gradient_evaluations;
+}
+
+/// t_end k / outputs, k = 1..outputs.
+inline Eigen::VectorXd output_times(const Scene& s) {
+  Eigen::VectorXd t(s.outputs());
+  for (long k = 0; k < s.outputs(); ++k) t[k] = s.h * double(s.steps / s.outputs() * (k + 1));
+  return t;
+}
+
+template <class Basis, class Gradient>
+Cell measure_cell(const Scene& s, const erkn::Method& m, const Basis& basis, Gradient g,
+                  const erkn::System& sys, const TimingPlan& plan) {
+  erkn::Options plain_options;
+  plain_options.compensated_summation = false;
+  const Eigen::VectorXd times = output_times(s);
+  volatile double sink = 0;  // what the observers read, so no output is optimised away
+  auto peer = [&](long segments) {
+    specialist::Peer run(m.table().c, m.table().d, m.stages(), s.h, basis, g, s.problem.q0,
+                         s.problem.p0);
+    Eigen::VectorXd q, p;
+    for (long k = 0; k < segments; ++k) {  // (one segment: the final state only)
+      run.run(s.steps / segments);
+      run.state(q, p);
+      sink = sink + q[0] + p[0];
+    }
+  };
+  auto erkn_output = [&] {
+    erkn::Integrator run(m, sys, s.h, s.problem.q0, s.problem.p0);
+    run.integrate(times[times.size() - 1], times,
+                  [&](double, const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
+                    sink = sink + q[0] + p[0];
+                  });
+  };
+  const std::vector<std::vector<double>> t =
+      time_rounds({[&] { peer(1); }, [&] { erkn_run(m, sys, s, plain_options, sink); },
+                   [&] { erkn_run(m, sys, s, {}, sink); }, [&] { peer(s.outputs()); }, erkn_output},
+                  plan);
+  return {s.label,
+          std::string(m.name()),
+          s.steps,
+          1e3 * median(t[0]),
+          median_ratio(t[1], t[0]),
+          median_ratio(t[2], t[0]),
+          median_ratio(t[4], t[3])};
+}
+
+template <class Basis, class Gradient>
+void measure_scene(const Scene& s, const Basis& basis, Gradient g, const TimingPlan& plan,
+                   Results& out) {
+  const erkn::System sys = erkn::problems::system(s.problem);
+  for (const erkn::Method& m : erkn::Method::all())
+    if (m.is_explicit()) {
+      out.cells.push_back(measure_cell(s, m, basis, g, sys, plan));
+      std::fprintf(stderr, ".");
+    }
+}
+
+/// CPU per grad U of every registry method with erkn's defaults (construct + integrate), and
+/// each implicit method's ratio to the median over the explicit methods, per round.
+inline void measure_implicit(const Scene& s, const TimingPlan& plan, Results& out) {
+  const erkn::System sys = erkn::problems::system(s.problem);
+  std::vector<erkn::Method> methods(erkn::Method::all().begin(), erkn::Method::all().end());
+  std::vector<std::function<void()>> runs;
+  std::vector<double> evaluations;
+  volatile double sink = 0;
+  for (const erkn::Method& m : methods) {
+    evaluations.push_back(double(erkn_run(m, sys, s, {}, sink)));
+    runs.push_back([&, m] { erkn_run(m, sys, s, {}, sink); });
+  }
+  std::vector<std::vector<double>> t = time_rounds(runs, plan);
+  std::vector<double> explicit_ref(size_t(plan.rounds));  // per round
+  for (size_t r = 0; r < explicit_ref.size(); ++r) {
+    std::vector<double> per_grad;
+    for (size_t i = 0; i < methods.size(); ++i)
+      if (methods[i].is_explicit()) per_grad.push_back(t[i][r] / evaluations[i]);
+    explicit_ref[r] = median(per_grad);
+  }
+  for (size_t i = 0; i < methods.size(); ++i) {
+    if (methods[i].is_explicit()) continue;
+    for (double& x : t[i]) x /= evaluations[i];
+    out.implicit_cells.push_back({s.label, std::string(methods[i].name()), 1e6 * median(t[i]),
+                                  1e6 * median(explicit_ref), median_ratio(t[i], explicit_ref)});
+  }
+}
+
+/// Every scene: the identity basis for scalar and diagonal M, FFTW r2c/c2r otherwise.
+inline Results measure_all(const Config& cfg) {
+  using Kind = erkn::problems::LinearPart::Kind;
+  Results out;
+  for (const Scene& s : scenes(cfg.short_mode)) {
+    std::fprintf(stderr, "%s ", s.label.c_str());
+    const Kind kind = s.problem.M.kind;
+    if (kind == Kind::scalar) {
+      measure_scene(s, identity_basis<1>(s.problem.M, 1), DuffingGradient{}, cfg.plan(), out);
+    } else if (kind == Kind::diagonal) {
+      measure_scene(s, identity_basis<2>(s.problem.M, 2), StellarGradient{}, cfg.plan(), out);
+    } else {
+      const specialist::FourierBasis basis = fourier_basis(s.problem.M);
+      measure_scene(s, basis, SineGordonGradient{}, cfg.plan(), out);
+    }
+    if (s.problem.dim() <= 32) measure_implicit(s, cfg.plan(), out);
+    std::fprintf(stderr, "\n");
+  }
+  return out;
+}
+
+}  // namespace bench

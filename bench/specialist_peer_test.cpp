@@ -1,0 +1,146 @@
+// The specialist's splitting loop (bench/specialist_peer.hpp) is the method it claims to be: for
+// every explicit registry method, its observed order on smooth problems (a circulant M through
+// FFTW r2c/c2r, a diagonal M through the identity) is the certified order, and its final state
+// agrees with erkn::Integrator's on the benchmark's scenes to round-off. Negative control: d_1
+// nudged by 5% breaks the order.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <erkn/erkn.hpp>
+#include <erkn/problems.hpp>
+
+#include "../tests/runtime/problems.hpp"
+#include "scenes.hpp"
+
+namespace bench {
+namespace {
+
+using erkn::Method;
+namespace problems = erkn::problems;
+
+std::vector<Method> explicit_methods() {
+  std::vector<Method> out;
+  for (const Method& m : Method::all())
+    if (m.is_explicit()) out.push_back(m);
+  return out;
+}
+
+// q(T) of the specialist's loop with n steps, d_1 scaled by (1 + nudge).
+template <class Basis, class Gradient>
+Eigen::VectorXd peer_q(const Method& m, const Basis& basis, Gradient g, const problems::Problem& p,
+                       double T, long n, double nudge = 0) {
+  std::vector<double> d(m.table().d, m.table().d + m.stages());
+  d[0] *= 1 + nudge;
+  specialist::Peer run(m.table().c, d.data(), m.stages(), T / double(n), basis, g, p.q0, p.p0);
+  run.run(n);
+  Eigen::VectorXd q, v;
+  run.state(q, v);
+  return q;
+}
+
+// The slope of log error over the four finest step counts n = 4, 6, 8, 11, ... (ratio sqrt 2,
+// up to 16384) whose error is above kFloor. The floor sits above the peer's round-off: it sums
+// plainly (no compensation), and its error at 16384 steps of sine-Gordon (|q| ~ 9) is 1e-13 or
+// more.
+constexpr double kFloor = 1e-12;
+template <class F>
+erkn::test::ObservedOrder observed_order(F&& error_at) {
+  erkn::test::ObservedOrder o;
+  for (int k = 0;; ++k) {
+    const long n = std::lround(4 * std::pow(2.0, k / 2.0));
+    const double err = n > 16384 ? 0 : error_at(n);
+    if (err < kFloor) break;
+    o.n.push_back(n), o.error.push_back(err);
+  }
+  if (o.n.size() < 4) return o;
+  o.n.erase(o.n.begin(), o.n.end() - 4), o.error.erase(o.error.begin(), o.error.end() - 4);
+  o.slope = erkn::test::fitted_slope(o.n, o.error);
+  return o;
+}
+
+// Observed order against a long-double RK4 reference (tests/runtime/problems.hpp), and the
+// nudged method's slope on the same step counts.
+template <class Basis, class Gradient, class GradientLD>
+void check_orders(const problems::Problem& p, const Basis& basis, Gradient g, GradientLD g_ld) {
+  constexpr double T = 2;
+  const Eigen::VectorXd ref =
+      erkn::test::long_double_reference(p.M.dense(p.dim()), g_ld, p.q0, p.p0, {T}).q[0];
+  for (const Method& m : explicit_methods()) {
+    SCOPED_TRACE(std::string(m.name()) + " on " + p.title);
+    auto error_at = [&](double nudge) {
+      return [&, nudge](long n) { return (peer_q(m, basis, g, p, T, n, nudge) - ref).norm(); };
+    };
+    const erkn::test::ObservedOrder o = observed_order(error_at(0));
+    ASSERT_EQ(o.n.size(), 4u) << "too few step sizes above the floor";
+    std::vector<double> nudged;
+    for (long n : o.n) nudged.push_back(error_at(5e-2)(n));
+    const double nudged_slope = erkn::test::fitted_slope(o.n, nudged);
+    std::printf(
+        "%-9s %-24s order %d: observed %.3f (n = %ld..%ld, error %.0e..%.0e); nudged d_1: %.2f\n",
+        std::string(m.name()).c_str(), p.title.c_str(), m.order(), o.slope, o.n.front(), o.n.back(),
+        o.error.front(), o.error.back(), nudged_slope);
+    EXPECT_NEAR(o.slope, m.order(), 0.15);
+    EXPECT_LT(nudged_slope, m.order() - 0.5);
+  }
+}
+
+// sine-Gordon with a strong nonlinearity (kappa = 4) on 8 points: M circulant, FFTW r2c/c2r.
+TEST(SpecialistPeer, ObservedOrderIsTheCertifiedOrderInTheFourierBasis) {
+  const problems::Problem p = problems::sine_gordon(8, 4);
+  const specialist::FourierBasis basis = fourier_basis(p.M);
+  auto g = [](const auto& q, auto& out) { out = 4 * q.sin(); };
+  using VLD = erkn::test::VectorLD;
+  check_orders(p, basis, g, [](const VLD& q) -> VLD { return 4 * q.array().sin().matrix(); });
+}
+
+// Stellar orbits with eps = 0.5 (the perturbation as large as the method's order shows).
+TEST(SpecialistPeer, ObservedOrderIsTheCertifiedOrderInTheIdentityBasis) {
+  const problems::Problem p = problems::stellar_orbits(0.5);
+  const auto basis = identity_basis<2>(p.M, 2);
+  using VLD = erkn::test::VectorLD;
+  check_orders(p, basis, StellarGradient{0.5}, [](const VLD& q) -> VLD {
+    VLD g(2);
+    g << -0.5L * q[1] * q[1], -1.0L * q[0] * q[1];
+    return g;
+  });
+}
+
+// The final state of n steps against erkn's Integrator (compensated summation off: the same
+// arithmetic up to the order of operations), relative to the state's size.
+template <class Basis, class Gradient>
+void check_agreement(const problems::Problem& p, const Basis& basis, Gradient g, double h, long n,
+                     double bound) {
+  for (const Method& m : explicit_methods()) {
+    erkn::Options o;
+    o.compensated_summation = false;
+    erkn::Integrator run(m, problems::system(p), h, p.q0, p.p0, o);
+    run.integrate(h * double(n));
+    specialist::Peer peer(m.table().c, m.table().d, m.stages(), h, basis, g, p.q0, p.p0);
+    peer.run(n);
+    Eigen::VectorXd q, v;
+    peer.state(q, v);
+    const double dq = (q - run.q()).norm() / run.q().norm();
+    const double dp = (v - run.p()).norm() / run.p().norm();
+    std::printf("%-9s %-30s relative difference q %.1e, p %.1e\n", std::string(m.name()).c_str(),
+                p.title.c_str(), dq, dp);
+    EXPECT_LT(dq, bound) << m.name();
+    EXPECT_LT(dp, bound) << m.name();
+    EXPECT_EQ(peer.evaluations(), run.statistics().gradient_evaluations) << m.name();
+  }
+}
+
+TEST(SpecialistPeer, AgreesWithTheIntegratorToRoundOff) {
+  check_agreement(problems::duffing(), identity_basis<1>(problems::duffing().M, 1),
+                  DuffingGradient{}, 1.0 / 100, 200, 1e-12);
+  check_agreement(problems::stellar_orbits(), identity_basis<2>(problems::stellar_orbits().M, 2),
+                  StellarGradient{}, 1.0 / 40, 200, 1e-12);
+  for (int n : {32, 512}) {
+    const problems::Problem p = problems::sine_gordon(n);
+    check_agreement(p, fourier_basis(p.M), SineGordonGradient{}, 1.0 / 100, 50, 1e-12);
+  }
+  const problems::Problem p = problems::sine_gordon_2d(32);
+  check_agreement(p, fourier_basis(p.M), SineGordonGradient{}, 1.0 / 40, 20, 1e-12);
+}
+
+}  // namespace
+}  // namespace bench
