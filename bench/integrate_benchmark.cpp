@@ -13,11 +13,15 @@
 // 2048, 8192 (problems::sine_gordon) and the 2-D periodic sine-Gordon 256^2.
 //
 //   erkn_integrate_benchmark [--short] [--markdown FILE] [--csv FILE] [--compare CSV]
+//   erkn_integrate_benchmark --serve
 // --short: fewer steps (down to 10 per run) and rounds (scripts/main.sh), every method and scene;
-// --csv: every cell's ratios; --compare: a previous run's csv, the per-cell spread reported.
+// --csv: every cell's ratios; --compare: a previous run's csv, the per-cell spread reported;
+// --serve: times C++ runs for bench/python_solve_benchmark.py, one per stdin line
+// "KEY METHOD H STEPS REPS" (KEY: P2, P3 or SG<N>), answering CPU seconds per run.
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <iostream>
 #include <string>
 
 #include "integrate_cells.hpp"
@@ -33,7 +37,9 @@ Config parse(int argc, char** argv) {
   for (int k = 1; k < argc; ++k) {
     const std::string a = argv[k];
     const bool has_value = k + 1 < argc;
-    if (a == "--short") {
+    if (a == "--serve") {
+      cfg.serve = true;
+    } else if (a == "--short") {
       cfg.short_mode = true;
     } else if (a == "--markdown" && has_value) {
       cfg.markdown = argv[++k];
@@ -54,8 +60,29 @@ Config parse(int argc, char** argv) {
 
 }  // namespace
 
+// Construct + integrate + read the final state of the problems library's System, reps times.
+int serve() {
+  std::string key, method;
+  double h = 0;
+  long steps = 0, reps = 0;
+  while (std::cin >> key >> method >> h >> steps >> reps) {
+    const erkn::problems::Problem p = key.rfind("SG", 0) == 0
+                                          ? erkn::problems::sine_gordon(std::stoi(key.substr(2)))
+                                          : erkn::problems::problem_by_key(key);
+    const bench::Scene s{key, p, h, steps};
+    const erkn::System sys = erkn::problems::system(p);
+    const erkn::Method& m = erkn::Method::by_name(method);
+    volatile double sink = 0;
+    const double start = bench::thread_seconds();
+    for (long k = 0; k < reps; ++k) bench::erkn_run(m, sys, s, {}, sink);
+    std::cout << (bench::thread_seconds() - start) / double(reps) << std::endl;
+  }
+  return 0;
+}
+
 int main(int argc, char** argv) {
   const Config cfg = parse(argc, argv);
+  if (cfg.serve) return serve();
   const bench::Results results = bench::measure_all(cfg);
   bench::print_text(results, cfg, stdout);
   if (!cfg.csv.empty()) bench::write_csv(results, cfg.csv);

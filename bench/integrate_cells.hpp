@@ -17,7 +17,7 @@
 namespace bench {
 
 struct Config {
-  bool short_mode = false;
+  bool short_mode = false, serve = false;
   std::string markdown, csv, compare, command;
   TimingPlan plan() const { return short_mode ? TimingPlan{5, 2e-3} : TimingPlan{7, 5e-3}; }
 };

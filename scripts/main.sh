@@ -21,6 +21,11 @@ if [ -x "$build"/bench/erkn_integrate_benchmark ]; then
   "$build"/bench/erkn_integrate_benchmark --short --csv "$build"/benchmarks_first.csv > /dev/null
   "$build"/bench/erkn_integrate_benchmark --short --csv "$build"/benchmarks_second.csv \
     --compare "$build"/benchmarks_first.csv --markdown docs/benchmarks.md > /dev/null
+  if [ -d "$build"/python/erkn ]; then  # erkn.solve against C++ integrate: a second table
+    python=$(sed -n 's/^Python_EXECUTABLE:FILEPATH=//p' "$build"/CMakeCache.txt)
+    PYTHONPATH="$build"/python "${python:-python3}" bench/python_solve_benchmark.py --short \
+      --server "$build"/bench/erkn_integrate_benchmark --markdown docs/benchmarks.md > /dev/null
+  fi
 fi
 if [ -x "$build"/runtime/mpi/erkn-mpi ]; then  # MPI scaling on 1, 2 and 4 ranks (erkn::mpi built)
   [ "$(id -u)" -ne 0 ] || export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
