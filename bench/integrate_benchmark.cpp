@@ -13,8 +13,10 @@
 // 2048, 8192 (problems::sine_gordon) and the 2-D periodic sine-Gordon 256^2.
 //
 //   erkn_integrate_benchmark [--short] [--markdown FILE] [--csv FILE] [--compare CSV]
+//                            [--scene TEXT] [--method NAME]
 //   erkn_integrate_benchmark --serve
 // --short: fewer steps (down to 10 per run) and rounds (scripts/main.sh), every method and scene;
+// --scene, --method: only scenes whose label contains TEXT, only that method (profiling);
 // --csv: every cell's ratios; --compare: a previous run's csv, the per-cell spread reported;
 // --serve: times C++ runs for bench/python_solve_benchmark.py, one per stdin line
 // "KEY METHOD H STEPS REPS" (KEY: P2, P3 or SG<N>), answering CPU seconds per run.
@@ -43,6 +45,10 @@ Config parse(int argc, char** argv) {
       cfg.short_mode = true;
     } else if (a == "--markdown" && has_value) {
       cfg.markdown = argv[++k];
+    } else if (a == "--scene" && has_value) {
+      cfg.scene = argv[++k];
+    } else if (a == "--method" && has_value) {
+      cfg.method = argv[++k];
     } else if (a == "--csv" && has_value) {
       cfg.csv = argv[++k];
     } else if (a == "--compare" && has_value) {

@@ -19,6 +19,7 @@ namespace bench {
 struct Config {
   bool short_mode = false, serve = false;
   std::string markdown, csv, compare, command;
+  std::string scene, method;  // filters: label substring, method name (empty: all)
   TimingPlan plan() const { return short_mode ? TimingPlan{5, 2e-3} : TimingPlan{7, 5e-3}; }
 };
 
@@ -117,12 +118,12 @@ Cell measure_cell(const Scene& s, const erkn::Method& m, const Basis& basis, Gra
 }
 
 template <class Basis, class Gradient>
-void measure_scene(const Scene& s, const Basis& basis, Gradient g, const TimingPlan& plan,
+void measure_scene(const Scene& s, const Basis& basis, Gradient g, const Config& cfg,
                    Results& out) {
   const erkn::System sys = erkn::problems::system(s.problem);
   for (const erkn::Method& m : erkn::Method::all())
-    if (m.is_explicit()) {
-      out.cells.push_back(measure_cell(s, m, basis, g, sys, plan));
+    if (m.is_explicit() && (cfg.method.empty() || cfg.method == m.name())) {
+      out.cells.push_back(measure_cell(s, m, basis, g, sys, cfg.plan()));
       std::fprintf(stderr, ".");
     }
 }
@@ -160,17 +161,18 @@ inline Results measure_all(const Config& cfg) {
   using Kind = erkn::problems::LinearPart::Kind;
   Results out;
   for (const Scene& s : scenes(cfg.short_mode)) {
+    if (s.label.find(cfg.scene) == std::string::npos) continue;
     std::fprintf(stderr, "%s ", s.label.c_str());
     const Kind kind = s.problem.M.kind;
     if (kind == Kind::scalar) {
-      measure_scene(s, identity_basis<1>(s.problem.M, 1), DuffingGradient{}, cfg.plan(), out);
+      measure_scene(s, identity_basis<1>(s.problem.M, 1), DuffingGradient{}, cfg, out);
     } else if (kind == Kind::diagonal) {
-      measure_scene(s, identity_basis<2>(s.problem.M, 2), StellarGradient{}, cfg.plan(), out);
+      measure_scene(s, identity_basis<2>(s.problem.M, 2), StellarGradient{}, cfg, out);
     } else {
       const specialist::FourierBasis basis = fourier_basis(s.problem.M);
-      measure_scene(s, basis, SineGordonGradient{}, cfg.plan(), out);
+      measure_scene(s, basis, SineGordonGradient{}, cfg, out);
     }
-    if (s.problem.dim() <= 32) measure_implicit(s, cfg.plan(), out);
+    if (s.problem.dim() <= 32 && cfg.method.empty()) measure_implicit(s, cfg.plan(), out);
     std::fprintf(stderr, "\n");
   }
   return out;
