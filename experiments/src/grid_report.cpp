@@ -201,7 +201,8 @@ void write_grid_report(const fs::path& out, const std::vector<GridScene>& scenes
   std::ofstream md(out / "grids.md");
   md << "# Large grid scenes\n\nWritten by `" << command << "`: " << status
      << ". Do not edit: every number below comes from that run. M is the shifted discrete "
-        "Laplacian of a tensor grid (erkn::Stiffness::grid, FFTW r2r transforms); the peers use "
+        "Laplacian of a tensor grid (erkn::Stiffness::grid; FFTW r2c/c2r when every axis is "
+        "periodic, else r2r transforms); the peers use "
         "their own FFTW transforms. The RKN limits are left out (they must resolve omega_max ~ "
         "2 sqrt(k)/dx).\n";
   for (const GridScene& sc : scenes) {

