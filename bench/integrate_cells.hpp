@@ -20,7 +20,7 @@ struct Config {
   bool short_mode = false, serve = false;
   std::string markdown, csv, compare, command;
   std::string scene, method;  // filters: label substring, method name (empty: all)
-  TimingPlan plan() const { return short_mode ? TimingPlan{5, 2e-3} : TimingPlan{7, 5e-3}; }
+  TimingPlan plan() const { return short_mode ? TimingPlan{7, 4e-3} : TimingPlan{9, 1e-2}; }
 };
 
 /// Output times per run of the output column (on the grid), where the steps allow.
