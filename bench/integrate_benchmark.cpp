@@ -9,8 +9,10 @@
 //            against the peer stopping there and transforming back          target <= 1.05
 // and for every implicit registry method its CPU per grad U against the explicit path's (the
 // median over explicit methods, same scene, same rounds; defaults) on P2, P3 and sine-Gordon
-// N = 32 (target <= 1.2). Scenes: Duffing (P2), stellar orbits (P3), sine-Gordon N = 32, 512,
-// 2048, 8192 (problems::sine_gordon) and the 2-D periodic sine-Gordon 256^2.
+// N = 32 (target <= 1.2), and the fewest steps to 1e-6 of every explicit method in the peer and
+// whether erkn accepts that step size (bench/integrate_steps.hpp). Scenes: Duffing (P2), stellar
+// orbits (P3), sine-Gordon N = 32, 512, 2048, 8192 (problems::sine_gordon) and the 2-D periodic
+// sine-Gordon 256^2.
 //
 //   erkn_integrate_benchmark [--short] [--markdown FILE] [--csv FILE] [--compare CSV]
 //                            [--scene TEXT] [--method NAME]
@@ -24,6 +26,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 
 #include "integrate_cells.hpp"
@@ -91,7 +94,13 @@ int main(int argc, char** argv) {
   if (cfg.serve) return serve();
   const bench::Results results = bench::measure_all(cfg);
   bench::print_text(results, cfg, stdout);
+  std::optional<bench::StepsCheck> steps;
+  if (cfg.scene.empty() && cfg.method.empty()) steps = bench::steps_to_target();
+  if (steps)
+    for (const bench::StepsCell& c : steps->cells)
+      std::printf("steps to 1e-6, %s: peer %ld, erkn %s %.2e\n", c.method.c_str(), c.peer_steps,
+                  c.erkn_accepts ? "accepts, error" : "refuses", c.erkn_error);
   if (!cfg.csv.empty()) bench::write_csv(results, cfg.csv);
-  if (!cfg.markdown.empty()) bench::write_markdown(results, cfg);
+  if (!cfg.markdown.empty()) bench::write_markdown(results, steps ? &*steps : nullptr, cfg);
   return 0;
 }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "integrate_report.hpp"
+#include "integrate_steps.hpp"
 
 namespace bench {
 
@@ -82,10 +83,27 @@ inline void markdown_spread(std::ofstream& f, const Config& cfg, const std::stri
     f << "| " << spread[i].second << " | " << fixed(100 * spread[i].first, 1) << " % |\n";
 }
 
-inline void write_markdown(const Results& r, const Config& cfg) {
+inline void markdown_steps(std::ofstream& f, const StepsCheck& s) {
+  long met = 0;
+  for (const StepsCell& c : s.cells) met += c.erkn_accepts && c.erkn_error <= s.target;
+  f << "\n## Steps to " << s.target << ": erkn against the peer\n\n"
+    << s.scene << ": the fewest steps n (8, 11, 16, 23, ...: ratio sqrt 2) with which the "
+    << "specialist's loop reaches a max-norm error in q of " << s.target << ", and erkn with "
+    << "h = 1/n (target: accepted and within " << s.target << "; " << met << " / " << s.cells.size()
+    << " met). Reference: the peer with SRKN14a at 4096 steps (its difference to 2048 steps: "
+    << s.reference_accuracy << ").\n\n| method | peer's steps | erkn's error there | |\n"
+    << "|---|--:|--:|---|\n";
+  for (const StepsCell& c : s.cells)
+    f << "| " << c.method << " | " << c.peer_steps << " | "
+      << (c.erkn_accepts ? std::to_string(c.erkn_error) : "refused: " + c.refusal) << " | "
+      << (c.erkn_accepts && c.erkn_error <= s.target ? "met" : "NOT met") << " |\n";
+}
+
+inline void write_markdown(const Results& r, const StepsCheck* steps, const Config& cfg) {
   std::ofstream f(cfg.markdown);
   markdown_header(f, r, cfg);
   markdown_cells(f, r);
+  if (steps) markdown_steps(f, *steps);
   if (!cfg.compare.empty() && !cfg.csv.empty()) markdown_spread(f, cfg, cfg.csv);
 }
 
