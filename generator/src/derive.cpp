@@ -188,7 +188,7 @@ std::pair<ex, ex> two_free_nodes(const MethodSpec& spec, const ex& p, const ex& 
 
 /// A decimal among the spec's nodes, drifts or weights: they get polished.
 bool has_decimals(const MethodSpec& spec) {
-  for (const auto* list : {&spec.c, &spec.d})
+  for (const auto* list : {&spec.c, &spec.d, &spec.e})
     for (const std::string& x : *list)
       if (x.find('.') != std::string::npos) return true;
   return false;
@@ -214,15 +214,20 @@ void solve_nodes(const MethodSpec& spec, const std::vector<symbol>& c, const std
     for (int i = 0; i < s; ++i) {
       out.c.push_back(value(nodes[c[i]]));
       out.d.push_back(read_constant(spec, "d" + idx(i), spec.d[i]));
-      if (out.d[i].is_zero()) fail("d" + idx(i) + " = 0: abar_ij = (...)/d_i is undefined");
+      if (!spec.e.empty()) out.e.push_back(read_constant(spec, "e" + idx(i), spec.e[i]));
+      // A pure modified kick (d_i = 0, e_i != 0, e.g. a corrector) is a stage of an explicit
+      // method: its abar_ij are those of the splitting (derive()).
+      const bool corrector = !spec.e.empty() && !out.e[i].is_zero();
+      if (out.d[i].is_zero() && !corrector)
+        fail("d" + idx(i) + " = 0: abar_ij = (...)/d_i is undefined");
     }
     if (has_decimals(spec) && spec.kind != SpecKind::explicit_erkn)
       out.node_derivation.push_back(
           "decimals read in " + std::to_string(Qs::kApproxDigits) +
           " digits, not polished (kind erkn): the certification judges them as given");
     if (has_decimals(spec) && spec.kind == SpecKind::explicit_erkn) {
-      Polished p = polish_explicit(spec.name, out.c, out.d, spec.order, spec.generalized);
-      out.c = p.c, out.d = p.d, out.unmet_by_decimals = p.unmet;
+      Polished p = polish_explicit(spec.name, out.c, out.d, out.e, spec.order, spec.generalized);
+      out.c = p.c, out.d = p.d, out.e = p.e, out.unmet_by_decimals = p.unmet;
       out.node_derivation.push_back(p.summary());
     }
     return;
@@ -409,8 +414,19 @@ Derived derive(const MethodSpec& spec) {
   }
 
   // --- abar_ij, j < i: third symplectic condition of (g) (j < i; the paper prints j <= i). --
+  // At a pure modified kick (d_i = 0) it reads 0 = 0: the splitting's abar_ij instead.
   for (int i = 0; i < s; ++i)
     for (int j = 0; j < i; ++j) {
+      if (out.d[i].is_zero()) {
+        const std::string I = idx(i), J = idx(j);
+        record(abar_index(s, i + 1, j + 1), a[i][j],
+               d[j] * (c[i] - c[j]) * phi(1, pow(c[i] - c[j], 2) * v), 0);
+        // Written out: GiNaC prints (c_i - c_j)^2 with either sign first, run to run.
+        out.coefficients[abar_index(s, i + 1, j + 1)].derivation =
+            "abar" + I + J + " = d" + J + "*(c" + I + "-c" + J + ")*phi(1,(c" + I + "-c" + J +
+            ")^2*v)";
+        continue;
+      }
       ex sol = lsolve(lst{bb[j] * b[i] - bb[i] * b[j] == d[i] * a[i][j]}, lst{a[i][j]});
       ex solution = normal(ex(a[i][j]).subs(sol));
       record(abar_index(s, i + 1, j + 1), a[i][j], solution, solution);
@@ -467,6 +483,9 @@ void certify_order(Derived& m) {
   for (int i = 0; i < s; ++i) t.b.push_back(k[i].series), t.bbar.push_back(k[s + i].series);
   for (int i = 0; i < s; ++i)
     for (int j = 0; j <= i; ++j) t.abar.push_back(k[abar_index(s, i + 1, j + 1)].series);
+  // Modified kicks: the splitting's kernels with -2 e_i in place of d_i (explicit methods only).
+  const SeriesTableau mod = explicit_series(m.c, m.d, kSeriesTerms, m.e);
+  t.b_mod = mod.b_mod, t.bbar_mod = mod.bbar_mod, t.abar_mod = mod.abar_mod;
   int max_power = std::max(m.spec.order + 1, kCertifyPowers);
   for (int g : m.spec.generalized) max_power = std::max(max_power, g + 1);
   const std::string unmet = m.unmet_by_decimals == 0

@@ -29,6 +29,9 @@ struct Coefficient {
 struct Derived {
   MethodSpec spec;
   std::vector<Qs> c, d;
+  /// Modified-kick coefficients: stage i kicks p -= h (d_i grad U + h^2 e_i grad(|grad U|^2));
+  /// empty for plain kicks.
+  std::vector<Qs> e;
   /// In table order: b_1..b_s, bbar_1..bbar_s, abar_11, abar_21, abar_22, ...
   std::vector<Coefficient> coefficients;
   std::vector<std::string> node_derivation;  ///< c and d as functions of the free nodes

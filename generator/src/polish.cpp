@@ -21,37 +21,39 @@ double max_abs(const std::vector<Qs>& r) {
   return m;
 }
 
-// The free parameters of (c, d): all of them, or with the symmetry the first half (and the middle
-// weight), c_mid = 1/2.
+// The free parameters of (c, d, e): all of them, or with the symmetry the first half (and the
+// middle weights), c_mid = 1/2. e is empty for plain kicks.
 struct Parametrization {
   int s = 0;
   bool symmetric = false;
-  std::vector<Qs> get(const std::vector<Qs>& c, const std::vector<Qs>& d) const {
-    std::vector<Qs> x;
-    for (int i = 0; i < (symmetric ? s / 2 : s); ++i) x.push_back(c[i]);
-    for (int i = 0; i < (symmetric ? (s + 1) / 2 : s); ++i) x.push_back(d[i]);
+  bool modified = false;
+  int nc() const { return symmetric ? s / 2 : s; }
+  int nd() const { return symmetric ? (s + 1) / 2 : s; }
+  std::vector<Qs> get(const std::vector<Qs>& c, const std::vector<Qs>& d,
+                      const std::vector<Qs>& e) const {
+    std::vector<Qs> x(c.begin(), c.begin() + nc());
+    x.insert(x.end(), d.begin(), d.begin() + nd());
+    if (modified) x.insert(x.end(), e.begin(), e.begin() + nd());
     return x;
   }
-  void set(const std::vector<Qs>& x, std::vector<Qs>& c, std::vector<Qs>& d) const {
-    const int nc = symmetric ? s / 2 : s;
+  void set(const std::vector<Qs>& x, std::vector<Qs>& c, std::vector<Qs>& d,
+           std::vector<Qs>& e) const {
     for (int i = 0; i < s; ++i) {
-      const int m = s - 1 - i;
-      if (!symmetric) {
-        c[i] = x[i], d[i] = x[s + i];
-        continue;
-      }
-      const int k = std::min(i, m);
-      c[i] = i == m ? Qs(GiNaC::numeric(1, 2)) : (i < m ? x[k] : Qs(1) - x[k]);
-      d[i] = x[nc + k];
+      const int m = s - 1 - i, k = symmetric ? std::min(i, m) : i;
+      if (!symmetric || i != m) c[i] = symmetric && i > m ? Qs(1) - x[k] : x[k];
+      if (symmetric && i == m) c[i] = Qs(GiNaC::numeric(1, 2));
+      d[i] = x[nc() + k];
+      if (modified) e[i] = x[nc() + nd() + k];
     }
   }
 };
 
-bool is_symmetric(const std::vector<Qs>& c, const std::vector<Qs>& d) {
+bool is_symmetric(const std::vector<Qs>& c, const std::vector<Qs>& d, const std::vector<Qs>& e) {
   const int s = int(c.size());
   for (int i = 0; i < s; ++i)
     if (std::abs((c[i] + c[s - 1 - i] - Qs(1)).to_double()) > 1e-12 ||
-        std::abs((d[i] - d[s - 1 - i]).to_double()) > 1e-12)
+        std::abs((d[i] - d[s - 1 - i]).to_double()) > 1e-12 ||
+        (!e.empty() && std::abs((e[i] - e[s - 1 - i]).to_double()) > 1e-12))
       return false;
   return true;
 }
@@ -95,25 +97,26 @@ std::string Polished::summary() const {
 
 namespace {
 
-// Minimum-norm Newton from (c, d) onto `conditions`; fills out.c, out.d, residuals, correction.
-Polished newton(const std::vector<Qs>& c0, const std::vector<Qs>& d0,
+// Minimum-norm Newton from (c, d, e) onto `conditions`; fills out.c, out.d, out.e, residuals,
+// correction.
+Polished newton(const std::vector<Qs>& c0, const std::vector<Qs>& d0, const std::vector<Qs>& e0,
                 const std::vector<SenTree>& trees, const std::vector<OrderCondition>& conditions,
                 int terms) {
-  auto R = [&](const std::vector<Qs>& cc, const std::vector<Qs>& dd) {
-    return residuals(explicit_series(cc, dd, terms), trees, conditions);
+  auto R = [&](const std::vector<Qs>& cc, const std::vector<Qs>& dd, const std::vector<Qs>& ee) {
+    return residuals(explicit_series(cc, dd, terms, ee), trees, conditions);
   };
   Polished out;
   out.conditions = int(conditions.size());
-  Parametrization P{int(c0.size()), is_symmetric(c0, d0)};
+  Parametrization P{int(c0.size()), is_symmetric(c0, d0, e0), !e0.empty()};
   out.symmetric = P.symmetric;
-  std::vector<Qs> c = c0, d = d0;
-  std::vector<Qs> x = P.get(c, d);
+  std::vector<Qs> c = c0, d = d0, e = e0;
+  std::vector<Qs> x = P.get(c, d, e);
   // A parameter given exactly (a drift 0 puts a kick at c = 0: the kick is shared with the next
   // step) is part of the method's structure and stays as given.
   std::vector<bool> fixed;
   for (const Qs& xk : x) fixed.push_back(!xk.is_approx());
-  P.set(x, c, d);  // symmetrised start
-  std::vector<Qs> r = R(c, d);
+  P.set(x, c, d, e);  // symmetrised start
+  std::vector<Qs> r = R(c, d, e);
   out.residual_before = max_abs(r);
   const Qs step = Qs::approximate(GiNaC::numeric(1) / GiNaC::numeric(10).power(25));
   const Qs mu = Qs::approximate(GiNaC::numeric(1) / GiNaC::numeric(10).power(40));
@@ -127,10 +130,10 @@ Polished newton(const std::vector<Qs>& c0, const std::vector<Qs>& d0,
         for (size_t i = 0; i < m; ++i) J[i][k] = Qs(0);
         continue;
       }
-      std::vector<Qs> xp = x, xm = x, cp = c, dp = d, cm = c, dm = d;
+      std::vector<Qs> xp = x, xm = x, cp = c, dp = d, ep = e, cm = c, dm = d, em = e;
       xp[k] = xp[k] + step, xm[k] = xm[k] - step;
-      P.set(xp, cp, dp), P.set(xm, cm, dm);
-      std::vector<Qs> rp = R(cp, dp), rm = R(cm, dm);
+      P.set(xp, cp, dp, ep), P.set(xm, cm, dm, em);
+      std::vector<Qs> rp = R(cp, dp, ep), rm = R(cm, dm, em);
       for (size_t i = 0; i < m; ++i) J[i][k] = (rp[i] - rm[i]) * (step + step).inverse();
     }
     std::vector<std::vector<Qs>> A(n, std::vector<Qs>(n, Qs(0)));
@@ -144,14 +147,15 @@ Polished newton(const std::vector<Qs>& c0, const std::vector<Qs>& d0,
     std::vector<Qs> dx = solve(A, g);
     for (size_t k = 0; k < n; ++k)
       if (!fixed[k]) x[k] = x[k] + dx[k];  // a fixed parameter stays exact
-    P.set(x, c, d);
-    r = R(c, d);
+    P.set(x, c, d, e);
+    r = R(c, d, e);
   }
   out.residual_after = max_abs(r);
   for (size_t i = 0; i < c.size(); ++i)
     out.correction = std::max({out.correction, std::abs((c[i] - c0[i]).to_double()),
-                               std::abs((d[i] - d0[i]).to_double())});
-  out.c = c, out.d = d;
+                               std::abs((d[i] - d0[i]).to_double()),
+                               e.empty() ? 0.0 : std::abs((e[i] - e0[i]).to_double())});
+  out.c = c, out.d = d, out.e = e;
   return out;
 }
 
@@ -171,10 +175,10 @@ std::string failure(const Polished& p) {
 // (the classical order they meet), those of power <= p, and for a claimed generalized order g_K
 // those of the K-trees of power <= g_K below u_K.
 std::vector<OrderCondition> met_orders(const std::vector<Qs>& c, const std::vector<Qs>& d,
-                                       const std::vector<SenTree>& trees,
+                                       const std::vector<Qs>& e, const std::vector<SenTree>& trees,
                                        const std::vector<OrderCondition>& conditions, int terms,
                                        int order, const std::vector<int>& generalized) {
-  const std::vector<Qs> r = residuals(explicit_series(c, d, terms), trees, conditions);
+  const std::vector<Qs> r = residuals(explicit_series(c, d, terms, e), trees, conditions);
   std::map<int, int> lowest_unmet;  // K -> u_K
   int p = order;
   for (size_t i = 0; i < r.size(); ++i)
@@ -197,8 +201,8 @@ std::vector<OrderCondition> met_orders(const std::vector<Qs>& c, const std::vect
 
 }  // namespace
 
-Polished polish_explicit(const std::string& method, std::vector<Qs> c, std::vector<Qs> d, int order,
-                         const std::vector<int>& generalized) {
+Polished polish_explicit(const std::string& method, std::vector<Qs> c, std::vector<Qs> d,
+                         std::vector<Qs> e, int order, const std::vector<int>& generalized) {
   const int max_power = std::max(
       order, generalized.empty() ? 0 : *std::max_element(generalized.begin(), generalized.end()));
   const auto trees = sen_trees(max_power);
@@ -209,16 +213,17 @@ Polished polish_explicit(const std::string& method, std::vector<Qs> c, std::vect
       conditions.push_back(oc);
   }
   const int terms = max_power / 2 + 1;
-  Polished out = newton(c, d, trees, conditions, terms);
+  Polished out = newton(c, d, e, trees, conditions, terms);
   const std::string why = failure(out);
   if (why.empty()) return out;
   // The claim is not what the decimals satisfy (a wrong order, or a transcription error): polish
   // onto the orders they do meet to kTranscription, and leave the refusal to the certification,
   // which names the first failing tree and its residual. Whole orders, not single conditions:
   // a condition of a higher order that happens to be small is not one the method satisfies.
-  std::vector<OrderCondition> met = met_orders(c, d, trees, conditions, terms, order, generalized);
+  std::vector<OrderCondition> met =
+      met_orders(c, d, e, trees, conditions, terms, order, generalized);
   if (met.size() < conditions.size()) {
-    Polished partial = newton(c, d, trees, met, terms);
+    Polished partial = newton(c, d, e, trees, met, terms);
     partial.unmet = int(conditions.size() - met.size());
     if (failure(partial).empty()) return partial;
   }

@@ -1,6 +1,6 @@
 // Polishing decimal coefficients: an explicit method transcribed from the literature as decimals
 // (16-30 digits) satisfies its order conditions only to that precision. A minimum-norm Newton
-// correction moves (c, d) onto the conditions in Qs::kApproxDigits-digit arithmetic, keeping the
+// correction moves (c, d, e) onto the conditions in Qs::kApproxDigits-digit arithmetic, keeping the
 // symmetry c_i + c_(s+1-i) = 1, d_i = d_(s+1-i) when the decimals have it and the nodes or weights
 // given exactly (a drift 0: a kick at c = 0), so that the emitted
 // doubles are the correctly rounded values of a method that satisfies them.
@@ -14,8 +14,8 @@
 namespace erkn::gen {
 
 struct Polished {
-  std::vector<Qs> c, d;
-  double correction = 0;       ///< largest |change| of a c_i or d_i
+  std::vector<Qs> c, d, e;     ///< e: modified-kick coefficients (empty: none)
+  double correction = 0;       ///< largest |change| of a c_i, d_i or e_i
   double residual_before = 0;  ///< largest |residual| of the conditions polished onto
   double residual_after = 0;
   int conditions = 0;  ///< how many conditions
@@ -30,7 +30,9 @@ struct Polished {
 /// they meet (`unmet` > 0: the conditions left out) so that the certification refuses the claim
 /// naming a tree. Throws (naming
 /// `method`) if no such polishing is within 1e-8 of the decimals with every residual below 1e-50.
-Polished polish_explicit(const std::string& method, std::vector<Qs> c, std::vector<Qs> d, int order,
-                         const std::vector<int>& generalized);
+/// Modified kicks (e non-empty) are polished with c and d (a stage's e_i given exactly, such
+/// as 0 for a plain kick, stays as given).
+Polished polish_explicit(const std::string& method, std::vector<Qs> c, std::vector<Qs> d,
+                         std::vector<Qs> e, int order, const std::vector<int>& generalized);
 
 }  // namespace erkn::gen

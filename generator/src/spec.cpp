@@ -41,6 +41,15 @@ void check(const MethodSpec& m) {
     fail("kind explicit has abar_ii = 0: no `diagonal`");
   if (m.kind == SpecKind::erkn && m.rkn.empty()) fail("kind erkn needs the `rkn` name");
   if (m.source.empty()) fail("needs a `source`");
+  if (m.e.empty()) return;
+  if (int(m.e.size()) != m.stages) fail("needs one modified-kick coefficient per stage");
+  if (m.kind != SpecKind::explicit_erkn)
+    fail(
+        "`modified` is for kind explicit (an implicit stage would need the third derivatives of "
+        "U)");
+  if (m.d.empty()) fail("`modified` needs the kicks d given");
+  if (!m.rkn.empty())
+    fail("no `rkn` limit with modified kicks (it would need grad(|Mq + grad U|^2))");
 }
 
 }  // namespace
@@ -96,6 +105,8 @@ std::vector<MethodSpec> read_specs(std::istream& in) {
       m.drift = split(value, ',');
     } else if (key == "d" || key == "kick") {
       m.d = split(value, ',');
+    } else if (key == "modified") {
+      m.e = split(value, ',');
     } else if (key == "diagonal") {
       m.diagonal = split(value, ';');
     } else {

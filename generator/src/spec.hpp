@@ -22,6 +22,9 @@ struct MethodSpec {
   std::vector<int> generalized;
   /// GiNaC syntax (decimals read exactly as written), or "?" for a value the generator solves.
   std::vector<std::string> c, d;
+  /// Modified-kick coefficients (`modified`): stage i kicks p -= h (d_i grad U + h^2 e_i
+  /// grad(|grad U|^2)). Empty: plain kicks. Explicit methods only.
+  std::vector<std::string> e;
   std::vector<std::string> drift;     ///< as written; c_i = drift_1 + ... + drift_i
   std::string drift_sum;              ///< sum of all s+1 drifts when `drift` gives them: must be 1
   std::vector<std::string> diagonal;  ///< equations `lhs == rhs` fixing abar_ii (kind erkn)

@@ -4,8 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
+#include <stdexcept>
 
 #include "certify.hpp"
+#include "derive.hpp"
+#include "spec.hpp"
 
 namespace erkn::gen {
 namespace {
@@ -141,6 +145,55 @@ TEST(ModifiedKicks, ChinPerturbedFailsAtNamedTree) {
     ASSERT_NE(cert.first_failure(), nullptr);
     EXPECT_EQ(cert.trees[cert.first_failure()->condition.tree].name, "f[f]") << e;
   }
+}
+
+MethodSpec spec_of(const std::string& text) {
+  std::istringstream in(text);
+  return read_specs(in).at(0);
+}
+
+const char* const kChinSpec =
+    "method C\nkind explicit\nsource test\nstages 3\norder 4\nc 0, 1/2, 1\n"
+    "kick 1/6, 2/3, 1/6\n";
+
+// The spec language: `modified` is read, and refused where it has no meaning.
+TEST(ModifiedKicks, SpecRefusesWhatItCannotMean) {
+  EXPECT_EQ(spec_of(std::string(kChinSpec) + "modified 0, -1/72, 0\n").e.size(), 3u);
+  for (const std::string& bad :
+       {std::string(kChinSpec) + "modified 0, -1/72\n",            // one per stage
+        std::string(kChinSpec) + "rkn R\nmodified 0, -1/72, 0\n",  // no V -> 0 limit
+        std::string("method C\nsource t\nstages 1\norder 2\nc 1/2\nd 1\nrkn R\n"
+                    "diagonal abar11 == 0\nmodified 1\n")}) {  // kind erkn
+    EXPECT_THROW(spec_of(bad), std::runtime_error) << bad;
+  }
+}
+
+// Decimals of e are polished with c and d: Chin's e = -1/72 written to 17 digits becomes -1/72
+// to the working precision, and the method certifies order 4.
+TEST(ModifiedKicks, DecimalsOfEArePolished) {
+  Derived m = derive(spec_of(std::string(kChinSpec) + "modified 0, -0.013888888888888889, 0\n"));
+  ASSERT_EQ(m.e.size(), 3u);
+  EXPECT_TRUE(m.e[1].is_approx());
+  EXPECT_LT(std::abs((m.e[1] + Qs(numeric(1, 72))).to_double()), 1e-45);
+  EXPECT_EQ(m.certificate.order, 4);
+  // Negative control: a wrong digit (beyond rounding) is refused, naming the tree f[f].
+  try {
+    derive(spec_of(std::string(kChinSpec) + "modified 0, -0.0139, 0\n"));
+    ADD_FAILURE() << "a wrong e was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("tree f[f]"), std::string::npos) << e.what();
+  }
+}
+
+// A pure modified kick (d = 0, a corrector) is a stage: Strang with correctors e = -1/24 at
+// c = 0 and 1 (SABAC_1) removes the eps^2 h^3 error; without them it stays.
+TEST(ModifiedKicks, CorrectorsRaiseTheEpsSquaredOrder) {
+  const std::string strang =
+      "method S\nkind explicit\nsource test\nstages 3\norder 2\nc 0, 1/2, 1\nkick 0, 1, 0\n";
+  Derived corrected = derive(spec_of(strang + "modified -1/24, 0, -1/24\n"));
+  EXPECT_EQ(corrected.certificate.generalized.at(1), 3);
+  Derived plain = derive(spec_of(strang + "modified -1/48, 0, -1/48\n"));
+  EXPECT_EQ(plain.certificate.generalized.at(1), 2);
 }
 
 }  // namespace

@@ -4,7 +4,7 @@
 # the orders their digits meet, and the refusal says that they do not meet the claim.
 file(READ ${SPEC} text)
 string(REPLACE ";" "<semicolon>" text "${text}")  # `diagonal` lists: not CMake list separators
-string(REGEX MATCHALL "\nmethod[ \t]+[^\n]*\n([^m\n][^\n]*\n)*" blocks "\n${text}")
+string(REGEX MATCHALL "\nmethod[ \t]+[^\n]*\n([^m\n][^\n]*\n|modified[^\n]*\n)*" blocks "\n${text}")
 list(LENGTH blocks n)
 if(n EQUAL 0)
   message(FATAL_ERROR "no method blocks found in ${SPEC}")
