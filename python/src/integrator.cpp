@@ -121,6 +121,7 @@ class PyIntegrator {
     d["stage_iterations"] = s.stage_iterations;
     d["newton_fallbacks"] = s.newton_fallbacks;
     d["newton_iterations"] = s.newton_iterations;
+    d["state_loads"] = s.state_loads;
     d["wall_time"] = wall_time_;
     return d;
   }

@@ -206,6 +206,7 @@ void Integrator::check_energy(detail::StepperBase& stepper) {
 
 void Integrator::load_state() const {
   stepper_->get_state(q_, p_);
+  ++statistics_.state_loads;
   stale_ = false;
 }
 

@@ -39,5 +39,32 @@ TEST(Integrate, SetStateAndSetStepSizeRestartFromTheNewValues) {
   EXPECT_EQ(a.t(), 1.0);
 }
 
+// integrate(t_end) keeps the state in M's eigen coordinates: it transforms back only when q() or
+// p() asks (once), and an observer's calls load it once each (the negative control: the same
+// steps with an observer every step load it every step); the result is bit-identical either way.
+TEST(Integrate, WithoutAnObserverTheStateIsTransformedBackOnlyWhenAskedFor) {
+  const Eigen::Vector3d q0(0.6, -0.4, 0.3), p0(0.2, 0.5, -0.7);
+  for (const Method& m : Method::all()) {
+    SCOPED_TRACE(m.name());
+    Integrator quiet(m, polynomial_system(), 0.1, q0, p0);
+    Integrator watched(m, polynomial_system(), 0.1, q0, p0);
+    quiet.integrate(2.95);                         // (29 steps and a shorter one)
+    EXPECT_EQ(quiet.statistics().state_loads, 1);  // (by step_to, for the shorter step)
+    long calls = 0;
+    watched.integrate(2.95,
+                      [&](double, const Eigen::VectorXd&, const Eigen::VectorXd&) { ++calls; });
+    EXPECT_EQ(calls, 30);
+    EXPECT_EQ(watched.statistics().state_loads, 29);  // (the shorter step's stepper has it)
+    EXPECT_EQ(quiet.q(), watched.q());
+    EXPECT_EQ(quiet.p(), watched.p());
+    EXPECT_EQ(quiet.statistics().steps, watched.statistics().steps);
+    quiet.integrate(4.05);  // (11 steps on the grid that restarted at 2.95)
+    EXPECT_EQ(quiet.statistics().state_loads, 1);
+    const long loads = quiet.statistics().state_loads;
+    quiet.q(), quiet.p(), quiet.q();
+    EXPECT_EQ(quiet.statistics().state_loads, loads + 1);
+  }
+}
+
 }  // namespace
 }  // namespace erkn::test

@@ -67,6 +67,7 @@ struct Statistics {
   long stage_iterations = 0;      ///< fixed-point plus Newton iterations, over all stages
   long newton_fallbacks = 0;      ///< stages that fixed point could not solve
   long newton_iterations = 0;     ///< Newton iterations, over all fallbacks
+  long state_loads = 0;  ///< transforms of the state back to physical coordinates after steps
 };
 
 class Integrator {
@@ -105,8 +106,12 @@ class Integrator {
       observer(t(), q(), p());
     }
   }
+  /// Steps to t_end as above without an observer: the state stays in M's eigen coordinates
+  /// (no transform back) until q() or p() asks for it.
   void integrate(double t_end) {
-    integrate(t_end, [](double, const Eigen::VectorXd&, const Eigen::VectorXd&) {});
+    const EndPlan plan = prepare_end(t_end, 1);
+    for (long n = 1; n <= plan.whole; ++n) step();
+    if (plan.shorter) step_to(t_end);
   }
   /// Steps to t_end as integrate(t_end) does and calls observer(t, q, p) at each of `times`
   /// (ascending, within [t(), t_end]) with the state at that time from state_at: off-grid
@@ -172,7 +177,7 @@ class Integrator {
   mutable bool stale_ = false;
   double t_base_ = 0;
   long steps_since_base_ = 0;
-  Statistics statistics_;
+  mutable Statistics statistics_;  // (mutable: load_state counts state_loads)
   std::unique_ptr<detail::StepperBase> stepper_;
   // The stepper of the last step size other than h (a shorter last step, state_at), reused
   // while that size recurs.
