@@ -97,10 +97,12 @@ bool check(const Method& method, double h, double lambda, const std::vector<doub
   const double V = h * h * lambda;
   f.lambda = lambda, f.V = V;
   if (erkn) {
-    if (V > generated::kPoleSearchMax || method.pole_within(V, o.pole_margin) > 0) {
+    // (Beyond kPoleSearchMax a method with poles may have unknown ones: flagged, pole = inf.)
+    const bool unknown = !method.entire() && V > generated::kPoleSearchMax;
+    if (unknown || method.pole_within(V, o.pole_margin) > 0) {
       f.hazard = Hazard::pole;
-      f.pole = V > generated::kPoleSearchMax ? std::numeric_limits<double>::infinity()
-                                             : method.pole_within(V, o.pole_margin);
+      f.pole =
+          unknown ? std::numeric_limits<double>::infinity() : method.pole_within(V, o.pole_margin);
       return true;
     }
   }
@@ -194,6 +196,9 @@ std::string StepSizeAdvice::report(const Method& method) const {
       s << " (h sqrt(lambda) = " << format(std::sqrt(f.V)) << " near "
         << format(f.pole / std::numbers::pi, 4) << " pi, harmonic " << f.harmonic
         << "; tr S(V, 0) = " << format(f.trace) << ")";
+    else if (std::isinf(f.pole))
+      s << " (V beyond " << format(generated::kPoleSearchMax)
+        << ", where the method's poles are not known)";
     else
       s << " (pole v = " << format(f.pole) << ")";
     s << "\n";

@@ -65,7 +65,7 @@ Coefficients Method::at(double v, double pole_tolerance) const {
   if (v < 0)
     throw Error("coefficient argument v = h^2*lambda = " + format_double(v) + " is negative");
   if (kind() == Kind::erkn) {
-    if (v > generated::kPoleSearchMax)
+    if (!entire() && v > generated::kPoleSearchMax)
       throw Error(std::string(name()) + ": v = h^2*lambda = " + format_double(v) +
                   " exceeds the range where poles are known (v <= " +
                   format_double(generated::kPoleSearchMax) + ")");

@@ -94,7 +94,7 @@ StabilityGrid stability_grid(const Method& method, double vmax, double zmin, dou
   if (!(vmax > 0) || !std::isfinite(vmax) || !(zmax > zmin) || !std::isfinite(zmin) ||
       !std::isfinite(zmax) || nv < 2 || nz < 2)
     throw Error("stability_grid: need vmax > 0, zmax > zmin (finite) and at least 2x2 points");
-  if (vmax > generated::kPoleSearchMax || !std::isfinite(zmax - zmin))
+  if ((!method.entire() && vmax > generated::kPoleSearchMax) || !std::isfinite(zmax - zmin))
     throw Error("stability_grid: vmax = " + format(vmax) + " or the z range [" + format(zmin) +
                 ", " + format(zmax) + "] is too large: the method's poles are known for V <= " +
                 format(generated::kPoleSearchMax) + " and zmax - zmin must be finite");

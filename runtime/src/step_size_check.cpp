@@ -44,7 +44,7 @@ void check_step_size(const Method& method, double h, const Eigen::VectorXd& eige
   if (method.kind() == Kind::rkn) return;
   const double lambda_max = eigenvalues.maxCoeff();
   const double vmax = h * h * lambda_max;
-  if (vmax > generated::kPoleSearchMax)
+  if (!method.entire() && vmax > generated::kPoleSearchMax)
     throw Error(std::string(method.name()) + ": h = " + format(h) + " gives h^2*lambda_max = " +
                 format(vmax) + " > " + format(generated::kPoleSearchMax) +
                 ", beyond the range where the method's poles are known; use h <= " +

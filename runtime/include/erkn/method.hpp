@@ -58,13 +58,20 @@ class Method {
   std::string_view reference() const { return table_->reference; }
   int num_coefficients() const { return 2 * stages() + stages() * (stages() + 1) / 2; }
 
-  /// Coefficients at v >= 0; throws erkn::Error for v < 0, non-finite v, or v within a relative
-  /// pole_tolerance of a pole (the message names the pole).
+  /// Coefficients at v >= 0; throws erkn::Error for v < 0, non-finite v, v within a relative
+  /// pole_tolerance of a pole (the message names the pole), or (methods not entire()) v beyond
+  /// kPoleSearchMax.
   Coefficients at(double v, double pole_tolerance = 1e-6) const;
   /// Taylor coefficient of v^k (k < generated::kSeriesTerms) of coefficient function `index`
   /// (order b_1..b_s, bbar_1..bbar_s, abar_11, abar_21, abar_22, ...).
   double series(int index, int k) const;
   std::span<const double> poles() const { return {table_->poles, size_t(table_->npoles)}; }
+  /// Coefficients entire in v (no pole at any v, so any step size is valid): the RKN limits
+  /// (constants) and every method whose coefficients have no pole in (0, kPoleSearchMax] (the
+  /// explicit and the pole-free ones), whose closed forms are then polynomials in phi-functions
+  /// (tests/runtime/large_step_test.cpp certifies that for the registry). Only the other methods
+  /// refuse v beyond kPoleSearchMax, where their poles are not known.
+  bool entire() const { return kind() == Kind::rkn || poles().empty(); }
   /// The pole nearest to v, or a negative number if the method has none.
   double nearest_pole(double v) const;
   /// The pole p with |v - p| <= tolerance * p, or a negative number if there is none: the one
