@@ -6,7 +6,13 @@
 // eigen coordinates. With c_1 = 0 and c_s = 1 the first kick reuses the previous step's last
 // gradient (FSAL). The first pass reads the state and writes a second copy of it, which replaces
 // the state once every gradient has been evaluated and the result is finite: a failed step leaves
-// the state unchanged. When D, the dimension, is a compile-time constant (tiny systems with M's
+// the state unchanged.
+//
+// The last flow of a step and the first of the next are one exact flow (over tau_s + tau_0), so the
+// stored state stays one flow behind: after a step it is the state before flow s, which is
+// pending (pending_). The next step starts with the merged flow; get_state applies the pending
+// flow to a copy. Either way the state returned is the one the unmerged steps give, up to
+// round-off. When D, the dimension, is a compile-time constant (tiny systems with M's
 // identity eigenbasis) that copy is a set of fixed-size arrays the compiler keeps in registers.
 //
 // Compensated summation (Options::compensated_summation) keeps with q and p the low-order parts
@@ -97,21 +103,14 @@ class ExplicitStepper final : public StepperBase {
     map(state_.eq).setZero();
     map(state_.ep).setZero();
     have_history_ = false;
+    pending_ = false;
   }
 
-  // q + eq and p + ep, rounded (with a dynamic dimension: summed in the second copy's slots,
-  // unused between steps).
   void get_state(Eigen::VectorXd& q, Eigen::VectorXd& p) override {
-    if constexpr (kFixed) {
-      q.resize(D), p.resize(D);
-      for (int e = 0; e < D; ++e)
-        q[e] = state_.q[e] + state_.eq[e], p[e] = state_.p[e] + state_.ep[e];
-    } else {
-      map(work_.q) = map(state_.q) + map(state_.eq);
-      map(work_.p) = map(state_.p) + map(state_.ep);
-      transform_.inverse(map(work_.q), q);
-      transform_.inverse(map(work_.p), p);
-    }
+    if (kahan_)
+      load<true>(q, p);
+    else
+      load<false>(q, p);
   }
 
   void step(long step_number, double t, Statistics& stats) override {
@@ -124,6 +123,7 @@ class ExplicitStepper final : public StepperBase {
       passes<false>(evaluations);
     std::swap(G_, G_last_);  // (FSAL: the last stage's gradient)
     have_history_ = true;
+    pending_ = flows_.moves(s_);
     ++stats.steps;
     stats.gradient_evaluations += evaluations;
     stats.stage_iterations += evaluations;
@@ -159,7 +159,8 @@ class ExplicitStepper final : public StepperBase {
     }
   }
 
-  // The flows and kicks from `start` into `to` (S: State or Values; start may be to).
+  // The flows and kicks from `start` into `to` (S: State or Values; start may be to), the first
+  // flow merged with the pending one, the last left pending.
   template <bool kKahan, class S>
   EIGEN_ALWAYS_INLINE void stages(const S& start, S& to, long& evaluations) {
     const S* from = &start;
@@ -169,8 +170,9 @@ class ExplicitStepper final : public StepperBase {
       // gradient to G_ (for FSAL): no pass reloads what the last one stored.
       double* const Q = kIdentity && !reuse ? Q_.data() : nullptr;
       bool have_Q = false;
-      if (flows_.moves(i)) {
-        flow<kKahan>(i, *from, to, Q);
+      const int k = i == 0 && pending_ ? flows_.merged(method_) : i;
+      if (flows_.moves(k)) {
+        flow<kKahan>(k, *from, to, Q);
         from = &to;
         have_Q = Q != nullptr;
       }
@@ -181,7 +183,27 @@ class ExplicitStepper final : public StepperBase {
                      *from, to, kIdentity ? G_ : nullptr);
       from = &to;
     }
-    if (flows_.moves(s_)) flow<kKahan>(s_, *from, to, nullptr);
+  }
+
+  // get_state: q + eq and p + ep after the pending flow, rounded (with a dynamic dimension: in
+  // the second copy's slots, unused between steps).
+  template <bool kKahan>
+  void load(Eigen::VectorXd& q, Eigen::VectorXd& p) {
+    if constexpr (kFixed) {
+      Values v{Fixed(state_.q), Fixed(state_.p), Fixed(state_.eq), Fixed(state_.ep)};
+      if (pending_) flow<kKahan>(s_, v, v, nullptr);
+      q = (v.q + v.eq).matrix(), p = (v.p + v.ep).matrix();
+    } else {
+      const State* from = &state_;
+      if (pending_) flow<kKahan>(s_, state_, work_, nullptr), from = &work_;
+      if (kKahan) {
+        map(work_.q) = map(from->q) + map(from->eq);
+        map(work_.p) = map(from->p) + map(from->ep);
+        from = &work_;
+      }
+      transform_.inverse(map(from->q), q);
+      transform_.inverse(map(from->p), p);
+    }
   }
 
   void require_finite(const Values& v) const {
@@ -352,6 +374,7 @@ class ExplicitStepper final : public StepperBase {
   State work_;                  // (dynamic dimension only)
   Eigen::VectorXd Q_, g_, Mq_;  // physical coordinates (Q_, g_ go to the callback)
   bool have_history_ = false;
+  bool pending_ = false;  // the stored state awaits flow s (the last of the step)
   StepPlace place_{&method_, 0, 0};
 };
 

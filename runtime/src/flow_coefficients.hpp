@@ -5,7 +5,8 @@
 // cos x - 1 = -2 sin^2(x/2) is kept as well, without cancellation, for the increments of
 // compensated summation. One sincos of x/2 gives all of them (sin x = 2 sin(x/2) cos(x/2)), and a
 // tau_k equal to an earlier one (symmetric methods: every tau but the middle one) shares its
-// coefficients.
+// coefficients. Flow s + 1 is the merged one, over tau_s + tau_0: the last flow of a step and the
+// first of the next are one exact flow.
 #pragma once
 
 #include <Eigen/Core>
@@ -21,7 +22,7 @@ namespace erkn::detail {
 
 template <class Coef>
 class FlowCoefficients {
-  using Slots = CoefficientSlots<Coef, 4 * (kMaxStages + 1)>;
+  using Slots = CoefficientSlots<Coef, 4 * (kMaxStages + 2)>;
 
  public:
   using Value = typename Slots::Value;
@@ -30,7 +31,7 @@ class FlowCoefficients {
       : slots_(4 * distinct_taus(method, h), lambda.size()) {
     for (Eigen::Index e = 0; e < lambda.size(); ++e) {
       const double w = std::sqrt(lambda[e]), inv_w = w == 0 ? 0 : 1 / w;
-      for (int k = 0, next = 0; k <= method.stages(); ++k) {
+      for (int k = 0, next = 0; k <= method.stages() + 1; ++k) {
         if (slot_[k] != next) continue;  // (shares an earlier flow's coefficients)
         ++next;
         const double t = tau(method, h, k), half = 0.5 * w * t;
@@ -44,7 +45,9 @@ class FlowCoefficients {
     }
   }
 
-  bool moves(int k) const { return moves_[k]; }                     ///< tau_k != 0
+  bool moves(int k) const { return moves_[k]; }  ///< tau_k != 0
+  /// The flow over tau_s + tau_0: the last of a step merged with the first of the next.
+  static int merged(const Method& method) { return method.stages() + 1; }
   Value cos(int k) const { return slots_.at(4 * slot_[k]); }        ///< cos(w tau_k)
   Value cm1(int k) const { return slots_.at(4 * slot_[k] + 1); }    ///< cos(w tau_k) - 1
   Value sinc(int k) const { return slots_.at(4 * slot_[k] + 2); }   ///< sin(w tau_k) / w
@@ -54,6 +57,7 @@ class FlowCoefficients {
   static double tau(const Method& method, double h, int k) {
     const double* c = method.table().c;
     const int s = method.stages();
+    if (k == s + 1) return tau(method, h, s) + tau(method, h, 0);
     return h * ((k < s ? c[k] : 1.0) - (k > 0 ? c[k - 1] : 0.0));
   }
 
@@ -66,9 +70,9 @@ class FlowCoefficients {
   // Sets moves_ and slot_ (flow k's coefficients are those of distinct tau number slot_[k]);
   // returns the number of distinct taus.
   int distinct_taus(const Method& method, double h) {
-    std::array<double, kMaxStages + 1> taus;
+    std::array<double, kMaxStages + 2> taus;
     int distinct = 0;
-    for (int k = 0; k <= method.stages(); ++k) {
+    for (int k = 0; k <= method.stages() + 1; ++k) {
       taus[k] = tau(method, h, k);
       moves_[k] = taus[k] != 0;
       slot_[k] = std::int8_t(distinct);
@@ -82,8 +86,8 @@ class FlowCoefficients {
     return distinct;
   }
 
-  std::array<bool, kMaxStages + 1> moves_;
-  std::array<std::int8_t, kMaxStages + 1> slot_;
+  std::array<bool, kMaxStages + 2> moves_;
+  std::array<std::int8_t, kMaxStages + 2> slot_;
   Slots slots_;
 };
 
