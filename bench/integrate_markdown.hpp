@@ -16,6 +16,12 @@ inline std::string fixed(double x, int digits = 3) {
   return buf;
 }
 
+inline std::string scientific(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2e", x);
+  return buf;
+}
+
 inline void markdown_header(std::ofstream& f, const Results& r, const Config& cfg) {
   int plain = 0, deflt = 0, output = 0, implicit = 0;
   for (const Cell& c : r.cells)
@@ -95,7 +101,7 @@ inline void markdown_steps(std::ofstream& f, const StepsCheck& s) {
     << "|---|--:|--:|---|\n";
   for (const StepsCell& c : s.cells)
     f << "| " << c.method << " | " << c.peer_steps << " | "
-      << (c.erkn_accepts ? std::to_string(c.erkn_error) : "refused: " + c.refusal) << " | "
+      << (c.erkn_accepts ? scientific(c.erkn_error) : "refused: " + c.refusal) << " | "
       << (c.erkn_accepts && c.erkn_error <= s.target ? "met" : "NOT met") << " |\n";
 }
 
