@@ -130,6 +130,7 @@ int run(const Options& o, const std::string& command) {
 int main(int argc, char** argv) {
   try {
     const Options o = parse_options(argc, argv);
+    if (o.help) return std::cout << usage(), 0;
     if (o.list) return list(), 0;
     return run(o, command_line(argc, argv));
   } catch (const std::invalid_argument& e) {

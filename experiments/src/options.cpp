@@ -75,7 +75,8 @@ std::string usage() {
          "  --methods    the paper's names, e.g. SERKN3s4(1),RKN3s4(1),Gauss2 (default: all)\n"
          "  --steps      fixed step sizes on [0, 10], e.g. 1/40,1/80 (no extension)\n"
          "  --out DIR    writes DIR/results.md and DIR/charts/ (default: docs)\n"
-         "  --list       lists the problems and methods and exits\n";
+         "  --list       lists the problems and methods and exits\n"
+         "  --help       prints this and exits\n";
 }
 
 Options parse_options(int argc, char** argv) {
@@ -102,6 +103,8 @@ Options parse_options(int argc, char** argv) {
       o.out = value();
     else if (arg == "--list")
       o.list = true;
+    else if (arg == "--help" || arg == "-h")
+      o.help = true;
     else
       throw std::invalid_argument("unknown option " + arg);
   }

@@ -15,6 +15,7 @@ struct Options {
   std::string mode = "quick";        ///< "quick", "full" or "custom" (with --steps)
   std::filesystem::path out = "docs";
   bool list = false;
+  bool help = false;  // --help: print the usage and exit 0
   RunConfig config;
 };
 

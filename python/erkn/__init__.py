@@ -4,6 +4,10 @@
                      t_eval=np.linspace(0, 10, 101))
     sol.t, sol.q, sol.p, sol.energy, sol.stats, sol.method
 
+Settings: options=erkn.Options(...) (every field of erkn::Options, validated on assignment), or
+the shortcuts energy_tolerance= and check_stability=. Also: erkn.advise_step_size (the step-size
+advisor), erkn.hessian_bounds_at / hessian_bounds_along, erkn.Ensemble (trajectories on threads).
+
 M: a float (M = w2 I), a 1-D array (diagonal), a 2-D symmetric array (dense), or an
 erkn.Stiffness (erkn.circulant(col), erkn.grid(axes, shift), ...).
 grad: a built-in potential by name ("sine", "duffing", "fpu", "phi4"; parameters with
@@ -22,13 +26,72 @@ import time
 
 import numpy as np
 
-from ._erkn import (Error, Stiffness, System, builtin_potentials, circulant, dense, diagonal,
-                    grid, methods, scalar, tableau, trace_tolerance)
+from ._erkn import (Error, StepSizeAdvice, Stiffness, System, builtin_potentials, circulant,
+                    dense, diagonal, grid, methods, scalar, tableau, trace_tolerance)
 from . import _erkn
 
 __version__ = "@PROJECT_VERSION@"
-__all__ = ["Error", "Integrator", "Solution", "Stiffness", "circulant", "dense", "diagonal",
-           "grid", "methods", "potential", "scalar", "solve", "stability", "system", "tableau"]
+__all__ = ["Ensemble", "Error", "Integrator", "Options", "Solution", "StepSizeAdvice",
+           "Stiffness", "advise_step_size", "circulant", "dense", "diagonal", "grid",
+           "hessian_bounds_along", "hessian_bounds_at", "methods", "potential", "scalar", "solve",
+           "stability", "system", "tableau"]
+
+_DEFAULT_METHOD = "SERKN2s4"
+
+
+class Options(_erkn._Options):
+    """erkn::Options (erkn/integrator.hpp), field by field:
+
+        opts = erkn.Options(energy_tolerance=1e-8, max_theta=0.5)
+        opts.tolerance = 1e-12   # checked on assignment by the C++ validation
+
+    A value out of range, of the wrong type, or an unknown field raises erkn.Error naming the
+    field, and the Options keep their previous values. Options.fields lists the fields."""
+
+    __slots__ = ()
+    fields = _erkn._Options._fields
+
+    def __init__(self, **fields):
+        super().__init__()
+        for name, value in fields.items():
+            setattr(self, name, value)
+
+    def __setattr__(self, name, value):
+        if name not in self.fields:
+            raise Error(f"Options has no field '{name}'; its fields: " + ", ".join(self.fields))
+        if isinstance(getattr(self, name), bool) and not isinstance(value, (bool, np.bool_)):
+            raise Error(f"Options::{name} must be True or False; got {value!r}")
+        try:
+            super().__setattr__(name, value)
+        except TypeError:
+            kind = type(getattr(self, name)).__name__
+            raise Error(f"Options::{name} must be a {kind}; got {value!r}") from None
+
+    def asdict(self):
+        return {name: getattr(self, name) for name in self.fields}
+
+    def __eq__(self, other):
+        return isinstance(other, _erkn._Options) and self.asdict() == Options._of(other).asdict()
+
+    def __repr__(self):
+        return "erkn.Options(" + ", ".join(f"{k}={v!r}" for k, v in self.asdict().items()) + ")"
+
+    @staticmethod
+    def _of(options, **shortcuts):
+        """A new Options from None, an Options or a dict, with the shortcuts not None set."""
+        if options is None:
+            out = Options()
+        elif isinstance(options, _erkn._Options):
+            out = Options(**{name: getattr(options, name) for name in Options.fields})
+        elif isinstance(options, dict):
+            out = Options(**options)
+        else:
+            raise Error("options must be an erkn.Options or a dict of its fields; got "
+                        + type(options).__name__)
+        for name, value in shortcuts.items():
+            if value is not None:
+                setattr(out, name, value)
+        return out
 
 
 class potential:
@@ -107,11 +170,18 @@ class Integrator(_erkn._Integrator):
     with its own coefficients; the grid then restarts at t_end). state_at(t), t in [t, t + h],
     leaves the integrator unchanged."""
 
-    def __init__(self, M, grad, *, q0, p0, h, method="SERKN2s4", t0=0.0, potential=None,
-                 hessian=None):
+    def __init__(self, M, grad, *, q0, p0, h, method=_DEFAULT_METHOD, t0=0.0, potential=None,
+                 hessian=None, options=None, energy_tolerance=None, check_stability=None):
         q0, p0 = _state(q0, "q0"), _state(p0, "p0")
+        options = Options._of(options, energy_tolerance=energy_tolerance,
+                              check_stability=check_stability)
         super().__init__(method, _system(M, grad, q0.size, potential, hessian), float(h), q0, p0,
-                         float(t0))
+                         float(t0), options)
+
+    @property
+    def options(self):
+        """A copy of the run's erkn.Options (fixed at construction)."""
+        return Options._of(self._options)
 
     def run(self, t_end, t_eval=None, every=1, energy=True):
         """(t, q, p, energy) at t_eval, or else at the start, every `every`-th step and t_end."""
@@ -130,19 +200,22 @@ class Solution:
                 f"[{self.t[0]:g}, {self.t[-1]:g}], d={self.q.shape[1]})")
 
 
-def solve(M, grad, *, q0, p0, t_span, h, method="SERKN2s4", t_eval=None, every=1,
-          potential=None, hessian=None):
+def solve(M, grad, *, q0, p0, t_span, h, method=_DEFAULT_METHOD, t_eval=None, every=1,
+          potential=None, hessian=None, options=None, energy_tolerance=None,
+          check_stability=None):
     """Integrates q'' + M q = -grad U(q) over t_span = (t0, t1) with step h.
 
     Output at t_eval (any ascending times in t_span), else at t0, every `every`-th step and
     t1. The energy H = p.p/2 + q.M q/2 + U(q) is reported when U is known (a built-in, or the
     `potential` callable); `hessian(q)` (or hessian(q, out)) helps the stage solver's Newton
-    fallback. Raises erkn.Error with erkn's message on any bad input or failed step; an error
+    fallback. options: an erkn.Options (or a dict of its fields); energy_tolerance= and
+    check_stability= set those fields. Raises erkn.Error with erkn's message on any bad input or failed step; an error
     (or an exception from a callback) during the run carries the output up to the last completed
     step as its `solution` attribute."""
     t0, t1 = (float(x) for x in t_span)
     run = Integrator(M, grad, q0=q0, p0=p0, h=h, method=method, t0=t0, potential=potential,
-                     hessian=hessian)
+                     hessian=hessian, options=options, energy_tolerance=energy_tolerance,
+                     check_stability=check_stability)
     if t_eval is not None:
         t_eval = np.ascontiguousarray(t_eval, dtype=float)
     try:
@@ -168,3 +241,90 @@ def stability(name, V, z=0.0):
     rho = np.where(np.isfinite(trace), rho, np.nan)
     return {"S": S, "trace": trace, "det": det, "rho": rho,
             "class": np.array(classes, dtype=object).reshape(V.shape)}
+
+
+def hessian_bounds_at(M, grad, q, hessian=None):
+    """(lo, hi): the extreme eigenvalues of U's Hessian at q (from `hessian`, a built-in's, or
+    finite differences of grad: d gradient evaluations, d <= 2000)."""
+    q = _state(q, "q")
+    return _erkn._hessian_bounds_at(_system(M, grad, q.size, None, hessian), q)
+
+
+def hessian_bounds_along(method, M, grad, *, h, q0, p0, steps, hessian=None):
+    """(lo, hi) over q0 and each of `steps` steps of `method` with step h from (q0, p0): the
+    range at q0 alone can be far too narrow (FPU: hi = 12.5 at q0, 22.4 by t = 100)."""
+    q0, p0 = _state(q0, "q0"), _state(p0, "p0")
+    return _erkn._hessian_bounds_along(method, _system(M, grad, q0.size, None, hessian), float(h),
+                                       q0, p0, int(steps))
+
+
+def advise_step_size(method, M, h, grad=None, *, q0=None, p0=None, steps=0, hessian_bounds=None,
+                     **advisor_options):
+    """The step sizes near h the stability analysis warns against for `method` on
+    q'' + M q = -grad U(q), and the nearest one it does not (erkn/advisor.hpp; `erkn advise`).
+
+    The bounds (lo, hi) on the Hessian of U: hessian_bounds if given; else, with grad, at q0
+    (steps = 0) or along `steps` steps from (q0, p0); else (0, 0). advisor_options:
+    potential_degree, pole_margin, trace_tolerance, z_samples, max_change, search_step.
+    Returns an erkn.StepSizeAdvice: safe, findings, suggested_h, hessian, report."""
+    options = _erkn._AdvisorOptions()
+    for name, value in advisor_options.items():
+        if not hasattr(options, name) or name.startswith("_"):
+            raise Error(f"advise_step_size has no option '{name}'")
+        setattr(options, name, value)
+    if hessian_bounds is None and grad is not None:
+        if q0 is None:
+            raise Error("advise_step_size: grad needs q0 (the state the Hessian is bounded at)")
+        hessian_bounds = (hessian_bounds_at(M, grad, q0) if steps == 0 else
+                          hessian_bounds_along(method, M, grad, h=h, q0=q0, p0=p0, steps=steps))
+    lo, hi = (0.0, 0.0) if hessian_bounds is None else (float(x) for x in hessian_bounds)
+    return _erkn._advise(method, _stiffness(M).eigenvalues, float(h), lo, hi, options)
+
+
+class EnsembleResult:
+    """Row i belongs to trajectory i: q, p (n, d) and t (n,) at t_end, or after the last
+    completed step of a trajectory that failed; errors[i] ("" when it reached t_end), ok (n,)
+    and statistics[i] (its counters and times)."""
+
+    def __init__(self, results):
+        self.q = np.array([r["q"] for r in results])
+        self.p = np.array([r["p"] for r in results])
+        self.t = np.array([r["t"] for r in results])
+        self.errors = [r["error"] for r in results]
+        self.ok = np.array([not e for e in self.errors], dtype=bool)
+        self.statistics = [r["statistics"] for r in results]
+
+
+class Ensemble:
+    """Trajectories of one method and step size, run on threads (erkn/ensemble.hpp):
+
+        ens = erkn.Ensemble(M, "fpu", q0=Q0, p0=P0, h=0.01)   # Q0, P0: (n, d)
+        res = ens.integrate(100.0, threads=4)                  # res.q (n, d), res.ok, res.errors
+
+    One M and grad for all, or systems=[erkn.system(M_i, grad_i, d), ...] one per trajectory.
+    Each trajectory runs on one thread with its own Integrator, so its result equals a serial
+    run bit for bit. Built-in potentials run without the GIL; Python callables take it per
+    call (correct, but those trajectories take turns). A failing trajectory does not stop the
+    others: its error and its last completed state are in the result."""
+
+    def __init__(self, M=None, grad=None, *, q0, p0, h, method=_DEFAULT_METHOD, options=None,
+                 systems=None, potential=None, hessian=None):
+        q0 = np.atleast_2d(np.asarray(q0, dtype=float))
+        p0 = np.atleast_2d(np.asarray(p0, dtype=float))
+        if q0.ndim != 2 or q0.shape != p0.shape:
+            raise Error(f"q0 and p0 must be arrays of the same shape (n, d); got {q0.shape} "
+                        f"and {p0.shape}")
+        if (systems is None) == (grad is None):
+            raise Error("give either M and grad, or systems (one per trajectory)")
+        if systems is None:
+            systems = [_system(M, grad, q0.shape[1], potential, hessian)]
+        self._ensemble = _erkn._Ensemble(method, float(h), list(systems), q0, p0,
+                                         Options._of(options))
+
+    @property
+    def size(self):
+        return self._ensemble.size
+
+    def integrate(self, t_end, threads=0):
+        """Every trajectory from t = 0 to t_end on `threads` threads (0: one per core)."""
+        return EnsembleResult(self._ensemble._integrate(float(t_end), int(threads)))

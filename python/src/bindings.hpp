@@ -3,6 +3,8 @@
 
 #include <pybind11/pybind11.h>
 
+#include "erkn/integrator.hpp"
+
 namespace erkn::python {
 
 namespace py = pybind11;
@@ -14,5 +16,14 @@ void bind_registry(py::module_& m);
 void bind_system(py::module_& m);
 /// Integrator: step, integrate with output, state_at, statistics.
 void bind_integrator(py::module_& m);
+/// Options (every erkn::Options field, validated on assignment by erkn::validate).
+void bind_options(py::module_& m);
+/// advise_step_size with its report, hessian_bounds_at and hessian_bounds_along.
+void bind_advisor(py::module_& m);
+/// Ensemble: trajectories on threads, without the GIL for built-in potentials.
+void bind_ensemble(py::module_& m);
+
+/// erkn::Statistics as the dict Integrator.statistics and Ensemble results carry.
+py::dict statistics_dict(const Statistics& s);
 
 }  // namespace erkn::python

@@ -7,7 +7,6 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include <chrono>
 #include <vector>
 
 #include "bindings.hpp"
@@ -48,17 +47,16 @@ struct Output {
 class PyIntegrator {
  public:
   PyIntegrator(const std::string& method, const PySystem& system, double h,
-               const Eigen::VectorXd& q0, const Eigen::VectorXd& p0, double t0)
+               const Eigen::VectorXd& q0, const Eigen::VectorXd& p0, double t0,
+               const Options& options)
       : calls_python_(system.calls_python),
-        run_(Method::by_name(method), system.system, h, q0, p0) {
+        run_(Method::by_name(method), system.system, h, q0, p0, options) {
     if (t0 != 0) run_.set_state(q0, p0, t0);
   }
 
   void step(long n) {
     if (n < 0) throw Error("step(n): n must be >= 0; got " + std::to_string(n));
-    stepping([&] {
-      for (long k = 0; k < n; ++k) run_.step();
-    });
+    stepping([&] { run_.step(n); });
   }
 
   // Steps to t_end; output at `t_eval` (ascending, in [t, t_end]) or else at the start, every
@@ -88,7 +86,6 @@ class PyIntegrator {
     return out.to_python();
   }
 
-  // Python observer(t, q, p) with copies of the state (the loop holds the GIL).
   // Python observer(t, q, p) with copies of the state (the loop holds the GIL), after every
   // `every`-th step and at t_end, or at `times` (between grid points: state_at).
   void integrate(double t_end, const py::object& observer, long every, const py::object& times) {
@@ -112,19 +109,7 @@ class PyIntegrator {
     return py::make_tuple(q, p);
   }
 
-  py::dict statistics() const {
-    const Statistics& s = run_.statistics();
-    py::dict d;
-    d["steps"] = s.steps;
-    d["gradient_evaluations"] = s.gradient_evaluations;
-    d["hessian_evaluations"] = s.hessian_evaluations;
-    d["stage_iterations"] = s.stage_iterations;
-    d["newton_fallbacks"] = s.newton_fallbacks;
-    d["newton_iterations"] = s.newton_iterations;
-    d["state_loads"] = s.state_loads;
-    d["wall_time"] = wall_time_;
-    return d;
-  }
+  py::dict statistics() const { return statistics_dict(run_.statistics()); }
 
   Integrator& get() { return run_; }
   /// The output of the last run() that failed, up to its last completed step.
@@ -138,23 +123,17 @@ class PyIntegrator {
     });
   }
 
-  // Runs f without the GIL unless a callback is Python code; adds its wall time.
+  // Runs f without the GIL unless a callback is Python code.
   template <class F>
   void stepping(F&& f) {
-    const auto start = std::chrono::steady_clock::now();
-    if (calls_python_) {
-      f();
-    } else {
-      py::gil_scoped_release release;
-      f();
-    }
-    wall_time_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (calls_python_) return f();
+    py::gil_scoped_release release;
+    f();
   }
 
   bool calls_python_;
   Integrator run_;
   py::object partial_ = py::none();
-  double wall_time_ = 0;
 };
 
 }  // namespace
@@ -162,9 +141,9 @@ class PyIntegrator {
 void bind_integrator(py::module_& m) {
   py::class_<PyIntegrator>(m, "_Integrator")
       .def(py::init<const std::string&, const PySystem&, double, const Eigen::VectorXd&,
-                    const Eigen::VectorXd&, double>(),
+                    const Eigen::VectorXd&, double, const Options&>(),
            py::arg("method"), py::arg("system"), py::arg("h"), py::arg("q0"), py::arg("p0"),
-           py::arg("t0") = 0.0)
+           py::arg("t0"), py::arg("options"))
       .def("step", &PyIntegrator::step, py::arg("n") = 1, "n steps of size h")
       .def("integrate", &PyIntegrator::integrate, py::arg("t_end"),
            py::arg("observer") = py::none(), py::arg("every") = 1, py::arg("times") = py::none(),
@@ -196,7 +175,10 @@ void bind_integrator(py::module_& m) {
       .def_property_readonly("h", [](PyIntegrator& r) { return r.get().h(); })
       .def_property_readonly("method",
                              [](PyIntegrator& r) { return std::string(r.get().method().name()); })
-      .def_property_readonly("statistics", &PyIntegrator::statistics)
+      .def_property_readonly("statistics", &PyIntegrator::statistics,
+                             "counters and wall_time, cpu_time (seconds in integrate and step)")
+      .def_property_readonly(
+          "_options", [](PyIntegrator& r) { return r.get().options(); }, "a copy")
       .def_property_readonly("_partial", &PyIntegrator::partial);
 }
 

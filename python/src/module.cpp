@@ -9,5 +9,8 @@ PYBIND11_MODULE(_erkn, m) {
   pybind11::register_exception<erkn::Error>(m, "Error", PyExc_ValueError);
   erkn::python::bind_registry(m);
   erkn::python::bind_system(m);
+  erkn::python::bind_options(m);
   erkn::python::bind_integrator(m);
+  erkn::python::bind_advisor(m);
+  erkn::python::bind_ensemble(m);
 }

@@ -12,15 +12,19 @@
 namespace erkn::python {
 namespace {
 
+// The fields of `erkn list --json` (python/tests/test_registry.py compares the two).
 py::dict describe(const Method& m) {
   py::dict d;
   d["name"] = std::string(m.name());
-  d["id"] = std::string(m.id_name());
-  d["kind"] = m.kind() == Kind::erkn ? "ERKN" : "RKN";
+  d["kind"] = std::string(m.kind_name());
   d["stages"] = m.stages();
   d["order"] = m.order();
-  d["reference"] = std::string(m.reference());
+  d["generalized_order"] =
+      std::vector<int>(m.generalized_order().begin(), m.generalized_order().end());
   d["poles"] = std::vector<double>(m.poles().begin(), m.poles().end());
+  d["source"] = std::string(m.reference());
+  d["paper"] = m.from_paper();
+  d["id"] = std::string(m.id_name());
   return d;
 }
 
@@ -77,7 +81,8 @@ void bind_registry(py::module_& m) {
         for (const Method& method : Method::all()) out.append(describe(method));
         return out;
       },
-      "every generated method as a dict: name, id, kind, stages, order, reference, poles");
+      "every generated method as a dict with the fields of `erkn list --json`: name, kind "
+      "(explicit, erkn, rkn), stages, order, generalized_order, poles, source, paper, id");
   m.def("tableau", &tableau, py::arg("name"), py::arg("v") = 0.0,
         "coefficients of a method at v = h^2 lambda >= 0 (erkn.Error at a pole)");
   m.def("_stability", &stability, py::arg("name"), py::arg("V"), py::arg("z"));

@@ -1,4 +1,8 @@
 # The registry, tables and stability matrix, checked by properties over every method.
+import json
+import os
+import subprocess
+
 import numpy as np
 import pytest
 
@@ -11,9 +15,24 @@ def test_methods_lists_the_registry_with_unique_names():
     names = [m["name"] for m in ms]
     assert len(set(names)) == len(names)
     for m in ms:
-        assert m["kind"] in ("ERKN", "RKN")
+        assert m["kind"] in ("explicit", "erkn", "rkn")
         assert 1 <= m["stages"] and 2 <= m["order"]
-        assert m["kind"] == "ERKN" or m["poles"] == []
+        assert m["kind"] != "rkn" or m["poles"] == []
+        # explicit methods are entire (no pole); the generalized order starts at the order
+        assert m["kind"] != "explicit" or m["poles"] == []
+        assert m["kind"] == "rkn" or m["generalized_order"][0] >= m["order"]
+
+
+@pytest.mark.skipif("ERKN_CLI" not in os.environ, reason="the erkn CLI's path is not given")
+def test_methods_carry_the_same_fields_and_values_as_erkn_list_json():
+    listed = json.loads(subprocess.run([os.environ["ERKN_CLI"], "list", "--json"], check=True,
+                                       capture_output=True, text=True).stdout)
+    ours = erkn.methods()
+    assert [m["name"] for m in ours] == [m["name"] for m in listed]
+    for a, b in zip(ours, listed):
+        assert set(a) == set(b), a["name"]
+        for key in a:
+            assert a[key] == pytest.approx(b[key], rel=1e-15) if key == "poles" else a[key] == b[key]
 
 
 @pytest.mark.parametrize("m", erkn.methods(), ids=lambda m: m["name"])

@@ -15,6 +15,7 @@
 
 #include "erkn/advisor.hpp"
 #include "erkn/error.hpp"
+#include "help.hpp"
 
 namespace erkn::cli {
 namespace {
@@ -39,15 +40,19 @@ std::vector<double> numbers(const std::string& option, const std::string& text) 
   }
 }
 
-int usage() {
-  std::cerr << "usage: erkn advise NAME --h H (--spectrum L1,L2,... | --problem P1|P2|P3|FPU)"
-               " [--hessian LO,HI]\n";
-  return 2;
+int usage(bool help = false) {
+  return print_usage(
+      "usage: erkn advise NAME --h H (--spectrum L1,L2,... | --problem P1|P2|P3|FPU)"
+      " [--hessian LO,HI]\n"
+      "  step sizes near H the stability analysis warns against, and the nearest one it does\n"
+      "  not; exit 0: H is not flagged, 3: flagged (the report says why)\n",
+      help);
 }
 
 }  // namespace
 
 int advise_command(int argc, char** argv) {
+  if (asks_for_help(argc, argv)) return usage(true);
   std::string name, problem;
   std::vector<double> spectrum, hessian;
   double h = std::nan("");

@@ -9,12 +9,31 @@
 
 #include "advise_command.hpp"
 #include "erkn/error.hpp"
+#include "help.hpp"
 #include "run_command.hpp"
 #include "stability_command.hpp"
 #include "tableau_command.hpp"
 
+namespace {
+
+int usage(bool help) {
+  return erkn::cli::print_usage(
+      "usage: erkn list [--json] | --version | --help\n"
+      "       erkn tableau NAME (--v X | --series K | --poles VMAX)\n"
+      "       erkn run [--quick | --full] [experiment options; erkn run --help]\n"
+      "       erkn stability NAME|all [--vmax V --zmin Z --zmax Z --grid N --out DIR]\n"
+      "       erkn advise NAME --h H (--spectrum L1,... | --problem P1|P2|P3|FPU)"
+      " [--hessian LO,HI]\n"
+      "erkn COMMAND --help prints the command's usage.\n",
+      help);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   const std::string command = argc > 1 ? argv[1] : "";
+  if (argc == 2 && (command == "--help" || command == "-h" || command == "help"))
+    return usage(true);
   if (command == "--version") {
     std::cout << "erkn " << ERKN_VERSION << "\n";
     return 0;
@@ -29,11 +48,5 @@ int main(int argc, char** argv) {
     std::cerr << e.what() << "\n";
     return 1;
   }
-  std::cerr << "usage: erkn list [--json] | --version\n"
-               "       erkn tableau NAME (--v X | --series K | --poles VMAX)\n"
-               "       erkn run [--quick | --full] [experiment options; erkn run --help]\n"
-               "       erkn stability NAME|all [--vmax V --zmin Z --zmax Z --grid N --out DIR]\n"
-               "       erkn advise NAME --h H (--spectrum L1,... | --problem P1|P2|P3|FPU)"
-               " [--hessian LO,HI]\n";
-  return 2;
+  return usage(false);
 }

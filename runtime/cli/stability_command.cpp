@@ -22,6 +22,7 @@
 #include "erkn/error.hpp"
 #include "erkn/method.hpp"
 #include "erkn/stability.hpp"
+#include "help.hpp"
 #include "process.hpp"
 
 namespace erkn::cli {
@@ -34,10 +35,11 @@ struct Args {
   std::filesystem::path out = ".";
 };
 
-int usage() {
-  std::cerr << "usage: erkn stability NAME|all [--vmax 100] [--zmin -50] [--zmax 50] [--grid 201]"
-               " [--out DIR]\n";
-  return 2;
+int usage(bool help = false) {
+  return print_usage(
+      "usage: erkn stability NAME|all [--vmax 100] [--zmin -50] [--zmax 50] [--grid 201]"
+      " [--out DIR]\n",
+      help);
 }
 
 double number(const std::string& option, const char* text) {
@@ -172,6 +174,7 @@ void page(const Args& a, const std::vector<Written>& ws, const std::string& stem
 }  // namespace
 
 int stability_command(int argc, char** argv) {
+  if (asks_for_help(argc, argv)) return usage(true);
   Args a;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];

@@ -4,12 +4,14 @@
 #include <cmath>
 #include <cstdlib>
 #include <functional>
+#include <iomanip>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "erkn/error.hpp"
 #include "erkn/method.hpp"
+#include "help.hpp"
 #include "json.hpp"
 
 namespace erkn::cli {
@@ -35,11 +37,12 @@ void print_tableau(const Method& m, const std::function<std::string(int)>& value
   std::cout << "]}\n";
 }
 
-int usage() {
-  std::cerr << "usage: erkn tableau NAME --v X        coefficients at v = h^2*lambda = X >= 0\n"
-               "       erkn tableau NAME --series K   Taylor coefficients of v^0..v^K\n"
-               "       erkn tableau NAME --poles VMAX real poles in (0, VMAX]\n";
-  return 2;
+int usage(bool help = false) {
+  return print_usage(
+      "usage: erkn tableau NAME --v X        coefficients at v = h^2*lambda = X >= 0\n"
+      "       erkn tableau NAME --series K   Taylor coefficients of v^0..v^K\n"
+      "       erkn tableau NAME --poles VMAX real poles in (0, VMAX]\n",
+      help);
 }
 
 }  // namespace
@@ -53,7 +56,7 @@ double parse_number(const char* option, const char* text) {
 }
 
 // One JSON object per method: name, kind, stages, certified order, generalized order, poles,
-// source, and whether it is one of the paper's methods.
+// source, whether it is one of the paper's methods, and the id (erkn.methods() has the same).
 void list_json() {
   std::cout << "[";
   bool first = true;
@@ -66,36 +69,43 @@ void list_json() {
               << ", \"generalized_order\": " << json_list(generalized)
               << ", \"poles\": " << json_list(poles)
               << ", \"source\": " << json_string(std::string(m.reference()))
-              << ", \"paper\": " << (m.from_paper() ? "true" : "false") << "}";
+              << ", \"paper\": " << (m.from_paper() ? "true" : "false")
+              << ", \"id\": " << json_string(std::string(m.id_name())) << "}";
     first = false;
   }
   std::cout << "\n]\n";
 }
 
 int list_command(int argc, char** argv) {
+  const auto list_usage = [](bool help) {
+    return print_usage(
+        "usage: erkn list [--json]   every method: kind, stages, certified order,"
+        " source\n",
+        help);
+  };
+  if (asks_for_help(argc, argv)) return list_usage(true);
   if (argc == 2 && std::string(argv[1]) == "--json") {
     list_json();
     return 0;
   }
-  if (argc != 1) {
-    std::cerr << "usage: erkn list [--json]\n";
-    return 2;
-  }
-  size_t width = 4;
-  for (const Method& m : Method::all()) width = std::max(width, m.name().size());
-  std::cout << std::string("name") + std::string(width - 3, ' ')
-            << "kind      stages  order  reference\n";
-  for (const Method& m : Method::all()) {
-    std::string name(m.name()), kind(m.kind_name());
-    name.resize(width, ' ');
-    kind.resize(8, ' ');
-    std::cout << name << " " << kind << "  " << m.stages() << "       " << m.order() << "      "
-              << m.reference() << "\n";
-  }
+  if (argc != 1) return list_usage(false);
+  int width = 4;
+  for (const Method& m : Method::all()) width = std::max(width, int(m.name().size()));
+  // Left-aligned text, right-aligned numbers under the ends of their headers.
+  const auto row = [&](std::string_view name, std::string_view kind, const std::string& stages,
+                       const std::string& order, std::string_view reference) {
+    std::cout << std::left << std::setw(width) << name << "  " << std::setw(8) << kind << std::right
+              << std::setw(6) << stages << std::setw(7) << order << "  " << reference << "\n";
+  };
+  row("name", "kind", "stages", "order", "reference");
+  for (const Method& m : Method::all())
+    row(m.name(), m.kind_name(), std::to_string(m.stages()), std::to_string(m.order()),
+        m.reference());
   return 0;
 }
 
 int tableau_command(int argc, char** argv) {
+  if (asks_for_help(argc, argv)) return usage(true);
   if (argc != 4) return usage();
   const Method& m = Method::by_name(argv[1]);
   const std::string option = argv[2];

@@ -1,7 +1,9 @@
 #include "erkn/integrator.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <ctime>
 #include <limits>
 #include <string>
 #include <type_traits>
@@ -11,7 +13,6 @@
 #include "erkn/error.hpp"
 #include "explicit_stepper.hpp"
 #include "format.hpp"
-#include "options_check.hpp"
 #include "step_size_check.hpp"
 #include "stepper.hpp"
 #include "transforms.hpp"
@@ -136,7 +137,7 @@ void require_advised(const Method& method, const System& system, double h,
 Integrator::Integrator(const Method& method, System system, double h, const Eigen::VectorXd& q0,
                        const Eigen::VectorXd& p0, const Options& options)
     : method_(method), options_(options), h_(h) {
-  detail::validate(options);
+  validate(options);
   require_step_size(h);
   require_state(system, q0, p0);
   if (!system.gradient) throw Error("System::gradient is not set");
@@ -160,6 +161,39 @@ void Integrator::step() {
   checked_step(*stepper_);
   stale_ = true;
   ++steps_since_base_;
+}
+
+void Integrator::step(long n) {
+  if (n < 0) throw Error("step(n): n must be >= 0; got " + std::to_string(n));
+  const Timer timer(*this);
+  for (long k = 0; k < n; ++k) step();
+}
+
+namespace {
+
+double wall_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// CPU time of the calling thread: an Ensemble's trajectories on other threads do not count.
+double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+}  // namespace
+
+Integrator::Timer::Timer(Integrator& run)
+    : run_(run.timing_ ? nullptr : &run), wall_0_(wall_seconds()), cpu_0_(cpu_seconds()) {
+  run.timing_ = true;
+}
+
+Integrator::Timer::~Timer() {
+  if (!run_) return;
+  run_->statistics_.wall_time += wall_seconds() - wall_0_;
+  run_->statistics_.cpu_time += cpu_seconds() - cpu_0_;
+  run_->timing_ = false;
 }
 
 void Integrator::checked_step(detail::StepperBase& stepper) {

@@ -1,12 +1,12 @@
-#include "options_check.hpp"
-
+// erkn::validate(Options): every field in its meaningful range, else erkn::Error naming it.
 #include <cmath>
 #include <string>
 
 #include "erkn/error.hpp"
+#include "erkn/integrator.hpp"
 #include "format.hpp"
 
-namespace erkn::detail {
+namespace erkn {
 namespace {
 
 // Throws unless ok, naming the field, its value and the range it must lie in.
@@ -35,4 +35,4 @@ void validate(const Options& o) {
           o.energy_tolerance, "finite and >= 0 (0: no energy monitor)");
 }
 
-}  // namespace erkn::detail
+}  // namespace erkn

@@ -2,6 +2,10 @@
 // (off-grid ends and output times: output_test.cpp).
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <ctime>
+#include <thread>
+
 #include "problems.hpp"
 
 namespace erkn::test {
@@ -64,6 +68,59 @@ TEST(Integrate, WithoutAnObserverTheStateIsTransformedBackOnlyWhenAskedFor) {
     quiet.q(), quiet.p(), quiet.q();
     EXPECT_EQ(quiet.statistics().state_loads, loads + 1);
   }
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// wall_time counts what integrate() spends (the observer's sleep included) once, even through
+// the nested integrate of output times; cpu_time does not count sleeping; step() is not timed.
+TEST(Integrate, WallAndCpuTimeCountEachIntegrateCallOnce) {
+  const Method& m = Method::by_name("SERKN2s4");
+  const Eigen::Vector3d q0(0.6, -0.4, 0.3), p0(0.2, 0.5, -0.7);
+  Integrator a(m, polynomial_system(), 0.1, q0, p0);
+  const auto nap = [](double, const Eigen::VectorXd&, const Eigen::VectorXd&) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  };
+  const auto start = std::chrono::steady_clock::now();
+  a.integrate(1.0, Eigen::VectorXd::LinSpaced(5, 0.05, 0.85), nap);
+  const double outside = seconds_since(start);
+  const Statistics& s = a.statistics();
+  EXPECT_GE(s.wall_time, 0.05);              // five naps of 10 ms
+  EXPECT_LE(s.wall_time, outside);           // counted once, not once per nested integrate
+  EXPECT_LT(s.cpu_time, 0.5 * s.wall_time);  // asleep, not computing
+  EXPECT_GE(s.cpu_time, 0.0);
+  const double before = s.wall_time;
+  a.step();
+  EXPECT_EQ(s.wall_time, before);
+  EXPECT_THROW(a.step(-1), Error);
+  EXPECT_EQ(a.statistics().steps, 11);
+  a.step(1000);
+  EXPECT_GT(s.wall_time, before);
+  EXPECT_EQ(a.statistics().steps, 1011);
+}
+
+// CPU seconds of the calling thread, the clock Statistics::cpu_time reads.
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+// An observer that computes for 10 ms of its own CPU time at each of 5 steps: cpu_time counts
+// those 50 ms (it would stay near 0 if it were not measured) and never exceeds wall_time. (CPU
+// rather than wall time per call: on a loaded machine 10 ms of wall time can be 2 ms of CPU.)
+TEST(Integrate, CpuTimeCountsComputation) {
+  Integrator a(Method::by_name("SERKN2s4"), polynomial_system(), 0.1, Eigen::Vector3d(0.6, 0, 0),
+               Eigen::Vector3d(0, 0.5, 0));
+  a.integrate(0.5, [](double, const Eigen::VectorXd&, const Eigen::VectorXd&) {
+    const double start = thread_cpu_seconds();
+    while (thread_cpu_seconds() - start < 0.01) {
+    }
+  });
+  EXPECT_GE(a.statistics().cpu_time, 0.05);
+  EXPECT_LE(a.statistics().cpu_time, a.statistics().wall_time + 1e-3);
 }
 
 }  // namespace

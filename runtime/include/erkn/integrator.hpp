@@ -1,9 +1,10 @@
 // erkn::Integrator: a fixed-step ERKN (or RKN-limit) integrator for one System and step h.
 //
 // Each step is eq. (d) of the paper with V = h^2 M:
-//   Q_i     = phi0(c_i^2 V) q + h c_i phi1(c_i^2 V) p - h^2 sum_{j<=i} abar_ij(V) g_j,  g_j = grad
-//   U(Q_j) q_{n+1} = phi0(V) q + h phi1(V) p - h^2 sum_i bbar_i(V) g_i p_{n+1} = -h M phi1(V) q +
-//   phi0(V) p - h sum_i b_i(V) g_i
+//   Q_i     = phi0(c_i^2 V) q + h c_i phi1(c_i^2 V) p - h^2 sum_{j<=i} abar_ij(V) g_j
+//   q_{n+1} = phi0(V) q + h phi1(V) p - h^2 sum_i bbar_i(V) g_i
+//   p_{n+1} = -h M phi1(V) q + phi0(V) p - h sum_i b_i(V) g_i
+// with g_j = grad U(Q_j).
 // RKN methods use V = 0 and g = M Q + grad U(Q) (their force is -M q - grad U(q)).
 // The coefficients are evaluated once per (h, M) at each eigenvalue of M and applied in M's
 // eigenbasis, where q and p stay between steps (q() and p() transform back on demand); a step
@@ -60,6 +61,10 @@ struct Options {
   bool check_stability = false;
 };
 
+/// Throws erkn::Error naming the first field of `options` outside its range (the check every
+/// Integrator and Ensemble runs on its Options; the Python Options runs it on every assignment).
+void validate(const Options& options);
+
 struct Statistics {
   long steps = 0;                 ///< accepted steps
   long gradient_evaluations = 0;  ///< calls of System::gradient (incl. finite differences)
@@ -68,6 +73,8 @@ struct Statistics {
   long newton_fallbacks = 0;      ///< stages that fixed point could not solve
   long newton_iterations = 0;     ///< Newton iterations, over all fallbacks
   long state_loads = 0;  ///< transforms of the state back to physical coordinates after steps
+  double wall_time = 0;  ///< seconds (steady clock) spent in integrate() and step(n) calls
+  double cpu_time = 0;   ///< CPU seconds of the calling thread there (callbacks included)
 };
 
 class Integrator {
@@ -82,6 +89,8 @@ class Integrator {
 
   /// One step of size h.
   void step();
+  /// n >= 0 steps of size h, timed in statistics() (erkn::Error for n < 0, before any step).
+  void step(long n);
 
   // Time semantics. The integrator's grid is t0 + n h (t0: the start, or the last set_state,
   // set_step_size or off-grid integrate). A time within round-off of a grid point (relative
@@ -96,6 +105,7 @@ class Integrator {
   /// steps, the shorter step clear of the method's poles); a failed step keeps the steps before.
   template <class Observer>
   void integrate(double t_end, Observer&& observer, long every = 1) {
+    const Timer timer(*this);
     const EndPlan plan = prepare_end(t_end, every);
     for (long n = 1; n <= plan.whole; ++n) {
       step();
@@ -119,6 +129,7 @@ class Integrator {
   template <class Observer>
   void integrate(double t_end, const Eigen::Ref<const Eigen::VectorXd>& times,
                  Observer&& observer) {
+    const Timer timer(*this);
     require_output_times(t_end, times);
     prepare_end(t_end, 1);
     Eigen::VectorXd q(q_.size()), p(p_.size());
@@ -183,6 +194,21 @@ class Integrator {
   // while that size recurs.
   std::unique_ptr<detail::StepperBase> short_stepper_;
   double short_h_ = 0;
+
+  // Adds the wall and CPU time of its lifetime to statistics_ unless an outer Timer (a nested
+  // integrate call) already does.
+  class Timer {
+   public:
+    explicit Timer(Integrator& run);
+    ~Timer();
+    Timer(const Timer&) = delete;
+    Timer& operator=(const Timer&) = delete;
+
+   private:
+    Integrator* run_;  // null when nested
+    double wall_0_, cpu_0_;
+  };
+  bool timing_ = false;
 
   struct EndPlan {
     long whole = 0;        // steps of size h

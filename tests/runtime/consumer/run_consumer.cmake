@@ -16,6 +16,20 @@ function(run)
     message(FATAL_ERROR "failed (${rc}): ${ARGV}")
   endif()
 endfunction()
+# Configures the consumer in DIR asking for COMPONENTS with MPI made unfindable; sets ${out} to
+# whether that succeeded.
+function(configure_without_mpi dir components out)
+  execute_process(COMMAND ${CMAKE_COMMAND} -S ${CONSUMER_SOURCE} -B ${dir}
+                  -DCMAKE_PREFIX_PATH=${PREFIX} -DCMAKE_CXX_COMPILER=${CXX}
+                  -DCMAKE_DISABLE_FIND_PACKAGE_MPI=ON -DERKN_COMPONENTS=${components}
+                  -DEXAMPLE_SOURCE=${CONSUMER_BUILD}/example/main.cpp -DERKN_TARGET=erkn::runtime
+                  RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
+  if(rc EQUAL 0)
+    set(${out} TRUE PARENT_SCOPE)
+  else()
+    set(${out} FALSE PARENT_SCOPE)
+  endif()
+endfunction()
 file(REMOVE_RECURSE ${PREFIX} ${CONSUMER_BUILD})
 foreach(component runtime ${COMPONENTS})
   run(${CMAKE_COMMAND} --install ${BUILD_DIR} --component ${component} --prefix ${PREFIX})
@@ -27,6 +41,18 @@ file(WRITE ${CONSUMER_BUILD}/example/main.cpp "${example}")
 
 run(${CMAKE_COMMAND} -S ${CONSUMER_SOURCE} -B ${CONSUMER_BUILD}/build
     -DCMAKE_PREFIX_PATH=${PREFIX} -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_BUILD_TYPE=Release
-    -DEXAMPLE_SOURCE=${CONSUMER_BUILD}/example/main.cpp -DERKN_TARGET=${LINK_TARGET})
+    -DEXAMPLE_SOURCE=${CONSUMER_BUILD}/example/main.cpp -DERKN_TARGET=${LINK_TARGET}
+    "-DERKN_COMPONENTS=${COMPONENTS}")
 run(${CMAKE_COMMAND} --build ${CONSUMER_BUILD}/build)
 run(${LAUNCH} ${CONSUMER_BUILD}/build/app)
+
+# With the mpi component installed, find_package(erkn) without COMPONENTS mpi does not look for
+# MPI (it configures with MPI unfindable), and with COMPONENTS mpi it does (then it cannot).
+if("mpi" IN_LIST COMPONENTS)
+  configure_without_mpi(${CONSUMER_BUILD}/runtime-only "" runtime_only)
+  configure_without_mpi(${CONSUMER_BUILD}/mpi-asked mpi mpi_asked)
+  if(NOT runtime_only OR mpi_asked)
+    message(FATAL_ERROR "find_package(erkn) without MPI: runtime only configured: ${runtime_only}"
+                        " (expected TRUE); COMPONENTS mpi configured: ${mpi_asked} (expected FALSE)")
+  endif()
+endif()

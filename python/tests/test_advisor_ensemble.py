@@ -1,0 +1,140 @@
+# erkn.advise_step_size, erkn.hessian_bounds_at / hessian_bounds_along and erkn.Ensemble: the
+# C++ advisor and ensemble reached from Python, checked against direct runs.
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import erkn
+
+
+def method_with_pole():
+    m = next(m for m in erkn.methods() if m["poles"])
+    return m["name"], m["poles"][0]
+
+
+def test_advice_flags_a_pole_and_its_suggestion_is_safe():
+    name, pole = method_with_pole()
+    lam = np.array([1.0, 9.0])
+    h = np.sqrt(pole / lam[1])  # h^2 lambda_2 on the pole
+    advice = erkn.advise_step_size(name, lam, h)
+    assert not advice.safe and advice.method == name and advice.h == h
+    assert [f["hazard"] for f in advice.findings] == ["pole"]
+    assert advice.findings[0]["index"] == 1 and advice.findings[0]["lambda"] == 9.0
+    assert "pole" in advice.report and np.isfinite(advice.suggested_h)
+    assert erkn.advise_step_size(name, lam, advice.suggested_h).safe
+    # Negative control: a small h is safe, and the report says so.
+    small = erkn.advise_step_size(name, lam, 0.1 * h)
+    assert small.safe and small.findings == []
+
+
+def fpu(m=3, omega=50.0):
+    M = np.r_[np.zeros(m), np.full(m, omega**2)]
+    q0 = np.r_[1.0, 0, 0, 1 / omega, 0, 0]
+    p0 = np.r_[1.0, 0, 0, 1.0, 0, 0]
+    return M, q0, p0
+
+
+def test_hessian_bounds_along_a_run_contain_those_at_the_start():
+    M, q0, p0 = fpu()
+    name = erkn.methods()[0]["name"]
+    at = erkn.hessian_bounds_at(M, "fpu", q0)
+    assert erkn.hessian_bounds_along(name, M, "fpu", h=0.01, q0=q0, p0=p0, steps=0) == at
+    along = erkn.hessian_bounds_along(name, M, "fpu", h=0.01, q0=q0, p0=p0, steps=500)
+    assert along[0] <= at[0] and along[1] > at[1]
+    # A Python gradient (finite differences) gives the built-in's bounds.
+    s = erkn.system(M, "fpu", 6)
+    fd = erkn.hessian_bounds_at(M, lambda q: s.gradient(q), q0)
+    assert fd == pytest.approx(at, abs=1e-5)
+    # advise_step_size takes the same bounds from grad and q0 (and along `steps`).
+    assert erkn.advise_step_size(name, M, 0.01, "fpu", q0=q0).hessian == at
+    assert erkn.advise_step_size(name, M, 0.01, "fpu", q0=q0, p0=p0, steps=500).hessian == along
+
+
+def test_advisor_refusals_name_the_problem():
+    name, _ = method_with_pole()
+    with pytest.raises(erkn.Error, match="no option 'degree'"):
+        erkn.advise_step_size(name, 1.0, 0.1, degree=3)
+    with pytest.raises(erkn.Error, match="needs q0"):
+        erkn.advise_step_size(name, 1.0, 0.1, "sine")
+    with pytest.raises(erkn.Error):
+        erkn.advise_step_size(name, 1.0, -0.1)
+    with pytest.raises(erkn.Error, match="steps"):
+        erkn.hessian_bounds_along(name, 1.0, "sine", h=0.1, q0=[0.1], p0=[0.0], steps=-1)
+
+
+def initial_data(n, d, seed=3):
+    rng = np.random.default_rng(seed)
+    return 0.5 * rng.standard_normal((n, d)), 0.5 * rng.standard_normal((n, d))
+
+
+def test_ensemble_on_threads_equals_serial_runs_bit_for_bit(chain):
+    M = chain[0]
+    Q0, P0 = initial_data(7, 4)
+    method = erkn.methods()[0]["name"]
+    ens = erkn.Ensemble(M, "sine", q0=Q0, p0=P0, h=0.05, method=method)
+    res = ens.integrate(3.0, threads=3)
+    assert ens.size == 7 and res.ok.all() and np.all(res.t == 3.0)
+    for i in range(7):
+        run = erkn.Integrator(M, "sine", q0=Q0[i], p0=P0[i], h=0.05, method=method)
+        run.integrate(3.0)
+        assert np.array_equal(res.q[i], run.q) and np.array_equal(res.p[i], run.p)
+        assert res.statistics[i]["steps"] == run.statistics["steps"]
+    # Python gradients, called from the worker threads under the GIL, give the same states.
+    py = erkn.Ensemble(M, lambda q: np.sin(q), q0=Q0, p0=P0, h=0.05, method=method)
+    assert np.abs(py.integrate(3.0, threads=3).q - res.q).max() < 1e-13
+
+
+def test_ensemble_failures_stay_with_their_trajectory(chain):
+    M = chain[0]
+    Q0, P0 = initial_data(4, 4)
+
+    def fails(q):
+        raise ZeroDivisionError("trajectory two")
+
+    systems = [erkn.system(M, np.sin if i != 2 else fails, 4) for i in range(4)]
+    res = erkn.Ensemble(systems=systems, q0=Q0, p0=P0, h=0.05).integrate(1.0, threads=2)
+    assert list(res.ok) == [True, True, False, True]
+    assert "trajectory two" in res.errors[2] and res.t[2] == 0
+    assert np.array_equal(res.q[2], Q0[2])
+    Q0[1, 0] = np.nan
+    res = erkn.Ensemble(M, "sine", q0=Q0, p0=P0, h=0.05).integrate(1.0, threads=2)
+    assert list(res.ok) == [True, False, True, True] and "q[0]" in res.errors[1]
+
+
+def test_ensemble_of_systems_one_per_trajectory():
+    omegas = [1.0, 4.0, 9.0]
+    systems = [erkn.system(w, "duffing", 1) for w in omegas]
+    res = erkn.Ensemble(systems=systems, q0=np.full((3, 1), 0.2), p0=np.zeros((3, 1)),
+                        h=0.01).integrate(2.0)
+    for i, w in enumerate(omegas):
+        sol = erkn.solve(w, "duffing", q0=[0.2], p0=[0.0], t_span=(0, 2), h=0.01)
+        assert np.array_equal(res.q[i], sol.q[-1])
+    with pytest.raises(erkn.Error, match="2 systems for 3 trajectories"):
+        erkn.Ensemble(systems=systems[:2], q0=np.zeros((3, 1)), p0=np.zeros((3, 1)), h=0.01)
+    with pytest.raises(erkn.Error, match="either M and grad, or systems"):
+        erkn.Ensemble(1.0, "sine", systems=systems, q0=np.zeros((3, 1)), p0=np.zeros((3, 1)),
+                      h=0.01)
+
+
+def test_ensemble_with_builtin_potentials_releases_the_gil(chain):
+    M = chain[0]
+    Q0, P0 = initial_data(4, 4)
+    ens = erkn.Ensemble(M, "sine", q0=Q0, p0=P0, h=1e-3)
+    t_end, alone = 1.0, 0.0
+    while alone < 0.1:  # a run long enough to see a stall (0.02 to 0.7 s per 5.0 measured)
+        t_end *= 2
+        start = time.perf_counter()
+        ens.integrate(t_end, threads=1)
+        alone = time.perf_counter() - start
+    worker = threading.Thread(target=ens.integrate, args=(t_end, 1))
+    worker.start()
+    # Python runs here only while the ensemble does not hold the GIL: holding it for the run
+    # would stall this loop for about `alone`.
+    last, gap = time.perf_counter(), 0.0
+    while worker.is_alive():
+        now = time.perf_counter()
+        gap, last = max(gap, now - last), now
+    worker.join()
+    assert gap < 0.5 * alone, (gap, alone)
