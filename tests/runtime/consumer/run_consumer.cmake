@@ -48,7 +48,8 @@ run(${LAUNCH} ${CONSUMER_BUILD}/build/app)
 
 # With the mpi component installed, find_package(erkn) without COMPONENTS mpi does not look for
 # MPI (it configures with MPI unfindable), and with COMPONENTS mpi it does (then it cannot).
-if("mpi" IN_LIST COMPONENTS)
+list(FIND COMPONENTS mpi mpi_index)  # (not IN_LIST: script mode has no CMP0057)
+if(mpi_index GREATER -1)
   configure_without_mpi(${CONSUMER_BUILD}/runtime-only "" runtime_only)
   configure_without_mpi(${CONSUMER_BUILD}/mpi-asked mpi mpi_asked)
   if(NOT runtime_only OR mpi_asked)
