@@ -8,27 +8,20 @@
 
 #include <Eigen/Core>
 #include <cmath>
-#include <ctime>
 #include <erkn/erkn.hpp>
 #include <numbers>
 #include <vector>
 
 #include "splitting_peer.hpp"
+#include "thread_seconds.hpp"
 
 namespace bench {
 
-// CPU time of this thread: the machine is shared, so wall time would count other programs.
-inline double cpu_seconds() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
 template <class F>
 double seconds(F&& f) {
-  const double start = cpu_seconds();
+  const double start = thread_seconds();
   f();
-  return cpu_seconds() - start;
+  return thread_seconds() - start;
 }
 
 struct P1 {

@@ -6,18 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <functional>
 #include <vector>
 
-namespace bench {
+#include "thread_seconds.hpp"
 
-// CPU time of this thread: the machine is shared, so wall time would count other programs.
-inline double thread_seconds() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
+namespace bench {
 
 inline double median(std::vector<double> x) {
   if (x.empty()) return NAN;
