@@ -159,6 +159,18 @@ def _state(x, name):
     return a
 
 
+def _every(every):
+    """The output interval as an int in [1, 2^53]; a float must be integral (2.5 is refused)."""
+    try:
+        n = int(every)
+        integral = n == every
+    except (TypeError, ValueError, OverflowError):
+        integral = False
+    if not integral or not 1 <= n <= 2**53:
+        raise Error(f"every must be an integer in [1, 2^53] (steps between outputs); got {every!r}")
+    return n
+
+
 class Integrator(_erkn._Integrator):
     """Fixed-step integrator for users who drive the loop:
 
@@ -185,7 +197,7 @@ class Integrator(_erkn._Integrator):
 
     def run(self, t_end, t_eval=None, every=1, energy=True):
         """(t, q, p, energy) at t_eval, or else at the start, every `every`-th step and t_end."""
-        return self._run(float(t_end), t_eval, int(every), bool(energy))
+        return self._run(float(t_end), t_eval, _every(every), bool(energy))
 
 
 class Solution:
@@ -196,8 +208,9 @@ class Solution:
         self.t, self.q, self.p, self.energy, self.stats, self.method = t, q, p, energy, stats, method
 
     def __repr__(self):
-        return (f"erkn.Solution(method={self.method!r}, {self.t.size} times in "
-                f"[{self.t[0]:g}, {self.t[-1]:g}], d={self.q.shape[1]})")
+        span = f" in [{self.t[0]:g}, {self.t[-1]:g}]" if self.t.size else ""
+        return (f"erkn.Solution(method={self.method!r}, {self.t.size} times{span}, "
+                f"d={self.q.shape[1]})")
 
 
 def solve(M, grad, *, q0, p0, t_span, h, method=_DEFAULT_METHOD, t_eval=None, every=1,
@@ -220,8 +233,9 @@ def solve(M, grad, *, q0, p0, t_span, h, method=_DEFAULT_METHOD, t_eval=None, ev
         t_eval = np.ascontiguousarray(t_eval, dtype=float)
     try:
         t, q, p, energy = run.run(t1, t_eval, every)
-    except Exception as e:  # keep the output up to the last completed step
-        e.solution = Solution(*run._partial, run.statistics, run.method)
+    except Exception as e:  # keep the output up to the last completed step (if a step began)
+        if run._partial is not None:
+            e.solution = Solution(*run._partial, run.statistics, run.method)
         raise
     return Solution(t, q, p, energy, run.statistics, run.method)
 

@@ -62,6 +62,7 @@ class PyIntegrator {
   // Steps to t_end; output at `t_eval` (ascending, in [t, t_end]) or else at the start, every
   // `every`-th step and t_end. Returns (t, q, p, energy or None).
   py::tuple run(double t_end, const py::object& t_eval, long every, bool energy) {
+    partial_ = py::none();  // (an earlier failure's output is not this run's)
     Output out{run_.q().size(), energy && bool(run_.system().potential), {}, {}, {}, {}};
     const auto add = [&](double t, const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
       out.add(run_, t, q, p);

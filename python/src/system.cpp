@@ -7,6 +7,9 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
+#include <limits>
+
 #include "bindings.hpp"
 #include "erkn/error.hpp"
 #include "erkn/stiffness.hpp"
@@ -44,26 +47,42 @@ void copy_result(const char* what, const py::object& r, Matrix& out) {
   std::copy(a.data(), a.data() + out.size(), out.data());
 }
 
+// Calls f(q, out) for a callback that writes into out. out is filled with NaN first: an entry
+// left NaN means f rebound `out` (out = q**3) instead of writing into it, or wrote NaN; either
+// is refused (one pass over out, against a Python call).
+template <class Matrix>
+void call_writing(const char* what, const py::object& f, const Eigen::VectorXd& q, Matrix& out) {
+  out.setConstant(std::numeric_limits<double>::quiet_NaN());
+  f(view(q, false), view(out, true));
+  for (Eigen::Index i = 0; i < out.size(); ++i)
+    if (std::isnan(out.data()[i]))
+      throw Error(std::string(what) + " left entry " + std::to_string(i) +
+                  " of out NaN: write into out in place (out[:] = ...), do not rebind it");
+}
+
+// U(q) from a Python potential: a float (or anything float() accepts, e.g. a NumPy scalar).
+double potential_value(const py::object& potential, const Eigen::VectorXd& q) {
+  const py::object r = potential(view(q, false));
+  try {
+    if (PyNumber_Check(r.ptr())) return py::float_(r).cast<double>();  // (a str is no number)
+  } catch (const py::error_already_set&) {  // (float() refused it: an array of size > 1)
+  }
+  throw Error("potential(q) must return a float; got " +
+              std::string(py::str(r.get_type().attr("__name__"))));
+}
+
 System python_callbacks(const py::object& grad, bool grad_writes, const py::object& potential,
                         const py::object& hessian, bool hessian_writes) {
   System s;
   s.gradient = [grad, grad_writes](const Eigen::VectorXd& q, Eigen::VectorXd& g) {
-    if (grad_writes) {
-      grad(view(q, false), view(g, true));
-      return;
-    }
+    if (grad_writes) return call_writing("grad(q, out)", grad, q, g);
     copy_result("grad(q)", grad(view(q, false)), g);
   };
   if (!potential.is_none())
-    s.potential = [potential](const Eigen::VectorXd& q) {
-      return py::cast<double>(potential(view(q, false)));
-    };
+    s.potential = [potential](const Eigen::VectorXd& q) { return potential_value(potential, q); };
   if (!hessian.is_none())
     s.hessian = [hessian, hessian_writes](const Eigen::VectorXd& q, Eigen::MatrixXd& H) {
-      if (hessian_writes) {
-        hessian(view(q, false), view(H, true));
-        return;
-      }
+      if (hessian_writes) return call_writing("hessian(q, out)", hessian, q, H);
       copy_result("hessian(q)", hessian(view(q, false)), H);
     };
   return s;

@@ -14,6 +14,8 @@
 namespace erkn {
 namespace {
 
+constexpr double kMaxSearchSteps = 1e5;
+
 void validate(const Eigen::VectorXd& eigenvalues, double h, HessianBounds k,
               const AdvisorOptions& o) {
   if (!std::isfinite(h) || h <= 0)
@@ -29,12 +31,17 @@ void validate(const Eigen::VectorXd& eigenvalues, double h, HessianBounds k,
   const bool ok = o.potential_degree >= 1 && o.potential_degree <= 64 && o.pole_margin >= 0 &&
                   o.pole_margin < 1 && o.trace_tolerance >= 0 && o.z_samples >= 2 &&
                   o.z_samples <= 100000 && o.max_change >= 0 && o.max_change < 1 &&
-                  o.search_step > 0 && std::isfinite(o.trace_tolerance);
+                  o.search_step > 0 && o.search_step <= 1 && std::isfinite(o.trace_tolerance);
   if (!ok)
     throw Error(
         "advise_step_size: invalid AdvisorOptions (need 1 <= potential_degree <= 64, 0 <= "
         "pole_margin < 1, finite trace_tolerance >= 0, 2 <= z_samples <= 100000, 0 <= "
-        "max_change < 1, search_step > 0)");
+        "max_change < 1, 0 < search_step <= 1)");
+  // The search tries 2 max_change / search_step step sizes: bounded, so the advice ends.
+  if (o.max_change / o.search_step > kMaxSearchSteps)
+    throw Error("advise_step_size: AdvisorOptions max_change / search_step = " +
+                format(o.max_change / o.search_step) + " search steps exceed the limit " +
+                format(kMaxSearchSteps) + "; take a larger search_step");
 }
 
 // The sampled kappa values: z_samples points spanning [lo, hi], and 0 when inside.

@@ -9,6 +9,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "blowup_guard.hpp"
 #include "erkn/advisor.hpp"
 #include "erkn/error.hpp"
 #include "explicit_stepper.hpp"
@@ -45,6 +46,15 @@ void require_state(const System& system, const Eigen::VectorXd& q, const Eigen::
 // magnitude involved. Never proportional to n h itself beyond that (issue 12, defect 2).
 double grid_tolerance(double t, double t_end, double h) {
   return 4 * std::numeric_limits<double>::epsilon() * std::max({std::abs(t), std::abs(t_end), h});
+}
+
+// A step of h from t must move the time beyond its round-off (as integrate demands of its grid):
+// after set_state(q, p, 1e20) a step of 0.1 would leave t() at 1e20.
+void require_resolved_step(double t, double h) {
+  if (h <= 2 * grid_tolerance(t, t + h, h))
+    throw Error("h = " + format(h) + " is below the round-off of t = " + format(t, 17) +
+                ": a step would not advance the time (set the state at a smaller t, or use a "
+                "larger h)");
 }
 
 // Circulant M: the explicit Fourier basis (folded matrix-vector products, O(N^2)) up to N =
@@ -136,7 +146,7 @@ void require_advised(const Method& method, const System& system, double h,
 
 Integrator::Integrator(const Method& method, System system, double h, const Eigen::VectorXd& q0,
                        const Eigen::VectorXd& p0, const Options& options)
-    : method_(method), options_(options), h_(h) {
+    : method_(method), options_(options), h_(h), guard_(std::make_unique<detail::BlowupGuard>()) {
   validate(options);
   require_step_size(h);
   require_state(system, q0, p0);
@@ -148,7 +158,9 @@ Integrator::Integrator(const Method& method, System system, double h, const Eige
   q_ = q0;
   p_ = p0;
   energy_0_ = monitored_energy(q0, p0);
+  start_guard(q0, p0);
   stepper_->set_state(q_, p_);
+  save_checkpoint();
 }
 
 Integrator::~Integrator() = default;
@@ -158,9 +170,16 @@ Integrator& Integrator::operator=(Integrator&&) noexcept = default;
 const System& Integrator::system() const { return stepper_->system(); }
 
 void Integrator::step() {
-  checked_step(*stepper_);
+  require_resolved_step(t(), h_);
+  try {
+    checked_step(*stepper_);
+  } catch (const Error& e) {  // (a blow-up often ends in a failed stage: say so)
+    if (guard_->on()) check_guard(e.what());
+    throw;
+  }
   stale_ = true;
   ++steps_since_base_;
+  if (guard_->due()) check_guard();
 }
 
 void Integrator::step(long n) {
@@ -207,8 +226,11 @@ void Integrator::checked_step(detail::StepperBase& stepper) {
   stepper.step(statistics_.steps + 1, t(), statistics_);
   try {
     check_energy(stepper);
-  } catch (...) {
+  } catch (...) {  // (also an exception from System::potential: the step did not happen)
     statistics_ = before;
+    stepper.set_state(saved_q_, saved_p_);
+    q_.swap(saved_q_), p_.swap(saved_p_);
+    stale_ = false;
     throw;
   }
 }
@@ -221,16 +243,14 @@ double Integrator::monitored_energy(const Eigen::VectorXd& q, const Eigen::Vecto
   return H;
 }
 
-// The energy monitor after a step of `stepper`: beyond the tolerance, the state before the step
-// is restored (its compensated-summation errors are dropped) and the step is an error.
+// The energy monitor after a step of `stepper`: beyond the tolerance the step is an error (and
+// checked_step restores the state before it, dropping its compensated-summation errors).
 void Integrator::check_energy(detail::StepperBase& stepper) {
   stepper.get_state(q_, p_);
   stale_ = false;
   const double H = energy(q_, p_), scale = energy_0_ == 0 ? 1.0 : std::abs(energy_0_);
   const double drift = std::abs(H - energy_0_) / scale;
   if (drift <= options_.energy_tolerance) return;  // (false for NaN)
-  stepper.set_state(saved_q_, saved_p_);
-  q_.swap(saved_q_), p_.swap(saved_p_);
   throw Error("energy monitor: step " + std::to_string(statistics_.steps) +
               " (from t = " + format(t()) + ") gives H = " + format(H) + ", |H - H_0| " +
               (energy_0_ == 0 ? "= " : "/ |H_0| = ") + format(drift, 3) +
@@ -251,12 +271,14 @@ void Integrator::set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p, d
                 std::to_string(q_.size()) + ", the new q has size " + std::to_string(q.size()));
   if (!std::isfinite(t)) throw Error("t = " + format(t) + " is not finite");
   energy_0_ = monitored_energy(q, p);
+  start_guard(q, p);
   stepper_->set_state(q, p);
   q_ = q;
   p_ = p;
   stale_ = false;
   t_base_ = t;
   steps_since_base_ = 0;
+  save_checkpoint();
 }
 
 void Integrator::set_step_size(double h) {
@@ -268,6 +290,7 @@ void Integrator::set_step_size(double h) {
   steps_since_base_ = 0;
   h_ = h;
   stepper_ = std::move(fresh);
+  save_checkpoint();  // (a checkpoint's time is on the grid of its h)
 }
 
 Integrator::EndPlan Integrator::plan_to(double t_end) const {
@@ -329,9 +352,11 @@ void Integrator::step_to(double t_end) {
   stepper_->set_state(q_, p_);  // (the next step of h does not follow a step of h)
   t_base_ = t_end;
   steps_since_base_ = 0;
+  if (guard_->due()) check_guard();
 }
 
 void Integrator::state_at(double t_out, Eigen::VectorXd& q, Eigen::VectorXd& p) {
+  if (!std::isfinite(t_out)) throw Error("state_at(" + format(t_out) + "): t is not finite");
   const double t0 = t(), tol = grid_tolerance(t0, t_out, h_);
   if (!(t_out >= t0 - tol && t_out <= t0 + h_ + tol))
     throw Error("state_at(" + format(t_out, 17) + "): the time must lie within one step of t = " +
@@ -348,12 +373,30 @@ void Integrator::state_at(double t_out, Eigen::VectorXd& q, Eigen::VectorXd& p) 
 
 void Integrator::require_output_times(double t_end,
                                       const Eigen::Ref<const Eigen::VectorXd>& times) const {
+  // (Compared with the round-off window of integrate and state_at: 0.1 + 0.2 is 0.3.)
+  const double t0 = t();
   for (Eigen::Index k = 0; k < times.size(); ++k) {
-    const double tau = times[k], lo = k == 0 ? t() : times[k - 1];
-    if (!std::isfinite(tau) || tau < lo || tau > t_end)
+    const double tau = times[k];
+    if (!std::isfinite(tau) || (k > 0 && tau < times[k - 1]) ||
+        tau < t0 - grid_tolerance(t0, tau, h_) || tau > t_end + grid_tolerance(t_end, tau, h_))
       throw Error("output time " + std::to_string(k) + " = " + format(tau, 17) +
-                  " is not finite, not ascending, or outside [t, t_end] = [" + format(t(), 17) +
+                  " is not finite, not ascending, or outside [t, t_end] = [" + format(t0, 17) +
                   ", " + format(t_end, 17) + "]");
+    require_reachable(tau);
+  }
+}
+
+// The step of size t_out - t_n from the last grid point t_n before t_out clears the poles (an
+// output time's or t_end's shorter step, validated before any step is taken).
+void Integrator::require_reachable(double t_out) const {
+  const EndPlan plan = plan_to(t_out);
+  if (!plan.shorter) return;
+  const double size = t_out - (t_base_ + double(steps_since_base_ + plan.whole) * h_);
+  try {
+    detail::check_step_size(method_, size, system().M.eigenvalues(), options_.pole_tolerance);
+  } catch (const Error& e) {
+    throw Error("a step of size " + format(size, 17) + " (to t = " + format(t_out, 17) +
+                ", off the grid of h = " + format(h_, 17) + ") is refused: " + e.what());
   }
 }
 
@@ -367,6 +410,69 @@ double Integrator::energy(const Eigen::VectorXd& q, const Eigen::VectorXd& p) co
   Eigen::VectorXd Mq(q.size());
   stepper_->apply_M(q, Mq);
   return 0.5 * p.squaredNorm() + 0.5 * q.dot(Mq) + s.potential(q);
+}
+
+// The guard's measure at (q, p): H with a potential (its energy mode), else 1/2|p|^2 + 1/2 q'M q;
+// `scale` (if given) receives 1/2|p|^2 + 1/2 q'M q + |U(q)|.
+double Integrator::guard_measure(const Eigen::VectorXd& q, const Eigen::VectorXd& p,
+                                 double* scale) const {
+  Eigen::VectorXd Mq(q.size());
+  stepper_->apply_M(q, Mq);
+  const double E2 = 0.5 * p.squaredNorm() + 0.5 * q.dot(Mq);
+  const double U = guard_->uses_energy() || scale ? system().potential(q) : 0;
+  if (scale) *scale = E2 + std::abs(U);
+  return E2 + U;
+}
+
+void Integrator::start_guard(const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
+  if (!options_.blowup_guard) return guard_->start(false, false, 0, 0);
+  if (!system().potential) {
+    Eigen::VectorXd Mq(q.size());
+    stepper_->apply_M(q, Mq);
+    return guard_->start(true, false, 0.5 * p.squaredNorm() + 0.5 * q.dot(Mq), 0);
+  }
+  double scale = 0;
+  const double H = guard_measure(q, p, &scale);
+  guard_->start(true, std::isfinite(H), std::isfinite(H) ? H : 0, scale);  // (else: E_2)
+}
+
+void Integrator::save_checkpoint() {
+  detail::BlowupGuard::Checkpoint& c = guard_->checkpoint();
+  c.q = q(), c.p = p();
+  c.t_base = t_base_, c.steps_since_base = steps_since_base_, c.steps = statistics_.steps;
+}
+
+// A check of the guard: passed, the state becomes the checkpoint; failed, the checkpoint becomes
+// the state again and the run stops. After a step that failed with `failure`, a passed check
+// changes nothing (the caller rethrows the failure).
+void Integrator::check_guard(const char* failure) {
+  const double measure = guard_measure(q(), p(), nullptr);
+  if (guard_->growth(measure) <= 1) return failure ? void() : save_checkpoint();
+  const double t_now = t();
+  const long step_now = statistics_.steps;
+  const detail::BlowupGuard::Checkpoint& c = guard_->checkpoint();
+  stepper_->set_state(c.q, c.p);
+  q_ = c.q, p_ = c.p, stale_ = false;
+  t_base_ = c.t_base, steps_since_base_ = c.steps_since_base, statistics_.steps = c.steps;
+  std::string message = guard_->message(measure, t_now, step_now, t(), likely_cause());
+  if (failure) message += ". The next step then failed: " + std::string(failure);
+  throw Error(message);
+}
+
+// The step-size advisor's verdict at h from the current state (erkn/advisor.hpp).
+std::string Integrator::likely_cause() const {
+  try {
+    const StepSizeAdvice advice = advise_step_size(method_, system(), h_, q());
+    if (advice.safe())
+      return "not the step size by the step-size advisor (no eigenvalue of M in an unstable "
+             "band, at a resonance or near a pole at h = " +
+             format(h_) +
+             " with the Hessian of U at the kept state): the differential "
+             "equation's own growth, or a Hessian range the kept state does not show";
+    return "the step size, by the step-size advisor: " + advice.report(method_);
+  } catch (const Error& e) {
+    return std::string("unknown (the step-size advisor cannot judge h: ") + e.what() + ")";
+  }
 }
 
 }  // namespace erkn

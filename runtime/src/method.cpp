@@ -64,6 +64,10 @@ Coefficients Method::at(double v, double pole_tolerance) const {
   if (!std::isfinite(v)) throw Error("coefficient argument v = h^2*lambda is not finite");
   if (v < 0)
     throw Error("coefficient argument v = h^2*lambda = " + format_double(v) + " is negative");
+  // (NaN or a negative tolerance would make every pole test false: coefficients on a pole.)
+  if (!(pole_tolerance >= 0) || !std::isfinite(pole_tolerance))
+    throw Error("Method::at: pole_tolerance = " + format_double(pole_tolerance) +
+                " must be finite and >= 0");
   if (kind() == Kind::erkn) {
     if (!entire() && v > generated::kPoleSearchMax)
       throw Error(std::string(name()) + ": v = h^2*lambda = " + format_double(v) +

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <limits>
+#include <new>
 #include <numbers>
 #include <string>
 
@@ -161,6 +162,10 @@ void require_axis(const GridAxis& axis, std::size_t a) {
     throw Error(name + " has n = " + std::to_string(axis.n) + " unknowns (need >= 1)");
   if (!std::isfinite(axis.spacing) || axis.spacing <= 0)
     throw Error(name + " has spacing " + format(axis.spacing) + " (need finite and > 0)");
+  // Its eigenvalues reach 4 / spacing^2: an overflow there would make them inf (and 0 * inf NaN).
+  if (!std::isfinite(4 / (axis.spacing * axis.spacing)))
+    throw Error(name + " has spacing " + format(axis.spacing) +
+                ": its eigenvalues 4 / spacing^2 overflow a double");
   switch (axis.boundary) {
     case GridAxis::Boundary::periodic:
     case GridAxis::Boundary::dirichlet:
@@ -168,6 +173,19 @@ void require_axis(const GridAxis& axis, std::size_t a) {
       return;
   }
   throw Error(name + " has an unknown boundary condition");
+}
+
+// lambda(k_0, ..., k_{K-1}) = shift + sum_a mu_a[k_a], built one axis at a time (row-major).
+Eigen::VectorXd grid_eigenvalues(const std::vector<GridAxis>& axes, double shift) {
+  Eigen::VectorXd lambda = Eigen::VectorXd::Constant(1, shift);
+  for (const GridAxis& axis : axes) {
+    const Eigen::VectorXd mu = axis.eigenvalues();
+    Eigen::VectorXd next(lambda.size() * axis.n);
+    for (Eigen::Index i = 0; i < lambda.size(); ++i)
+      next.segment(i * axis.n, axis.n) = mu.array() + lambda[i];
+    lambda.swap(next);
+  }
+  return lambda;
 }
 
 }  // namespace
@@ -186,15 +204,13 @@ Stiffness Stiffness::grid(std::vector<GridAxis> axes, double shift) {
   d->structure = Structure::grid;
   d->dim = dim;
   d->shift = shift;
-  // lambda(k_0, ..., k_{K-1}) = shift + sum_a mu_a[k_a], built one axis at a time (row-major).
-  d->eigenvalues = Eigen::VectorXd::Constant(1, shift);
-  for (const GridAxis& axis : axes) {
-    const Eigen::VectorXd mu = axis.eigenvalues();
-    Eigen::VectorXd next(d->eigenvalues.size() * axis.n);
-    for (Eigen::Index i = 0; i < d->eigenvalues.size(); ++i)
-      next.segment(i * axis.n, axis.n) = mu.array() + d->eigenvalues[i];
-    d->eigenvalues.swap(next);
+  try {
+    d->eigenvalues = grid_eigenvalues(axes, shift);
+  } catch (const std::bad_alloc&) {
+    throw Error("grid M: " + std::to_string(dim) + " unknowns (" + format(8.0 * double(dim)) +
+                " bytes per vector) cannot be allocated");
   }
+  require_finite(d->eigenvalues, "grid M's eigenvalues");
   require_psd(d->eigenvalues, "grid M");
   d->axes = std::move(axes);
   return Stiffness(d);

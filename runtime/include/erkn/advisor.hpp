@@ -53,7 +53,8 @@ struct AdvisorOptions {
   /// Points sampled in [h^2 lo, h^2 hi] (the ends and 0, if inside, are always among them).
   int z_samples = 33;
   /// The suggestion is searched in [h (1 - max_change), h (1 + max_change)], relative steps of
-  /// search_step, nearest first (the smaller of two equally near).
+  /// search_step, nearest first (the smaller of two equally near); at most 1e5 steps
+  /// (max_change / search_step <= 1e5, else erkn::Error).
   double max_change = 0.5;
   double search_step = 1e-3;
 };

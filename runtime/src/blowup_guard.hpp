@@ -1,0 +1,60 @@
+// The default blow-up guard (Options::blowup_guard): every kInterval steps the integrator
+// measures its state; a measure beyond its limit stops the run with an erkn::Error and restores
+// the state of the last check that passed.
+//   With System::potential: the energy error |H - H_0| / scale, scale = 1/2 |p0|^2 + 1/2 q0^T M q0
+//   + |U(q0)| (>= |H_0|; the sum of the energy's parts, so a sign change of H_0 cannot shrink it),
+//   limit kEnergyLimit. A symplectic method off its unstable step sizes keeps this bounded and
+//   small; 0.5 is the advisor's "runs clean" bound (README, "Resonances").
+//   Without one: the quadratic energy E_2 = 1/2 |p|^2 + 1/2 q^T M q (the norm of the state in M's
+//   eigenbasis) against its first positive value, limit kGrowthLimit: exponential growth crosses
+//   it within a few checks, a bounded nonlinear exchange never does.
+// A non-finite measure is always beyond the limit. The check costs one state transform, one
+// product with M and (with a potential) one U per kInterval steps.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+
+#include "erkn/integrator.hpp"
+
+namespace erkn::detail {
+
+class BlowupGuard {
+ public:
+  static constexpr long kInterval = 128;
+  static constexpr double kEnergyLimit = 0.5, kGrowthLimit = 1e4;
+
+  /// The state a failed check returns to: the last one that passed.
+  struct Checkpoint {
+    Eigen::VectorXd q, p;
+    double t_base = 0;
+    long steps_since_base = 0, steps = 0;
+  };
+
+  /// Starts over at a new state (construction, set_state): `energy` true measures H with the
+  /// reference H_0 = measure and `scale`, else E_2 against its first positive value.
+  void start(bool on, bool energy, double measure, double scale);
+  /// True once per kInterval calls (when on).
+  bool due() {
+    if (!on_ || --countdown_ > 0) return false;
+    countdown_ = kInterval;
+    return true;
+  }
+  /// The growth of `measure` against its reference, in units of the limit (> 1: a blow-up).
+  double growth(double measure);
+  bool on() const { return on_; }
+  bool uses_energy() const { return energy_; }
+  Checkpoint& checkpoint() { return checkpoint_; }
+  /// The error for a check that failed with `measure` at time t (step `step`), the checkpoint's
+  /// time t_kept restored; `cause`: the advisor's verdict at h there.
+  std::string message(double measure, double t, long step, double t_kept,
+                      const std::string& cause) const;
+
+ private:
+  bool on_ = false, energy_ = false;
+  long countdown_ = kInterval;
+  double reference_ = 0, scale_ = 0;
+  Checkpoint checkpoint_;
+};
+
+}  // namespace erkn::detail
