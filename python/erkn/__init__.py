@@ -22,6 +22,7 @@ is reached by a last shorter step. See the README's "Python" section.
 """
 
 import inspect
+import numbers
 import time
 
 import numpy as np
@@ -159,6 +160,16 @@ def _state(x, name):
     return a
 
 
+def _real(x, name):
+    """x as a float if it is a real number (int, float, NumPy real); else erkn.Error ("0.1",
+    None and True are not step sizes or times)."""
+    if isinstance(x, np.ndarray) and x.ndim == 0 and x.dtype.kind in "fiu":
+        return float(x)
+    if not isinstance(x, numbers.Real) or isinstance(x, (bool, np.bool_)):
+        raise Error(f"{name} must be a real number; got {type(x).__name__} {x!r}")
+    return float(x)
+
+
 def _every(every):
     """The output interval as an int in [1, 2^53]; a float must be integral (2.5 is refused)."""
     try:
@@ -187,8 +198,8 @@ class Integrator(_erkn._Integrator):
         q0, p0 = _state(q0, "q0"), _state(p0, "p0")
         options = Options._of(options, energy_tolerance=energy_tolerance,
                               check_stability=check_stability)
-        super().__init__(method, _system(M, grad, q0.size, potential, hessian), float(h), q0, p0,
-                         float(t0), options)
+        super().__init__(method, _system(M, grad, q0.size, potential, hessian), _real(h, "h"), q0, p0,
+                         _real(t0, "t0"), options)
 
     @property
     def options(self):
@@ -197,7 +208,7 @@ class Integrator(_erkn._Integrator):
 
     def run(self, t_end, t_eval=None, every=1, energy=True):
         """(t, q, p, energy) at t_eval, or else at the start, every `every`-th step and t_end."""
-        return self._run(float(t_end), t_eval, _every(every), bool(energy))
+        return self._run(_real(t_end, "t_end"), t_eval, _every(every), bool(energy))
 
 
 class Solution:
@@ -225,7 +236,9 @@ def solve(M, grad, *, q0, p0, t_span, h, method=_DEFAULT_METHOD, t_eval=None, ev
     check_stability= set those fields. Raises erkn.Error with erkn's message on any bad input or failed step; an error
     (or an exception from a callback) during the run carries the output up to the last completed
     step as its `solution` attribute."""
-    t0, t1 = (float(x) for x in t_span)
+    if len(t_span) != 2:
+        raise Error(f"t_span must be (t0, t1); got {t_span!r}")
+    t0, t1 = (_real(x, "t_span") for x in t_span)
     run = Integrator(M, grad, q0=q0, p0=p0, h=h, method=method, t0=t0, potential=potential,
                      hessian=hessian, options=options, energy_tolerance=energy_tolerance,
                      check_stability=check_stability)
