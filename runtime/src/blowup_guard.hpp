@@ -21,7 +21,7 @@ namespace erkn::detail {
 
 class BlowupGuard {
  public:
-  static constexpr long kInterval = 128;
+  static constexpr long kInterval = 1024;
   static constexpr double kEnergyLimit = 0.5, kGrowthLimit = 1e4;
 
   /// The state a failed check returns to: the last one that passed.
@@ -45,6 +45,11 @@ class BlowupGuard {
   bool on() const { return on_; }
   bool uses_energy() const { return energy_; }
   Checkpoint& checkpoint() { return checkpoint_; }
+  /// A vector of size d for the check's product with M (allocated once).
+  Eigen::VectorXd& workspace(Eigen::Index d) {
+    if (workspace_.size() != d) workspace_.resize(d);
+    return workspace_;
+  }
   /// The error for a check that failed with `measure` at time t (step `step`), the checkpoint's
   /// time t_kept restored; `cause`: the advisor's verdict at h there.
   std::string message(double measure, double t, long step, double t_kept,
@@ -55,6 +60,7 @@ class BlowupGuard {
   long countdown_ = kInterval;
   double reference_ = 0, scale_ = 0;
   Checkpoint checkpoint_;
+  Eigen::VectorXd workspace_;
 };
 
 }  // namespace erkn::detail

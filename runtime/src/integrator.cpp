@@ -50,8 +50,9 @@ double grid_tolerance(double t, double t_end, double h) {
 
 // A step of h from t must move the time beyond its round-off (as integrate demands of its grid):
 // after set_state(q, p, 1e20) a step of 0.1 would leave t() at 1e20.
+bool resolved_step(double t, double h) { return h > 2 * grid_tolerance(t, t + h, h); }
 void require_resolved_step(double t, double h) {
-  if (h <= 2 * grid_tolerance(t, t + h, h))
+  if (!resolved_step(t, h))
     throw Error("h = " + format(h) + " is below the round-off of t = " + format(t, 17) +
                 ": a step would not advance the time (set the state at a smaller t, or use a "
                 "larger h)");
@@ -170,7 +171,9 @@ Integrator& Integrator::operator=(Integrator&&) noexcept = default;
 const System& Integrator::system() const { return stepper_->system(); }
 
 void Integrator::step() {
-  require_resolved_step(t(), h_);
+  // (Known at every change of t_base or h and at every guard check: stepping alone needs ~1e14
+  // steps to leave the resolved range.)
+  if (!time_resolved_) require_resolved_step(t(), h_);
   try {
     checked_step(*stepper_);
   } catch (const Error& e) {  // (a blow-up often ends in a failed stage: say so)
@@ -352,6 +355,7 @@ void Integrator::step_to(double t_end) {
   stepper_->set_state(q_, p_);  // (the next step of h does not follow a step of h)
   t_base_ = t_end;
   steps_since_base_ = 0;
+  time_resolved_ = resolved_step(t(), h_);
   if (guard_->due()) check_guard();
 }
 
@@ -416,7 +420,7 @@ double Integrator::energy(const Eigen::VectorXd& q, const Eigen::VectorXd& p) co
 // `scale` (if given) receives 1/2|p|^2 + 1/2 q'M q + |U(q)|.
 double Integrator::guard_measure(const Eigen::VectorXd& q, const Eigen::VectorXd& p,
                                  double* scale) const {
-  Eigen::VectorXd Mq(q.size());
+  Eigen::VectorXd& Mq = guard_->workspace(q.size());
   stepper_->apply_M(q, Mq);
   const double E2 = 0.5 * p.squaredNorm() + 0.5 * q.dot(Mq);
   const double U = guard_->uses_energy() || scale ? system().potential(q) : 0;
@@ -437,6 +441,7 @@ void Integrator::start_guard(const Eigen::VectorXd& q, const Eigen::VectorXd& p)
 }
 
 void Integrator::save_checkpoint() {
+  time_resolved_ = resolved_step(t(), h_);
   detail::BlowupGuard::Checkpoint& c = guard_->checkpoint();
   c.q = q(), c.p = p();
   c.t_base = t_base_, c.steps_since_base = steps_since_base_, c.steps = statistics_.steps;

@@ -61,7 +61,7 @@ struct Options {
   /// Construction (and set_step_size) refuses an h that erkn::advise_step_size finds unstable on
   /// the linearisation at the initial state (see erkn/advisor.hpp); off by default.
   bool check_stability = false;
-  /// Blow-up guard, on by default: every 128 steps, a relative energy error |H - H_0| above 0.5
+  /// Blow-up guard, on by default: every 1024 steps, a relative energy error |H - H_0| above 0.5
   /// (with System::potential; relative to 1/2|p0|^2 + 1/2 q0^T M q0 + |U(q0)|), else a 1e4-fold
   /// growth of 1/2|p|^2 + 1/2 q^T M q, or a non-finite state, throws erkn::Error naming the time,
   /// the growth and the step-size advisor's verdict at h, and restores the state of the last
@@ -238,6 +238,7 @@ class Integrator {
   void check_energy(detail::StepperBase& stepper);
   // Blow-up guard (Options::blowup_guard).
   std::unique_ptr<detail::BlowupGuard> guard_;
+  bool time_resolved_ = true;  // a step of h moves t() (see step())
   double guard_measure(const Eigen::VectorXd& q, const Eigen::VectorXd& p, double* scale) const;
   void start_guard(const Eigen::VectorXd& q, const Eigen::VectorXd& p);
   void save_checkpoint();
