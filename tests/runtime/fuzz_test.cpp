@@ -1,8 +1,7 @@
 // A bounded fuzz of the API (fixed seed): random structures and sizes of M, states of random
 // size with non-finite entries, extreme step sizes, through the constructor, set_state,
-// set_step_size, step, integrate (to a time, and with output times) and state_at. Every call either
-// succeeds or throws erkn::Error (nothing else), a refused call changes nothing, and an accepted
-// state stays finite.
+// set_step_size and step. Every call either succeeds or throws erkn::Error (nothing else), a
+// refused call changes nothing, and an accepted state stays finite.
 #include <gtest/gtest.h>
 
 #include <limits>
@@ -143,7 +142,7 @@ TEST(Fuzz, ApiCallsSucceedOrRefuseWithoutSideEffects) {
       const Snapshot before(*run);
       bool ok = false;
       ++calls;
-      switch (f.index(5)) {
+      switch (f.index(3)) {
         case 0:
           ok = attempt([&] { run->step(); }, refused);
           break;
@@ -152,23 +151,10 @@ TEST(Fuzz, ApiCallsSucceedOrRefuseWithoutSideEffects) {
           ok = attempt([&] { run->set_state(f.vector(m), f.vector(m), f.value(0, 10)); }, refused);
           break;
         }
-        case 2:
+        default:
           ok = attempt([&] { run->set_step_size(f.step_size()); }, refused);
-          break;
-        case 3:
-          ok = attempt([&] { run->integrate(run->t() + f.value(-0.5, 1)); }, refused);
-          break;
-        default: {
-          Eigen::VectorXd q, p;
-          const Eigen::VectorXd times = f.vector(2);
-          ok = attempt([&] { run->state_at(run->t() + f.value(-0.1, 0.2), q, p); }, refused) &&
-               attempt([&] { run->integrate(run->t() + 1, times, [](auto, auto&, auto&) {}); },
-                       refused);
-        }
       }
-      // A refusal changes nothing; a run that failed after some steps keeps them (its steps
-      // counted), which is no refusal.
-      if (!ok && run->statistics().steps == before.steps) before.expect_same(*run);
+      if (!ok) before.expect_same(*run);
       EXPECT_TRUE(run->q().allFinite() && run->p().allFinite() && std::isfinite(run->t()));
       EXPECT_EQ(run->q().size(), before.q.size());
     }
