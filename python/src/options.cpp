@@ -65,6 +65,8 @@ void bind_options(py::module_& m) {
         "energy monitor: a step with |H - H0| > energy_tolerance |H0| fails (0: off)");
   field(c, names, "check_stability", &Options::check_stability,
         "refuse an h the step-size advisor flags at the initial state");
+  field(c, names, "blowup_guard", &Options::blowup_guard,
+        "stop a run whose energy (or state norm) grows without bound (on by default)");
   c.attr("_fields") = py::tuple(py::cast(names));
 }
 

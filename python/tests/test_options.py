@@ -15,12 +15,13 @@ import erkn
 # for a flag, a value of the wrong type).
 VALID = {"tolerance": 1e-10, "roundoff_level": 1e-10, "max_fixed_point_iterations": 5,
          "max_theta": 0.5, "max_newton_iterations": 3, "compensated_summation": False,
-         "pole_tolerance": 1e-3, "energy_tolerance": 1e-3, "check_stability": True}
+         "pole_tolerance": 1e-3, "energy_tolerance": 1e-3, "check_stability": True,
+         "blowup_guard": False}
 INVALID = {"tolerance": [1.0, -1e-3, math.nan], "roundoff_level": [0.0, 1.0],
            "max_fixed_point_iterations": [0, -2], "max_theta": [1.0, 0.0, math.inf],
            "max_newton_iterations": [0], "compensated_summation": [1, "yes"],
            "pole_tolerance": [0.0, 1.5], "energy_tolerance": [-1.0, math.inf],
-           "check_stability": [0, None]}
+           "check_stability": [0, None], "blowup_guard": [1, "yes"]}
 
 
 def cxx_fields():
