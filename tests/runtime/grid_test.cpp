@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <random>
 
 #include "grid_backend.hpp"
 #include "m_operator.hpp"
@@ -35,14 +34,6 @@ std::string describe(const std::vector<GridAxis>& axes) {
   for (const GridAxis& a : axes)
     s += std::to_string(a.n) + " " + names[int(a.boundary)] + (&a == &axes.back() ? "" : " x ");
   return s;
-}
-
-Eigen::VectorXd random_vector(Eigen::Index d, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
-  Eigen::VectorXd x(d);
-  for (Eigen::Index i = 0; i < d; ++i) x[i] = u(gen);
-  return x;
 }
 
 TEST(Grid, ClosedFormEigenvaluesAreThoseOfTheDenseStencilMatrix) {

@@ -7,7 +7,6 @@
 
 #include <complex>
 #include <numbers>
-#include <random>
 
 #include "problems.hpp"
 #include "transforms.hpp"
@@ -33,14 +32,6 @@ std::string describe(const std::vector<GridAxis>& axes) {
   std::string s;
   for (const GridAxis& a : axes) s += std::to_string(a.n) + (&a == &axes.back() ? "" : " x ");
   return s;
-}
-
-Eigen::VectorXd random_vector(Eigen::Index d, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
-  Eigen::VectorXd x(d);
-  for (Eigen::Index i = 0; i < d; ++i) x[i] = u(gen);
-  return x;
 }
 
 // X_k = sum_j x_j exp(-2 pi i sum_a k_a j_a / n_a) at the half spectrum's k (row-major, the last

@@ -8,6 +8,7 @@
 #include <erkn/erkn.hpp>
 #include <erkn/problems.hpp>
 #include <functional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -222,6 +223,15 @@ inline double symplecticity_defect(const Method& m, const System& s, double h,
   Omega.topRightCorner(d, d).setIdentity();
   Omega.bottomLeftCorner(d, d) = -Eigen::MatrixXd::Identity(d, d);
   return (J.transpose() * Omega * J - Omega).cwiseAbs().maxCoeff();
+}
+
+/// d entries uniform in [-1, 1] from a fixed seed.
+inline Eigen::VectorXd random_vector(Eigen::Index d, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::VectorXd x(d);
+  for (Eigen::Index i = 0; i < d; ++i) x[i] = u(gen);
+  return x;
 }
 
 }  // namespace erkn::test

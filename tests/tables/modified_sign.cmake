@@ -1,9 +1,8 @@
 # Negative control of the modified-kick theory: every method of SPEC with a `modified` line, read
 # with the opposite sign of its modified-kick coefficients (the sign convention of MDevolve's
 # force-gradient coefficient), must be refused by erkn-generate naming the method and a tree.
-file(READ ${SPEC} text)
-string(REPLACE ";" "<semicolon>" text "${text}")
-string(REGEX MATCHALL "\nmethod[ \t]+[^\n]*\n([^m\n][^\n]*\n|modified[^\n]*\n)*" blocks "\n${text}")
+include(${CMAKE_CURRENT_LIST_DIR}/refusal.cmake)
+spec_blocks(${SPEC} blocks)
 set(count 0)
 foreach(block IN LISTS blocks)
   if(NOT block MATCHES "\nmodified[ \t]+([^\n]*)")
@@ -17,19 +16,9 @@ foreach(block IN LISTS blocks)
   endforeach()
   list(JOIN negated ", " negated)
   string(REGEX REPLACE "\nmodified[ \t]+[^\n]*" "\nmodified ${negated}" flipped "${block}")
-  string(REPLACE "<semicolon>" ";" flipped "${flipped}")
-  string(REGEX MATCH "method[ \t]+([^\n]*)" _ "${block}")
-  set(name "${CMAKE_MATCH_1}")
-  file(WRITE ${WORKDIR}/flipped.spec "${flipped}")
-  file(MAKE_DIRECTORY ${WORKDIR}/out/include/erkn/generated ${WORKDIR}/out/src)
-  execute_process(COMMAND ${GENERATOR} ${WORKDIR}/flipped.spec ${WORKDIR}/out
-                  RESULT_VARIABLE rc ERROR_VARIABLE err OUTPUT_QUIET)
-  string(REGEX REPLACE "([][()+.*^$?|\\\\])" "\\\\\\1" name_re "${name}")
-  if(rc EQUAL 0 OR NOT err MATCHES "${name_re}: claimed (generalized )?order [0-9]+ .*tree f")
-    message(FATAL_ERROR "${name} with its modified kicks negated: expected a refusal naming it "
-                        "and a tree, got exit ${rc}: ${err}")
-  endif()
-  message(STATUS "refused as expected: ${err}")
+  block_name("${block}" name)
+  expect_refusal("${flipped}" flipped.spec "${name_re}: claimed (generalized )?order [0-9]+ .*tree f"
+                 "${name} with its modified kicks negated" err)
   math(EXPR count "${count} + 1")
 endforeach()
 if(count EQUAL 0)
