@@ -194,6 +194,65 @@ bool has_decimals(const MethodSpec& spec) {
   return false;
 }
 
+/// Nodes and weights as given (every c_i and d_i, the e_i of modified kicks), into out; decimal
+/// explicit methods polished onto the orders their digits meet.
+void take_given_nodes(const MethodSpec& spec, exmap& nodes, const std::vector<symbol>& c,
+                      Derived& out) {
+  auto fail = [&](const std::string& why) { throw std::runtime_error(spec.name + ": " + why); };
+  for (int i = 0; i < spec.stages; ++i) {
+    out.c.push_back(value(nodes[c[i]]));
+    out.d.push_back(read_constant(spec, "d" + idx(i), spec.d[i]));
+    if (!spec.e.empty()) out.e.push_back(read_constant(spec, "e" + idx(i), spec.e[i]));
+    // A pure modified kick (d_i = 0, e_i != 0, e.g. a corrector) is a stage of an explicit
+    // method: its abar_ij are those of the splitting (derive()).
+    const bool corrector = !spec.e.empty() && !out.e[i].is_zero();
+    if (out.d[i].is_zero() && !corrector)
+      fail("d" + idx(i) + " = 0: abar_ij = (...)/d_i is undefined");
+  }
+  if (has_decimals(spec) && spec.kind != SpecKind::explicit_erkn)
+    out.node_derivation.push_back(
+        "decimals read in " + std::to_string(Qs::kApproxDigits) +
+        " digits, not polished (kind erkn): the certification judges them as given");
+  if (has_decimals(spec) && spec.kind == SpecKind::explicit_erkn) {
+    Polished p = polish_explicit(spec.name, out.c, out.d, out.e, spec.order, spec.generalized);
+    out.c = p.c, out.d = p.d, out.e = p.e, out.unmet_by_decimals = p.unmet;
+    out.node_derivation.push_back(p.summary());
+  }
+}
+
+/// The free nodes `?` (indices `unknown`, at most two) from the quadrature conditions beyond the
+/// s that fixed d (quad[k] = sum_i d_i c_i^k - 1/(k+1), d = dsol), into `nodes`.
+void solve_free_nodes(const MethodSpec& spec, const std::vector<symbol>& c,
+                      const std::vector<ex>& quad, const ex& dsol, const std::vector<int>& unknown,
+                      exmap& nodes, Derived& out) {
+  auto fail = [&](const std::string& why) { throw std::runtime_error(spec.name + ": " + why); };
+  const int s = spec.stages, nfree = int(unknown.size());
+  if (nfree > 2)
+    fail(std::to_string(nfree) + " free nodes: the generator solves at most two (give the others)");
+  if (nfree == 2) {  // two polynomial conditions beyond the s that fixed d
+    if (int(quad.size()) < s + 2)
+      fail("2 free nodes need the quadrature conditions k = " + std::to_string(s) + ", " +
+           std::to_string(s + 1) + " beyond the s that fix d, i.e. order >= " +
+           std::to_string(s + 2) + " (claimed " + std::to_string(spec.order) + "): give one node");
+    const symbol &cu = c[unknown[0]], &cv = c[unknown[1]];
+    ex p = expand(normal(quad[s].subs(dsol).subs(nodes)).numer());
+    ex q = expand(normal(quad[s + 1].subs(dsol).subs(nodes)).numer());
+    auto [x, y] = two_free_nodes(spec, p, q, cu, cv, nodes);
+    out.node_derivation.push_back(str(cu) + ", " + str(cv) + " = " + str(x) + ", " + str(y) +
+                                  " (quadrature conditions k = " + std::to_string(s) + ", " +
+                                  std::to_string(s + 1) + ")");
+    nodes[cu] = x, nodes[cv] = y;
+  } else if (nfree == 1) {  // the first condition beyond the s that fixed d fixes the node
+    if (spec.order <= s) fail("no condition left to fix c" + idx(unknown[0]));
+    const symbol& cu = c[unknown[0]];
+    ex p = expand(normal(quad[s].subs(dsol)).numer());
+    if (p.degree(cu) != 1) fail("the node condition is not linear in c" + idx(unknown[0]));
+    ex sol = normal(-p.coeff(cu, 0) / p.coeff(cu, 1));
+    out.node_derivation.push_back(str(cu) + " = " + quotient(sol));
+    nodes[cu] = sol.subs(nodes);
+  }
+}
+
 /// Nodes c_i and weights d_i (into out.c, out.d): as given, or the d_i from the quadrature
 /// conditions sum_i d_i c_i^k = 1/(k+1), k < s (eq. (f) for the bushy trees at V = 0, over
 /// symbolic c_i so the general formulas appear), and one or two nodes `?` from the next ones.
@@ -211,26 +270,7 @@ void solve_nodes(const MethodSpec& spec, const std::vector<symbol>& c, const std
   }
   if (!spec.d.empty()) {
     if (!unknown.empty()) fail("c" + idx(unknown[0]) + " = ?: with d given, give every c_i");
-    for (int i = 0; i < s; ++i) {
-      out.c.push_back(value(nodes[c[i]]));
-      out.d.push_back(read_constant(spec, "d" + idx(i), spec.d[i]));
-      if (!spec.e.empty()) out.e.push_back(read_constant(spec, "e" + idx(i), spec.e[i]));
-      // A pure modified kick (d_i = 0, e_i != 0, e.g. a corrector) is a stage of an explicit
-      // method: its abar_ij are those of the splitting (derive()).
-      const bool corrector = !spec.e.empty() && !out.e[i].is_zero();
-      if (out.d[i].is_zero() && !corrector)
-        fail("d" + idx(i) + " = 0: abar_ij = (...)/d_i is undefined");
-    }
-    if (has_decimals(spec) && spec.kind != SpecKind::explicit_erkn)
-      out.node_derivation.push_back(
-          "decimals read in " + std::to_string(Qs::kApproxDigits) +
-          " digits, not polished (kind erkn): the certification judges them as given");
-    if (has_decimals(spec) && spec.kind == SpecKind::explicit_erkn) {
-      Polished p = polish_explicit(spec.name, out.c, out.d, out.e, spec.order, spec.generalized);
-      out.c = p.c, out.d = p.d, out.e = p.e, out.unmet_by_decimals = p.unmet;
-      out.node_derivation.push_back(p.summary());
-    }
-    return;
+    return take_given_nodes(spec, nodes, c, out);
   }
   std::vector<ex> quad;  // sum_i d_i c_i^k - 1/(k+1), k = 0 .. s (as far as the order goes)
   const int nfree = int(unknown.size());
@@ -242,31 +282,8 @@ void solve_nodes(const MethodSpec& spec, const std::vector<symbol>& c, const std
   if (int(quad.size()) < s) fail("order < stages leaves d underdetermined: give d");
   lst deqs, dsyms;
   for (int i = 0; i < s; ++i) deqs.append(quad[i] == 0), dsyms.append(d[i]);
-  ex dsol = lsolve(deqs, dsyms);
-  if (nfree > 2)
-    fail(std::to_string(nfree) + " free nodes: the generator solves at most two (give the others)");
-  if (nfree == 2) {  // two polynomial conditions beyond the s that fixed d
-    if (int(quad.size()) < s + 2)
-      fail("2 free nodes need the quadrature conditions k = " + std::to_string(s) + ", " +
-           std::to_string(s + 1) + " beyond the s that fix d, i.e. order >= " +
-           std::to_string(s + 2) + " (claimed " + std::to_string(spec.order) + "): give one node");
-    const symbol &cu = c[unknown[0]], &cv = c[unknown[1]];
-    ex p = expand(normal(quad[s].subs(dsol).subs(nodes)).numer());
-    ex q = expand(normal(quad[s + 1].subs(dsol).subs(nodes)).numer());
-    auto [x, y] = two_free_nodes(spec, p, q, cu, cv, nodes);
-    out.node_derivation.push_back(str(cu) + ", " + str(cv) + " = " + str(x) + ", " + str(y) +
-                                  " (quadrature conditions k = " + std::to_string(s) + ", " +
-                                  std::to_string(s + 1) + ")");
-    nodes[cu] = x, nodes[cv] = y;
-  } else if (!unknown.empty()) {  // the first condition beyond the s that fixed d fixes the node
-    if (spec.order <= s) fail("no condition left to fix c" + idx(unknown[0]));
-    const symbol& cu = c[unknown[0]];
-    ex p = expand(normal(quad[s].subs(dsol)).numer());
-    if (p.degree(cu) != 1) fail("the node condition is not linear in c" + idx(unknown[0]));
-    ex sol = normal(-p.coeff(cu, 0) / p.coeff(cu, 1));
-    out.node_derivation.push_back(str(cu) + " = " + quotient(sol));
-    nodes[cu] = sol.subs(nodes);
-  }
+  const ex dsol = lsolve(deqs, dsyms);
+  solve_free_nodes(spec, c, quad, dsol, unknown, nodes, out);
   for (size_t i = 0; i < dsol.nops(); ++i)
     out.node_derivation.push_back(str(dsol.op(i).op(0)) + " = " + quotient(dsol.op(i).op(1)));
   for (int i = 0; i < s; ++i) out.c.push_back(value(nodes[c[i]].subs(nodes)));
@@ -304,14 +321,54 @@ std::string exact_decimals(const std::string& text) {
   return out.append(last, text.cend());
 }
 
-using Record = std::function<void(int, const symbol&, const ex&, const ex&)>;
+/// The tableau's symbols over v (b_i, bbar_i, abar_ij beside the c_i, d_i of solve_nodes), the
+/// trig environment that gives them meaning, and `record`, which stores a solved coefficient.
+struct Tableau {
+  Tableau(const MethodSpec& spec, Derived& out, std::vector<symbol> c0, std::vector<symbol> d0);
+  [[noreturn]] void fail(const std::string& why) const {
+    throw std::runtime_error(spec.name + ": " + why);
+  }
+  Rational trig(const ex& e) const { return to_rational(e, env, v); }
+  /// `shown` is the solution as derivation.md prints it (the symbols phi0V... spelled out).
+  void record(int index, const symbol& sym, const ex& solution, const ex& shown);
+
+  const MethodSpec& spec;
+  Derived& out;
+  const int s;
+  std::vector<symbol> c, d;
+  symbol v{"v"};  // (created after c, d and the nodes' symbols: GiNaC orders terms by creation)
+  std::vector<symbol> b, bb;
+  std::vector<std::vector<symbol>> a;
+  TrigEnv env;
+};
+
+Tableau::Tableau(const MethodSpec& spec, Derived& out, std::vector<symbol> c0,
+                 std::vector<symbol> d0)
+    : spec(spec), out(out), s(spec.stages), c(std::move(c0)), d(std::move(d0)), a(s) {
+  for (int i = 0; i < s; ++i) {
+    b.emplace_back("b" + idx(i)), bb.emplace_back("bbar" + idx(i));
+    for (int j = 0; j <= i; ++j) a[i].emplace_back("abar" + idx(i) + idx(j));
+  }
+  for (int i = 0; i < s; ++i) env[c[i]] = constant(out.c[i]), env[d[i]] = constant(out.d[i]);
+  out.coefficients.resize(2 * s + s * (s + 1) / 2);
+}
+
+void Tableau::record(int index, const symbol& sym, const ex& solution, const ex& shown) {
+  Rational r = cancel_common(trig(solution));
+  Coefficient& k = out.coefficients[index];
+  k.name = str(sym);
+  k.closed_form = r.is_poly() ? Rational{r.as_poly()} : r.monic();
+  k.derivation = str(sym) + " = " + quotient(shown);
+  env[sym] = k.closed_form;
+}
 
 /// abar_ii from the spec's `diagonal` equations, taken as equalities in V; in them bAe, bbarAe,
 /// bcAe, bAc stand for the tree sums of eq. (f) with abar(V). Returns the equations lhs - rhs.
-std::vector<ex> solve_diagonal(const MethodSpec& spec, const symbol& v,
-                               const std::vector<symbol>& b, const std::vector<symbol>& bb,
-                               const std::vector<symbol>& c,
-                               const std::vector<std::vector<symbol>>& a, const Record& record) {
+std::vector<ex> solve_diagonal(Tableau& t) {
+  const MethodSpec& spec = t.spec;
+  const std::vector<symbol>&b = t.b, &bb = t.bb, &c = t.c;
+  const std::vector<std::vector<symbol>>& a = t.a;
+  const symbol& v = t.v;
   const int s = spec.stages;
   auto fail = [&](const std::string& why) { throw std::runtime_error(spec.name + ": " + why); };
   symtab table;
@@ -342,7 +399,7 @@ std::vector<ex> solve_diagonal(const MethodSpec& spec, const symbol& v,
   if (dsol2.nops() != size_t(s)) fail("diagonal equations do not determine abar_ii");
   for (int i = 0; i < s; ++i) {
     ex solution = normal(ex(a[i][i]).subs(dsol2));
-    record(abar_index(s, i + 1, i + 1), a[i][i], solution, solution);
+    t.record(abar_index(s, i + 1, i + 1), a[i][i], solution, solution);
   }
 
   return diagonal;
@@ -358,101 +415,90 @@ Rational to_rational(const ex& e, const TrigEnv& env, const symbol& v) {
   return {num.num * den.den, num.den * den.num};
 }
 
-Derived derive(const MethodSpec& spec) {
-  const int s = spec.stages;
-  Derived out;
-  out.spec = spec;
-  auto fail = [&](const std::string& why) { throw std::runtime_error(spec.name + ": " + why); };
+namespace {
 
-  // --- Nodes and weights: given, or from the quadrature conditions at V = 0. ---------------
-  std::vector<symbol> c, d;
-  for (int i = 0; i < s; ++i) c.emplace_back("c" + idx(i)), d.emplace_back("d" + idx(i));
-  solve_nodes(spec, c, d, out);
-  check_drift_sum(spec);
-
-  // --- Symbols of the tableau, and the trig environment that gives them meaning. ----------
-  symbol v("v");
-  std::vector<symbol> b, bb;
-  std::vector<std::vector<symbol>> a(s);
-  for (int i = 0; i < s; ++i) {
-    b.emplace_back("b" + idx(i)), bb.emplace_back("bbar" + idx(i));
-    for (int j = 0; j <= i; ++j) a[i].emplace_back("abar" + idx(i) + idx(j));
-  }
-  TrigEnv env;
-  for (int i = 0; i < s; ++i) env[c[i]] = constant(out.c[i]), env[d[i]] = constant(out.d[i]);
-  auto trig = [&](const ex& e) { return to_rational(e, env, v); };
-  out.coefficients.resize(2 * s + s * (s + 1) / 2);
-  // `shown` is the solution as derivation.md prints it (the symbols phi0V... spelled out).
-  auto record = [&](int index, const symbol& sym, const ex& solution, const ex& shown) {
-    Rational r = cancel_common(trig(solution));
-    Coefficient& k = out.coefficients[index];
-    k.name = str(sym);
-    k.closed_form = r.is_poly() ? Rational{r.as_poly()} : r.monic();
-    k.derivation = str(sym) + " = " + quotient(shown);
-    env[sym] = k.closed_form;
-  };
-
-  // --- b_i, bbar_i: the first two symplectic conditions of (g), a 2x2 linear system. ------
+/// b_i, bbar_i: the first two symplectic conditions of (g), a 2x2 linear system per stage.
+void solve_b_bbar(Tableau& t) {
   symbol p0("phi0V"), p1("phi1V"), q0("phi0c2V"), q1("phi1c2V");
-  for (int i = 0; i < s; ++i) {
-    lst eqs{p0 * b[i] + v * p1 * bb[i] == d[i] * q0, p1 * b[i] - p0 * bb[i] == c[i] * d[i] * q1};
-    ex sol = lsolve(eqs, lst{b[i], bb[i]});
-    exmap phis{{p0, phi(0, v)},
-               {p1, phi(1, v)},
-               {q0, phi(0, pow(c[i], 2) * v)},
-               {q1, phi(1, pow(c[i], 2) * v)}};
-    env[p0] = {TrigPoly::phi0(Qs(1))}, env[p1] = {TrigPoly::phi1(Qs(1))};
-    env[q0] = {TrigPoly::phi0(out.c[i])}, env[q1] = {TrigPoly::phi1(out.c[i])};
+  for (int i = 0; i < t.s; ++i) {
+    const symbol &b = t.b[i], &bb = t.bb[i], &c = t.c[i], &v = t.v;
+    lst eqs{p0 * b + v * p1 * bb == t.d[i] * q0, p1 * b - p0 * bb == c * t.d[i] * q1};
+    ex sol = lsolve(eqs, lst{b, bb});
+    exmap phis{
+        {p0, phi(0, v)}, {p1, phi(1, v)}, {q0, phi(0, pow(c, 2) * v)}, {q1, phi(1, pow(c, 2) * v)}};
+    t.env[p0] = {TrigPoly::phi0(Qs(1))}, t.env[p1] = {TrigPoly::phi1(Qs(1))};
+    t.env[q0] = {TrigPoly::phi0(t.out.c[i])}, t.env[q1] = {TrigPoly::phi1(t.out.c[i])};
     for (int k = 0; k < 2; ++k) {
-      const symbol& sym = k == 0 ? b[i] : bb[i];
-      const int index = k == 0 ? i : s + i;
+      const symbol& sym = k == 0 ? b : bb;
+      const int index = k == 0 ? i : t.s + i;
       ex solution = normal(ex(sym).subs(sol));
-      record(index, sym, solution, solution.subs(phis));
-      if (!out.coefficients[index].closed_form.is_poly())
-        fail("symplectic solution for " + str(sym) + " did not reduce to a trig polynomial");
+      t.record(index, sym, solution, solution.subs(phis));
+      if (!t.out.coefficients[index].closed_form.is_poly())
+        t.fail("symplectic solution for " + str(sym) + " did not reduce to a trig polynomial");
     }
   }
+}
 
-  // --- abar_ij, j < i: third symplectic condition of (g) (j < i; the paper prints j <= i). --
-  // At a pure modified kick (d_i = 0) it reads 0 = 0: the splitting's abar_ij instead.
-  for (int i = 0; i < s; ++i)
+/// abar_ij, j < i: the third symplectic condition of (g) (j < i; the paper prints j <= i). At a
+/// pure modified kick (d_i = 0) it reads 0 = 0: the splitting's abar_ij instead.
+void solve_abar(Tableau& t) {
+  for (int i = 0; i < t.s; ++i)
     for (int j = 0; j < i; ++j) {
-      if (out.d[i].is_zero()) {
+      const int index = abar_index(t.s, i + 1, j + 1);
+      const symbol &ci = t.c[i], &cj = t.c[j];
+      if (t.out.d[i].is_zero()) {
         const std::string I = idx(i), J = idx(j);
-        record(abar_index(s, i + 1, j + 1), a[i][j],
-               d[j] * (c[i] - c[j]) * phi(1, pow(c[i] - c[j], 2) * v), 0);
+        t.record(index, t.a[i][j], t.d[j] * (ci - cj) * phi(1, pow(ci - cj, 2) * t.v), 0);
         // Written out: GiNaC prints (c_i - c_j)^2 with either sign first, run to run.
-        out.coefficients[abar_index(s, i + 1, j + 1)].derivation =
-            "abar" + I + J + " = d" + J + "*(c" + I + "-c" + J + ")*phi(1,(c" + I + "-c" + J +
-            ")^2*v)";
+        t.out.coefficients[index].derivation = "abar" + I + J + " = d" + J + "*(c" + I + "-c" + J +
+                                               ")*phi(1,(c" + I + "-c" + J + ")^2*v)";
         continue;
       }
-      ex sol = lsolve(lst{bb[j] * b[i] - bb[i] * b[j] == d[i] * a[i][j]}, lst{a[i][j]});
-      ex solution = normal(ex(a[i][j]).subs(sol));
-      record(abar_index(s, i + 1, j + 1), a[i][j], solution, solution);
+      ex sol =
+          lsolve(lst{t.bb[j] * t.b[i] - t.bb[i] * t.b[j] == t.d[i] * t.a[i][j]}, lst{t.a[i][j]});
+      ex solution = normal(ex(t.a[i][j]).subs(sol));
+      t.record(index, t.a[i][j], solution, solution);
     }
+}
 
-  // --- abar_ii: zero (explicit), or the diagonal equations of the spec as equalities in V. ---
-  std::vector<ex> diagonal;
-  if (spec.kind == SpecKind::explicit_erkn)
-    for (int i = 0; i < s; ++i) record(abar_index(s, i + 1, i + 1), a[i][i], 0, 0);
-  else
-    diagonal = solve_diagonal(spec, v, b, bb, c, a, record);
-
-  // --- Verify, identically in V: everything imposed holds. --------------------------------
-  for (int i = 0; i < s; ++i) {
-    ex g1 = phi(0, v) * b[i] + v * phi(1, v) * bb[i] - d[i] * phi(0, pow(c[i], 2) * v);
-    ex g2 = phi(1, v) * b[i] - phi(0, v) * bb[i] - c[i] * d[i] * phi(1, pow(c[i], 2) * v);
-    if (!identically_zero(trig(g1)) || !identically_zero(trig(g2)))
-      fail("symplectic condition (g) 1-2 fails at stage " + idx(i));
+/// Everything imposed holds identically in V: (g) 1-3 and the spec's diagonal equations.
+void verify(const Tableau& t, const std::vector<ex>& diagonal) {
+  const symbol& v = t.v;
+  for (int i = 0; i < t.s; ++i) {
+    const symbol &b = t.b[i], &bb = t.bb[i], &c = t.c[i], &d = t.d[i];
+    ex g1 = phi(0, v) * b + v * phi(1, v) * bb - d * phi(0, pow(c, 2) * v);
+    ex g2 = phi(1, v) * b - phi(0, v) * bb - c * d * phi(1, pow(c, 2) * v);
+    if (!identically_zero(t.trig(g1)) || !identically_zero(t.trig(g2)))
+      t.fail("symplectic condition (g) 1-2 fails at stage " + idx(i));
     for (int j = 0; j < i; ++j)
-      if (!identically_zero(trig(bb[j] * b[i] - bb[i] * b[j] - d[i] * a[i][j])))
-        fail("symplectic condition (g) 3 fails for i=" + idx(i) + ", j=" + idx(j));
+      if (!identically_zero(t.trig(t.bb[j] * b - bb * t.b[j] - d * t.a[i][j])))
+        t.fail("symplectic condition (g) 3 fails for i=" + idx(i) + ", j=" + idx(j));
   }
   for (size_t k = 0; k < diagonal.size(); ++k)
-    if (!identically_zero(trig(diagonal[k])))
-      fail("diagonal condition '" + spec.diagonal[k] + "' fails");
+    if (!identically_zero(t.trig(diagonal[k])))
+      t.fail("diagonal condition '" + t.spec.diagonal[k] + "' fails");
+}
 
+}  // namespace
+
+Derived derive(const MethodSpec& spec) {
+  Derived out;
+  out.spec = spec;
+  // Nodes and weights: given, or from the quadrature conditions at V = 0.
+  std::vector<symbol> c, d;
+  for (int i = 0; i < spec.stages; ++i) c.emplace_back("c" + idx(i)), d.emplace_back("d" + idx(i));
+  solve_nodes(spec, c, d, out);
+  check_drift_sum(spec);
+  Tableau t(spec, out, std::move(c), std::move(d));
+  solve_b_bbar(t);
+  solve_abar(t);
+  // abar_ii: zero (explicit), or the diagonal equations of the spec as equalities in V.
+  std::vector<ex> diagonal;
+  if (spec.kind == SpecKind::explicit_erkn)
+    for (int i = 0; i < t.s; ++i) t.record(abar_index(t.s, i + 1, i + 1), t.a[i][i], 0, 0);
+  else
+    diagonal = solve_diagonal(t);
+  verify(t, diagonal);
   for (Coefficient& k : out.coefficients) k.series = taylor(k.closed_form, kSeriesTerms);
   auto t0 = std::chrono::steady_clock::now();
   certify_order(out);
