@@ -171,11 +171,8 @@ void page(const Args& a, const std::vector<Written>& ws, const std::string& stem
   render(a, stem, s.str(), 500 * cols, 450 * rows);
 }
 
-}  // namespace
-
-int stability_command(int argc, char** argv) {
-  if (asks_for_help(argc, argv)) return usage(true);
-  Args a;
+// The arguments into a, checked; false: not a valid command line (usage).
+bool parse(int argc, char** argv, Args& a) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto value = [&]() -> const char* {
@@ -199,22 +196,20 @@ int stability_command(int argc, char** argv) {
     else if (a.name.empty())
       a.name = arg;
     else
-      return usage();
+      return false;
   }
-  if (a.name.empty()) return usage();
+  if (a.name.empty()) return false;
   if (!(a.vmax > 0) || !(a.zmax > a.zmin)) throw Error("need --vmax > 0 and --zmax > --zmin");
   if (a.vmax > generated::kPoleSearchMax)
     throw Error("--vmax " + fmt(a.vmax) + " is beyond the table of poles (V <= " +
                 fmt(generated::kPoleSearchMax) + "): points there could not be classified");
   if (!std::isfinite(a.zmax - a.zmin)) throw Error("--zmax - --zmin is not a finite number");
-  std::filesystem::create_directories(a.out);
-  if (a.name != "all") {
-    const Written w = write_csv(Method::by_name(a.name), a);
-    render(a, w.csv.substr(0, w.csv.size() - 4), panel(w, a, true), 800, 600);
-    return 0;
-  }
-  // Pages: the paper's ERKN methods (as in its figure 1), the explicit (splitting) methods, the
-  // other implicit ERKN methods, and the RKN limits.
+  return true;
+}
+
+// Every method's CSV and chart, and the pages: the paper's ERKN methods (as in its figure 1), the
+// explicit (splitting) methods, the other implicit ERKN methods, and the RKN limits.
+void all_methods(const Args& a) {
   std::vector<Written> paper_panels, explicit_panels, other_panels, rkn_panels;
   for (const Method& m : Method::all()) {
     const Written w = write_csv(m, a);
@@ -236,6 +231,21 @@ int stability_command(int argc, char** argv) {
   page(a, other_panels, "stability_other", "Other implicit ERKN methods" + test + legend);
   page(a, rkn_panels, "stability_rkn",
        "RKN limits (force -(w^2+e)y, S depends on V+z only)" + legend);
+}
+
+}  // namespace
+
+int stability_command(int argc, char** argv) {
+  if (asks_for_help(argc, argv)) return usage(true);
+  Args a;
+  if (!parse(argc, argv, a)) return usage();
+  std::filesystem::create_directories(a.out);
+  if (a.name == "all") {
+    all_methods(a);
+    return 0;
+  }
+  const Written w = write_csv(Method::by_name(a.name), a);
+  render(a, w.csv.substr(0, w.csv.size() - 4), panel(w, a, true), 800, 600);
   return 0;
 }
 
