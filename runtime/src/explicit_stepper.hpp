@@ -16,18 +16,17 @@
 // identity eigenbasis) that copy is a set of fixed-size arrays the compiler keeps in registers.
 //
 // Compensated summation (Options::compensated_summation) keeps with q and p the low-order parts
-// eq, ep that rounding has dropped (the state is q + eq, p + ep): each pass computes q and p as the
-// plain step does and adds the exact residual (q_old + dq) - q_new of its increment to eq (ep);
-// the errors are folded back where that adds no latency to the step's chain of dependent
-// operations (flow_update, kick_update). get_state returns q + eq and p + ep.
+// eq, ep that rounding has dropped (the state is q + eq, p + ep): each pass adds the rounding
+// error of its sums q + dq, p + dp to eq, ep (flow_update, kick_update). get_state returns q + eq
+// and p + ep.
 //
-// Its cost (stand-alone driver, construction + integrate, on vs off alternated in one process,
-// 41 pairs, main 169757b on a loaded 2-core machine): sine-Gordon N = 512 Strang 1.15x (median
-// pair ratio), N = 2048 SABA2 1.07x and Strang 1.12x, N = 8192 SABA2 1.15x; N = 32 SRKN14a 1.08x,
-// Duffing Strang 1.12x. That is above the 5 % the runtime allows itself for a default, and it
-// stays the default all the same: without it the round-off of q_n + dq grows with the number of
-// steps (a random walk, ~sqrt(n) eps |q|), which is what the energy and long-time charts show
-// and what the paper's claims rest on; Options::compensated_summation = false is the fast path.
+// Its cost (construction + integrate, on vs off alternated in one process per run, medians of
+// 3-5 runs, main 183cf83 + the SIMD passes, loaded 2-core machine): sine-Gordon N = 2048 SABA2
+// 100 steps 1.07x, N = 512 Strang 40 steps 1.11x (before the SIMD passes 1.12x and 1.06x).
+// That is above the 5 % the runtime allows itself for a default, and it stays the default all
+// the same: without it the round-off of q_n + dq grows with the number of steps (a random walk,
+// ~sqrt(n) eps |q|), which is what the energy and long-time charts show and what the paper's
+// claims rest on; Options::compensated_summation = false is the fast path.
 #pragma once
 
 #include <Eigen/Core>
@@ -226,61 +225,96 @@ class ExplicitStepper final : public StepperBase {
   }
 
   // The exact flow of (q, p) with coefficients cos, cos - 1, sin(w tau)/w, -w sin(w tau), for
-  // one coordinate (T = Scalar) or a whole fixed-size array; and the kick p += dp.
+  // one coordinate (T = double) or a whole fixed-size array; and the kick p += dp.
   //
-  // Compensated, each adds the residual of q + dq (p + dp) to eq (ep), dq = (cos - 1) q + sinc p
-  // for the flow. The errors are folded into q and p where that costs the least: with a fixed
-  // dimension, where the step is a chain of dependent operations, both at the kick, from values
-  // known before dp (whose gradient comes last); with arrays, where the passes' memory traffic
-  // counts, eq in the flow (by the term of q) and ep at the kick, each pass touching only what
-  // it changes.
+  // Compensated, each pass adds the rounding error of q + dq (p + dp) to eq (ep), dq =
+  // (cos - 1) q + sinc p for the flow. With a fixed dimension, where the step is a chain of
+  // dependent operations, the errors are folded into q and p at the kick, from values known
+  // before dp (whose gradient comes last). With arrays, where the passes' memory traffic counts,
+  // each pass folds them into its own increments (dq + eq, dp + ep) and keeps the residuals of
+  // the sums: the flow then reads cos - 1 but not cos, and the kick makes one sum, not two.
   static constexpr bool kFoldAtKick = kFixed;
 
   template <bool kKahan, class T, class C>
   EIGEN_ALWAYS_INLINE static void flow_update(const C& cos, const C& cm1, const C& sinc,
                                               const C& msinc, T& q, T& p, T& eq, T& ep) {
-    const T q0 = q, p0 = p, sp = sinc * p0, mq = msinc * q0;
-    p = mq + cos * p0;
-    if constexpr (kKahan && !kFoldAtKick)
-      q = (cos * q0 + eq) + sp;
-    else
+    const T q0 = q, p0 = p;
+    if constexpr (kKahan && !kFoldAtKick) {
+      const T dq = (cm1 * q0 + sinc * p0) + eq, dp = (msinc * q0 + cm1 * p0) + ep;
+      q = q0 + dq, p = p0 + dp;
+      eq = (q0 - q) + dq, ep = (p0 - p) + dp;
+    } else {
+      const T sp = sinc * p0, mq = msinc * q0;
+      p = mq + cos * p0;
       q = cos * q0 + sp;
-    if constexpr (kKahan) {
-      eq += (q0 - q) + (cm1 * q0 + sp);
-      ep += (p0 - p) + (mq + cm1 * p0);
+      if constexpr (kKahan) {
+        eq += (q0 - q) + (cm1 * q0 + sp);
+        ep += (p0 - p) + (mq + cm1 * p0);
+      }
     }
   }
 
   template <bool kKahan, class T>
   EIGEN_ALWAYS_INLINE static void kick_update(const T& dp, T& q, T& p, T& eq, T& ep) {
-    if constexpr (kKahan) {
-      if constexpr (kFoldAtKick) {
-        const T q1 = q + eq;
-        eq = (q - q1) + eq;
-        q = q1;
-      }
+    if constexpr (kKahan && kFoldAtKick) {
+      const T q1 = q + eq;
+      eq = (q - q1) + eq;
+      q = q1;
       const T p1 = p + ep, e1 = (p - p1) + ep;
       p = p1 + dp;
       ep = e1 + ((p1 - p) + dp);
+    } else if constexpr (kKahan) {
+      const T p0 = p, dpe = dp + ep;
+      p = p0 + dpe;
+      ep = (p0 - p) + dpe;
     } else {
       p += dp;
     }
   }
 
-  // Flow k from `from` to `to` (which may be the same), coordinate by coordinate; its q also to
-  // Q when given (identity basis only).
+  // The arrays' passes run over doubles: a complex eigen coordinate (half spectrum) is kLanes = 2
+  // of them, re and im, which share their real coefficients. Every array a pass writes is a
+  // distinct stream (__restrict; an in-place pass reads through the pointer it writes), so the
+  // loops compile to SIMD (checked with -fopt-info-vec).
+  static constexpr int kLanes = int(sizeof(Scalar) / sizeof(double));
+  static double* lanes(Scalar* x) { return reinterpret_cast<double*>(x); }
+  static const double* lanes(const Scalar* x) { return reinterpret_cast<const double*>(x); }
+
+  // Flow k from `from` to `to` (in place when they are the same); its q also to Q when given
+  // (identity basis only).
   template <bool kKahan>
   EIGEN_ALWAYS_INLINE void flow(int k, const State& from, State& to, double* Q) {
-    const auto cos = flows_.cos(k), cm1 = flows_.cm1(k);
-    const auto sinc = flows_.sinc(k), msinc = flows_.msinc(k);
+    if (&from == &to)
+      flow_pass<kKahan, true>(k, from, to, Q);
+    else
+      flow_pass<kKahan, false>(k, from, to, Q);
+  }
+  template <bool kKahan, bool kInPlace>
+  EIGEN_ALWAYS_INLINE void flow_pass(int k, const State& from, const State& to,
+                                     double* __restrict Q) {
+    const auto cos = values(flows_.cos(k)), cm1 = values(flows_.cm1(k));
+    const auto sinc = values(flows_.sinc(k)), msinc = values(flows_.msinc(k));
+    double* __restrict q = lanes(to.q);
+    double* __restrict p = lanes(to.p);
+    double* __restrict eq = lanes(to.eq);
+    double* __restrict ep = lanes(to.ep);
+    const double* __restrict q_in = kInPlace ? nullptr : lanes(from.q);
+    const double* __restrict p_in = kInPlace ? nullptr : lanes(from.p);
+    const double* __restrict eq_in = kInPlace ? nullptr : lanes(from.eq);
+    const double* __restrict ep_in = kInPlace ? nullptr : lanes(from.ep);
     for (Eigen::Index e = 0; e < n(); ++e) {
-      Scalar q = from.q[e], p = from.p[e], eq = kKahan ? from.eq[e] : 0;
-      Scalar ep = kKahan ? from.ep[e] : 0;
-      flow_update<kKahan>(at(cos, e), at(cm1, e), at(sinc, e), at(msinc, e), q, p, eq, ep);
-      to.q[e] = q, to.p[e] = p;
-      if (kKahan) to.eq[e] = eq, to.ep[e] = ep;
-      if constexpr (kIdentity)
-        if (Q) Q[e] = q;
+      const double c = at(cos, e), cm = at(cm1, e), sc = at(sinc, e), ms = at(msinc, e);
+      for (int l = 0; l < kLanes; ++l) {
+        const Eigen::Index x = kLanes * e + l;
+        double qx = kInPlace ? q[x] : q_in[x], px = kInPlace ? p[x] : p_in[x];
+        double eqx = kKahan ? (kInPlace ? eq[x] : eq_in[x]) : 0;
+        double epx = kKahan ? (kInPlace ? ep[x] : ep_in[x]) : 0;
+        flow_update<kKahan>(c, cm, sc, ms, qx, px, eqx, epx);
+        q[x] = qx, p[x] = px;
+        if (kKahan) eq[x] = eqx, ep[x] = epx;
+        if constexpr (kIdentity)
+          if (Q) Q[x] = qx;
+      }
     }
   }
   // (Fixed dimension: in place, whole arrays.)
@@ -292,20 +326,33 @@ class ExplicitStepper final : public StepperBase {
       for (int e = 0; e < D; ++e) Q[e] = v.q[e];
   }
 
-  // The kick p -= hd g from `from` to `to`; g also to save when given.
+  // The kick p -= hd g from `from` to `to` (in place when they are the same); g also to save
+  // when given.
   template <bool kKahan>
   EIGEN_ALWAYS_INLINE void kick(double hd, const Scalar* g, const State& from, State& to,
                                 Scalar* save) {
-    for (Eigen::Index e = 0; e < n(); ++e) {
-      Scalar q = 0, p = from.p[e], eq = 0, ep = kKahan ? from.ep[e] : 0;
-      kick_update<kKahan>(Scalar(-hd * g[e]), q, p, eq, ep);
-      to.p[e] = p;
-      if (kKahan) to.ep[e] = ep;
-      if (&from != &to) {
-        to.q[e] = from.q[e];
-        if (kKahan) to.eq[e] = from.eq[e];
-      }
-      if (save) save[e] = g[e];
+    if (&from == &to) {
+      kick_pass<kKahan, true>(hd, lanes(g), from, to, save ? lanes(save) : nullptr);
+    } else {
+      kick_pass<kKahan, false>(hd, lanes(g), from, to, save ? lanes(save) : nullptr);
+      std::copy_n(from.q, n(), to.q);
+      if (kKahan) std::copy_n(from.eq, n(), to.eq);
+    }
+  }
+  template <bool kKahan, bool kInPlace>
+  EIGEN_ALWAYS_INLINE void kick_pass(double hd, const double* __restrict g, const State& from,
+                                     const State& to, double* __restrict save) {
+    double* __restrict p = lanes(to.p);
+    double* __restrict ep = lanes(to.ep);
+    const double* __restrict p_in = kInPlace ? nullptr : lanes(from.p);
+    const double* __restrict ep_in = kInPlace ? nullptr : lanes(from.ep);
+    for (Eigen::Index x = 0; x < kLanes * n(); ++x) {
+      double q = 0, px = kInPlace ? p[x] : p_in[x], eq = 0;
+      double epx = kKahan ? (kInPlace ? ep[x] : ep_in[x]) : 0;
+      kick_update<kKahan>(-hd * g[x], q, px, eq, epx);
+      p[x] = px;
+      if (kKahan) ep[x] = epx;
+      if (save) save[x] = g[x];
     }
   }
   template <bool kKahan>
@@ -348,16 +395,19 @@ class ExplicitStepper final : public StepperBase {
       return m_;
   }
 
+  // A coefficient's values for the passes: the one value (scalar M) or a pointer to the array.
+  static double values(double value) { return value; }
+  template <class Map>
+  static const double* values(const Map& map) {
+    return map.data();
+  }
   static double at(double value, Eigen::Index) { return value; }
+  static double at(const double* values, Eigen::Index e) { return values[e]; }
   // A coefficient as a fixed-size array (or the one value of a scalar M).
   static double fixed(double value) { return value; }
   template <class Map>
   static Fixed fixed(const Map& values) {
     return Fixed(values.data());
-  }
-  template <class Map>
-  static double at(const Map& values, Eigen::Index e) {
-    return values[e];
   }
 
   // Slot k of the storage (the second copy's slots 6..9 exist with a dynamic dimension only).

@@ -4,9 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <cmath>
 #include <complex>
-#include <limits>
 
 #include "erkn/method.hpp"
 #include "erkn/system.hpp"
@@ -20,11 +18,13 @@ struct StepPlace {
   double t = 0;
 };
 
-/// True when x[0..n) are all finite: one pass without early exit (vectorises; n may be a constant).
-inline bool all_finite(const double* x, Eigen::Index n) {
-  bool ok = true;
-  for (Eigen::Index k = 0; k < n; ++k) ok &= std::abs(x[k]) <= std::numeric_limits<double>::max();
-  return ok;
+/// True when x[0..n) are all finite (N: n when it is a compile-time constant). x_k * 0 is 0 for a
+/// finite x_k and NaN for an infinite or NaN one, so the sum of x_k * 0 is 0 exactly when every
+/// x_k is finite: one pass without early exit that Eigen sums in SIMD packets (a loop over a flag,
+/// ok &= |x_k| <= max, compiled to scalar compares: 6 % of a plain step at N = 2048).
+template <int N = Eigen::Dynamic>
+bool all_finite(const double* x, Eigen::Index n) {
+  return (Eigen::Map<const Eigen::Array<double, N, 1>>(x, n) * 0.0).sum() == 0;
 }
 inline bool all_finite(const std::complex<double>* x, Eigen::Index n) {
   return all_finite(reinterpret_cast<const double*>(x), 2 * n);
@@ -44,12 +44,11 @@ inline bool all_finite(const std::complex<double>* x, Eigen::Index n) {
 template <int D = Eigen::Dynamic>
 void checked_gradient(const System& system, const Eigen::VectorXd& Q, Eigen::VectorXd& g,
                       Eigen::Index d, int i, const StepPlace& at, long& evaluations) {
-  const Eigen::Index n = D == Eigen::Dynamic ? d : D;
-  if (!all_finite(Q.data(), n)) non_finite_stage(i, at);
+  if (!all_finite<D>(Q.data(), d)) non_finite_stage(i, at);
   system.gradient(Q, g);
   ++evaluations;
   if (g.size() != d) gradient_of_wrong_size(g, d, i, at);
-  if (!all_finite(g.data(), n)) non_finite_gradient(i, at);
+  if (!all_finite<D>(g.data(), d)) non_finite_gradient(i, at);
 }
 
 /// A step whose q_{n+1} or p_{n+1} would not be finite fails before it changes the state.
