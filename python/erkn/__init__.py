@@ -34,7 +34,8 @@ from . import _erkn
 __version__ = "@PROJECT_VERSION@"
 __all__ = ["Ensemble", "Error", "Integrator", "Options", "Solution", "StepSizeAdvice",
            "Stiffness", "advise_step_size", "circulant", "dense", "diagonal", "grid",
-           "hessian_bounds_along", "hessian_bounds_at", "methods", "potential", "scalar", "solve",
+           "hessian_bounds_along", "hessian_bounds_at", "methods", "mode_energies", "potential",
+           "scalar", "solve",
            "stability", "system", "tableau"]
 
 _DEFAULT_METHOD = "SERKN2s4"
@@ -285,15 +286,23 @@ def hessian_bounds_along(method, M, grad, *, h, q0, p0, steps, hessian=None):
                                        q0, p0, int(steps))
 
 
+def mode_energies(M, q, p):
+    """The state's 1/2|p|^2 + 1/2 q'Mq at each eigenvalue of M (M.eigenvalues order): the
+    excitation a resonance needs (erkn/advisor.hpp)."""
+    return _erkn.mode_energies(_stiffness(M), _state(q, "q"), _state(p, "p"))
+
+
 def advise_step_size(method, M, h, grad=None, *, q0=None, p0=None, steps=0, hessian_bounds=None,
                      **advisor_options):
     """The step sizes near h the stability analysis warns against for `method` on
     q'' + M q = -grad U(q), and the nearest one it does not (erkn/advisor.hpp; `erkn advise`).
 
     The bounds (lo, hi) on the Hessian of U: hessian_bounds if given; else, with grad, at q0
-    (steps = 0) or along `steps` steps from (q0, p0); else (0, 0). advisor_options:
-    potential_degree, pole_margin, trace_tolerance, z_samples, max_change, search_step.
-    Returns an erkn.StepSizeAdvice: safe, findings, suggested_h, hessian, report."""
+    (steps = 0) or along `steps` steps from (q0, p0); else (0, 0). With q0 and p0 a resonance is
+    flagged only at eigenvalues the state excites (erkn.mode_energies); without, at all.
+    advisor_options: potential_degree, pole_margin, trace_tolerance, z_samples, max_change,
+    search_step, min_excitation. Returns an erkn.StepSizeAdvice: safe, findings, equation (the
+    differential equation's own growth: information), suggested_h, hessian, report."""
     options = _erkn._AdvisorOptions()
     for name, value in advisor_options.items():
         if not hasattr(options, name) or name.startswith("_"):
@@ -305,7 +314,11 @@ def advise_step_size(method, M, h, grad=None, *, q0=None, p0=None, steps=0, hess
         hessian_bounds = (hessian_bounds_at(M, grad, q0) if steps == 0 else
                           hessian_bounds_along(method, M, grad, h=h, q0=q0, p0=p0, steps=steps))
     lo, hi = (0.0, 0.0) if hessian_bounds is None else (float(x) for x in hessian_bounds)
-    return _erkn._advise(method, _stiffness(M).eigenvalues, float(h), lo, hi, options)
+    stiffness = _stiffness(M)
+    energy = np.zeros(0)
+    if q0 is not None and p0 is not None:
+        energy = mode_energies(stiffness, q0, p0)
+    return _erkn._advise(method, stiffness.eigenvalues, float(h), lo, hi, options, energy)
 
 
 class EnsembleResult:

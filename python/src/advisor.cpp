@@ -21,6 +21,7 @@ py::dict finding(const AdvisorFinding& f) {
   d["trace"] = f.trace;
   d["pole"] = f.pole;
   d["harmonic"] = f.harmonic;
+  d["rate"] = f.rate;
   return d;
 }
 
@@ -40,7 +41,8 @@ void bind_advice(py::module_& m) {
       .def_readwrite("trace_tolerance", &AdvisorOptions::trace_tolerance)
       .def_readwrite("z_samples", &AdvisorOptions::z_samples)
       .def_readwrite("max_change", &AdvisorOptions::max_change)
-      .def_readwrite("search_step", &AdvisorOptions::search_step);
+      .def_readwrite("search_step", &AdvisorOptions::search_step)
+      .def_readwrite("min_excitation", &AdvisorOptions::min_excitation);
   py::class_<Advice>(m, "StepSizeAdvice", "erkn::StepSizeAdvice: findings for h, a suggestion")
       .def_property_readonly("h", [](const Advice& a) { return a.advice.h; })
       .def_property_readonly("method", [](const Advice& a) { return a.method; })
@@ -60,6 +62,15 @@ void bind_advice(py::module_& m) {
           "one dict per flagged eigenvalue: index, lambda, V, hazard (unstable, resonance, "
           "pole), z, trace, pole, harmonic")
       .def_property_readonly(
+          "equation",
+          [](const Advice& a) {
+            py::list out;
+            for (const AdvisorFinding& f : a.advice.equation) out.append(finding(f));
+            return out;
+          },
+          "information, not flagged: one dict per eigenvalue where the differential equation "
+          "itself grows (lambda + kappa < 0), its rate mu = sqrt(-(lambda + kappa))")
+      .def_property_readonly(
           "suggested_h", [](const Advice& a) { return a.advice.suggested_h; },
           "the nearest h without findings (NaN when none within max_change)")
       .def_property_readonly(
@@ -78,13 +89,15 @@ void bind_advisor(py::module_& m) {
   m.def(
       "_advise",
       [](const std::string& method, const Eigen::VectorXd& eigenvalues, double h, double lo,
-         double hi, const AdvisorOptions& options) {
+         double hi, const AdvisorOptions& options, const Eigen::VectorXd& mode_energy) {
         const Method& me = Method::by_name(method);
-        return Advice{advise_step_size(me, eigenvalues, h, {lo, hi}, options),
+        return Advice{advise_step_size(me, eigenvalues, h, {lo, hi}, options, mode_energy),
                       std::string(me.name())};
       },
       py::arg("method"), py::arg("eigenvalues"), py::arg("h"), py::arg("lo"), py::arg("hi"),
-      py::arg("options"));
+      py::arg("options"), py::arg("mode_energy"));
+  m.def("mode_energies", &mode_energies, py::arg("M"), py::arg("q"), py::arg("p"),
+        "the state's 1/2|p|^2 + 1/2 q'Mq at each eigenvalue of M (erkn/advisor.hpp)");
   m.def(
       "_hessian_bounds_at",
       [](const PySystem& s, const Eigen::VectorXd& q) {

@@ -52,6 +52,47 @@ def test_hessian_bounds_along_a_run_contain_those_at_the_start():
     assert erkn.advise_step_size(name, M, 0.01, "fpu", q0=q0, p0=p0, steps=500).hessian == along
 
 
+def sine_gordon(n=32):
+    dx = 2.0 / n
+    col = np.zeros(n)
+    col[0], col[1], col[-1] = 2 / dx**2, -1 / dx**2, -1 / dx**2
+    q0 = np.full(n, np.pi)
+    p0 = np.sqrt(n) * (0.01 + np.sin(2 * np.pi * np.arange(1, n + 1) / n))
+    return erkn.circulant(col), q0, p0
+
+
+def test_the_equations_own_growth_is_information_not_a_finding():
+    # The README's sine-Gordon example: at u = pi, M + Hessian has lambda + kappa = 0 - 1 < 0.
+    M, q0, p0 = sine_gordon()
+    for h in (0.025, 0.1):
+        advice = erkn.advise_step_size("SERKN2s4", M, h, "sine", q0=q0, p0=p0)
+        assert advice.safe and advice.findings == []
+        assert [e["hazard"] for e in advice.equation] == ["the equation grows"]
+        assert advice.equation[0]["lambda"] == 0 and advice.equation[0]["rate"] == pytest.approx(1)
+        assert "differential equation itself grows" in advice.report
+    # Negative control: a bounded Hessian range reports no growth.
+    assert erkn.advise_step_size("SERKN2s4", M, 0.1, hessian_bounds=(0, 1)).equation == []
+
+
+def test_mode_energies_sum_to_the_linear_energy_and_gate_resonances():
+    M, q0, p0 = sine_gordon()
+    e = erkn.mode_energies(M, q0, p0)
+    dense = M.to_dense(32)
+    assert e.shape == (17,) and e.sum() == pytest.approx(0.5 * p0 @ p0 + 0.5 * q0 @ dense @ q0)
+    with pytest.raises(erkn.Error, match="mode_energies"):
+        erkn.mode_energies(M, q0[:5], p0[:5])
+    # FPU at h omega = pi: the stiff modes hold energy, so the resonance is flagged with the
+    # state; an unexcited copy (p0 and q0 without the stiff part) is not flagged for resonance.
+    Mf, qf, pf = fpu()
+    h = np.pi / 50
+    assert not erkn.advise_step_size("SERKN2s4", Mf, h, hessian_bounds=(0, 12),
+                                     q0=qf, p0=pf).safe
+    slow_q, slow_p = qf.copy(), pf.copy()
+    slow_q[3:], slow_p[3:] = 0, 0
+    quiet = erkn.advise_step_size("SERKN2s4", Mf, h, hessian_bounds=(0, 12), q0=slow_q, p0=slow_p)
+    assert all(f["hazard"] != "resonance" for f in quiet.findings)
+
+
 def test_advisor_refusals_name_the_problem():
     name, _ = method_with_pole()
     with pytest.raises(erkn.Error, match="no option 'degree'"):

@@ -1,8 +1,9 @@
 // erkn advise NAME --h H (--spectrum L1,L2,... | --problem P1|P2|P3|FPU) [--hessian LO,HI]
 //
 // --spectrum: eigenvalues of M; the Hessian bounds default to [0, 0] (U = 0) unless --hessian.
-// --problem:  a problem of erkn::problems, with M's eigenvalues and the Hessian bounds at its
-//             initial state (or --hessian).
+// --problem:  a problem of erkn::problems, with M's eigenvalues, the Hessian bounds at its
+//             initial state (or --hessian) and its initial mode energies (a resonance needs an
+//             excited mode; with --spectrum every mode counts as excited).
 #include "advise_command.hpp"
 
 #include <cctype>
@@ -81,17 +82,18 @@ int advise_command(int argc, char** argv) {
   if (name.empty() || std::isnan(h) || spectrum.empty() == problem.empty()) return usage();
   const Method& method = Method::by_name(name);
   HessianBounds bounds;
-  Eigen::VectorXd lambda;
+  Eigen::VectorXd lambda, energy;
   if (!problem.empty()) {
     const problems::Problem p = problems::problem_by_key(problem);
     const System system = problems::system(p);
     lambda = system.M.eigenvalues();
+    energy = mode_energies(system.M, p.q0, p.p0);
     bounds = hessian.empty() ? hessian_bounds_at(system, p.q0) : HessianBounds{};
   } else {
     lambda = Eigen::Map<const Eigen::VectorXd>(spectrum.data(), Eigen::Index(spectrum.size()));
   }
   if (!hessian.empty()) bounds = {hessian[0], hessian[1]};
-  const StepSizeAdvice advice = advise_step_size(method, lambda, h, bounds);
+  const StepSizeAdvice advice = advise_step_size(method, lambda, h, bounds, {}, energy);
   std::cout << advice.report(method);
   return advice.safe() ? 0 : 3;
 }

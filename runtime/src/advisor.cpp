@@ -15,6 +15,10 @@ namespace erkn {
 namespace {
 
 constexpr double kMaxSearchSteps = 1e5;
+// lambda + kappa above -kCurvatureTolerance (lambda + max |kappa|) counts as >= 0: the relative
+// accuracy of hessian_bounds_at's finite differences (steps 1e-6), so that round-off in a zero
+// curvature (FPU's slow springs at rest: -1.7e-15) is not reported as a growing equation.
+constexpr double kCurvatureTolerance = 1e-6;
 
 void validate(const Eigen::VectorXd& eigenvalues, double h, HessianBounds k,
               const AdvisorOptions& o) {
@@ -31,12 +35,13 @@ void validate(const Eigen::VectorXd& eigenvalues, double h, HessianBounds k,
   const bool ok = o.potential_degree >= 1 && o.potential_degree <= 64 && o.pole_margin >= 0 &&
                   o.pole_margin < 1 && o.trace_tolerance >= 0 && o.z_samples >= 2 &&
                   o.z_samples <= 100000 && o.max_change >= 0 && o.max_change < 1 &&
-                  o.search_step > 0 && o.search_step <= 1 && std::isfinite(o.trace_tolerance);
+                  o.search_step > 0 && o.search_step <= 1 && std::isfinite(o.trace_tolerance) &&
+                  o.min_excitation >= 0 && o.min_excitation <= 1;
   if (!ok)
     throw Error(
         "advise_step_size: invalid AdvisorOptions (need 1 <= potential_degree <= 64, 0 <= "
         "pole_margin < 1, finite trace_tolerance >= 0, 2 <= z_samples <= 100000, 0 <= "
-        "max_change < 1, 0 < search_step <= 1)");
+        "max_change < 1, 0 < search_step <= 1, 0 <= min_excitation <= 1)");
   // The search tries 2 max_change / search_step step sizes: bounded, so the advice ends.
   if (o.max_change / o.search_step > kMaxSearchSteps)
     throw Error("advise_step_size: AdvisorOptions max_change / search_step = " +
@@ -97,44 +102,110 @@ bool resonance(const Method& method, const Coefficients& c, double h, double lam
   return false;
 }
 
-// The worst finding for one eigenvalue at step h, if any.
-bool check(const Method& method, double h, double lambda, const std::vector<double>& kappa,
-           const AdvisorOptions& o, AdvisorFinding& f) {
-  const bool erkn = method.kind() == Kind::erkn;
-  const double V = h * h * lambda;
-  f.lambda = lambda, f.V = V;
-  if (erkn) {
-    // (Beyond kPoleSearchMax a method with poles may have unknown ones: flagged, pole = inf.)
-    const bool unknown = !method.entire() && V > generated::kPoleSearchMax;
-    if (unknown || method.pole_within(V, o.pole_margin) > 0) {
-      f.hazard = Hazard::pole;
-      f.pole =
-          unknown ? std::numeric_limits<double>::infinity() : method.pole_within(V, o.pole_margin);
-      return true;
-    }
-  }
-  const Coefficients c = method.at(erkn ? V : 0.0, 0.0);
-  double worst = 0;
-  for (double kappa : kappa) {
-    const StabilityMatrix S = stability_matrix(method, c, V, h * h * kappa);
-    const double excess =
-        S.finite() ? std::abs(S.trace()) - 2 : std::numeric_limits<double>::infinity();
-    if (excess > o.trace_tolerance && excess > worst) {
-      worst = excess;
-      f.hazard = Hazard::unstable, f.z = h * h * kappa, f.trace = S.trace();
-    }
-  }
-  if (worst > 0) return true;
-  return erkn && lambda > 0 && resonance(method, c, h, lambda, kappa, o, f);
+// One eigenvalue of M and whether its modes hold energy (a resonance needs it).
+struct Mode {
+  double lambda = 0;
+  bool excited = true;
+  auto operator<=>(const Mode&) const = default;
+};
+
+// Pole hazard at V (ERKN methods with poles); beyond kPoleSearchMax a method with poles may have
+// unknown ones: flagged, pole = inf.
+bool pole(const Method& method, double V, const AdvisorOptions& o, AdvisorFinding& f) {
+  if (method.kind() != Kind::erkn) return false;
+  const bool unknown = !method.entire() && V > generated::kPoleSearchMax;
+  const double P =
+      unknown ? std::numeric_limits<double>::infinity() : method.pole_within(V, o.pole_margin);
+  if (P <= 0) return false;
+  f.hazard = Hazard::pole, f.pole = P;
+  return true;
 }
 
-// True when no eigenvalue gives a finding at h (stops at the first).
-bool clean(const Method& method, double h, const Eigen::VectorXd& lambdas,
+// The linear test equation over the sampled kappa. Where lambda + kappa >= 0 the solution is
+// bounded, and |tr S| > 2 is the method's growth. Where lambda + kappa < 0 the equation grows by
+// e^{h mu} per step and so must the method (rho(S) = e^{h mu} + O(h^{p+1})): that growth is
+// recorded in `equation`; the method is blamed only when ln rho(S) > kMethodGrowthFactor h mu.
+// Returns true for a method finding in f.
+bool linear(const Method& method, const Coefficients& c, double h, double lambda,
+            const std::vector<double>& kappa, const AdvisorOptions& o, AdvisorFinding& f,
+            AdvisorFinding& equation) {
+  double worst = 0;
+  // (lambda + kappa within the finite-difference Hessian's accuracy of 0 counts as bounded.)
+  double largest = 0;
+  for (double k : kappa) largest = std::max(largest, std::abs(k));
+  const double tolerance = kCurvatureTolerance * (lambda + largest);
+  for (double k : kappa) {
+    const StabilityMatrix S = stability_matrix(method, c, f.V, h * h * k);
+    const double tr = S.finite() ? std::abs(S.trace()) : std::numeric_limits<double>::infinity();
+    if (lambda + k < -tolerance) {
+      const double mu = std::sqrt(-(lambda + k));
+      if (mu > equation.rate)
+        equation.hazard = Hazard::equation, equation.rate = mu, equation.z = h * h * k,
+        equation.trace = S.trace();
+      // ln rho(S) for det S = 1: acosh(|tr S| / 2).
+      const double excess = (tr > 2 ? std::acosh(tr / 2) : 0) - kMethodGrowthFactor * h * mu;
+      if (excess > o.trace_tolerance && excess > worst)
+        worst = excess, f.hazard = Hazard::unstable, f.z = h * h * k, f.trace = S.trace();
+    } else if (tr - 2 > o.trace_tolerance && tr - 2 > worst) {
+      worst = tr - 2, f.hazard = Hazard::unstable, f.z = h * h * k, f.trace = S.trace();
+    }
+  }
+  return worst > 0;
+}
+
+// The worst method finding for one eigenvalue at step h, if any; `equation` receives the
+// equation's own growth there (rate 0: none).
+bool check(const Method& method, double h, Mode mode, const std::vector<double>& kappa,
+           const AdvisorOptions& o, AdvisorFinding& f, AdvisorFinding& equation) {
+  const bool erkn = method.kind() == Kind::erkn;
+  f.lambda = equation.lambda = mode.lambda, f.V = equation.V = h * h * mode.lambda;
+  if (pole(method, f.V, o, f)) return true;
+  const Coefficients c = method.at(erkn ? f.V : 0.0, 0.0);
+  if (linear(method, c, h, mode.lambda, kappa, o, f, equation)) return true;
+  return erkn && mode.lambda > 0 && mode.excited &&
+         resonance(method, c, h, mode.lambda, kappa, o, f);
+}
+
+// True when no mode gives a method finding at h (stops at the first).
+bool clean(const Method& method, double h, const std::vector<Mode>& modes,
            const std::vector<double>& kappa, const AdvisorOptions& o) {
-  AdvisorFinding f;
-  for (double lambda : lambdas)
-    if (check(method, h, lambda, kappa, o, f)) return false;
+  AdvisorFinding f, equation;
+  for (Mode mode : modes)
+    if (check(method, h, mode, kappa, o, f, equation)) return false;
   return true;
+}
+
+// The modes of the eigenvalues: excited unless mode_energy (one per eigenvalue, summed over equal
+// eigenvalues) shows less than min_excitation of the total.
+std::vector<Mode> modes_of(const Eigen::VectorXd& lambda, const Eigen::VectorXd& energy,
+                           double min_excitation) {
+  std::vector<Mode> modes(lambda.size());
+  for (Eigen::Index i = 0; i < lambda.size(); ++i) modes[i].lambda = lambda[i];
+  if (energy.size() == 0) return modes;
+  std::vector<Eigen::Index> order(lambda.size());
+  for (Eigen::Index i = 0; i < lambda.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return lambda[a] < lambda[b]; });
+  const double total = energy.sum();
+  for (size_t first = 0, last = 0; first < order.size(); first = last) {
+    double sum = 0;
+    for (last = first; last < order.size() && lambda[order[last]] == lambda[order[first]]; ++last)
+      sum += energy[order[last]];
+    for (size_t j = first; j < last; ++j) modes[order[j]].excited = sum >= min_excitation * total;
+  }
+  return modes;
+}
+
+// The nearest h within max_change without a method finding, NaN when none.
+double suggestion(const Method& method, double h, std::vector<Mode> modes,
+                  const std::vector<double>& kappa, const AdvisorOptions& o) {
+  std::sort(modes.begin(), modes.end());  // (distinct modes are enough)
+  modes.erase(std::unique(modes.begin(), modes.end()), modes.end());
+  for (long j = 1; j * o.search_step <= o.max_change; ++j)
+    for (double sign : {-1.0, 1.0}) {
+      const double candidate = h * (1 + sign * double(j) * o.search_step);
+      if (candidate > 0 && clean(method, candidate, modes, kappa, o)) return candidate;
+    }
+  return std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace
@@ -147,69 +218,92 @@ std::string_view to_string(Hazard hazard) {
       return "resonance";
     case Hazard::pole:
       return "pole";
+    case Hazard::equation:
+      return "the equation grows";
   }
   return "?";
 }
 
 StepSizeAdvice advise_step_size(const Method& method, const Eigen::VectorXd& eigenvalues, double h,
-                                HessianBounds hessian, const AdvisorOptions& o) {
+                                HessianBounds hessian, const AdvisorOptions& o,
+                                const Eigen::VectorXd& mode_energy) {
   validate(eigenvalues, h, hessian, o);
+  if (mode_energy.size() != 0 && (mode_energy.size() != eigenvalues.size() ||
+                                  !mode_energy.allFinite() || mode_energy.minCoeff() < 0))
+    throw Error(
+        "advise_step_size: the mode energies must be one finite value >= 0 per "
+        "eigenvalue of M (" +
+        std::to_string(eigenvalues.size()) + "); got " + std::to_string(mode_energy.size()));
   const std::vector<double> kappa = kappa_samples(hessian, o.z_samples);
+  const std::vector<Mode> modes = modes_of(eigenvalues, mode_energy, o.min_excitation);
   StepSizeAdvice advice;
   advice.h = h, advice.hessian = hessian;
   for (Eigen::Index i = 0; i < eigenvalues.size(); ++i) {
-    AdvisorFinding f;
-    f.index = i;
-    if (check(method, h, eigenvalues[i], kappa, o, f)) advice.findings.push_back(f);
+    AdvisorFinding f, equation;
+    f.index = equation.index = i;
+    if (check(method, h, modes[i], kappa, o, f, equation)) advice.findings.push_back(f);
+    if (equation.rate > 0) advice.equation.push_back(equation);
   }
-  if (advice.safe()) {
-    advice.suggested_h = h;
-    return advice;
-  }
-  // Distinct eigenvalues are enough for the search.
-  std::vector<double> distinct(eigenvalues.begin(), eigenvalues.end());
-  std::sort(distinct.begin(), distinct.end());
-  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
-  const Eigen::VectorXd lambdas =
-      Eigen::Map<const Eigen::VectorXd>(distinct.data(), distinct.size());
-  advice.suggested_h = std::numeric_limits<double>::quiet_NaN();
-  for (long j = 1; j * o.search_step <= o.max_change; ++j)
-    for (double sign : {-1.0, 1.0}) {
-      const double candidate = h * (1 + sign * double(j) * o.search_step);
-      if (candidate > 0 && clean(method, candidate, lambdas, kappa, o)) {
-        advice.suggested_h = candidate;
-        return advice;
-      }
-    }
+  advice.suggested_h = advice.safe() ? h : suggestion(method, h, modes, kappa, o);
   return advice;
 }
+
+namespace {
+
+// One line of a report: the finding's eigenvalue, hazard and its evidence.
+std::string finding_line(const AdvisorFinding& f, double h) {
+  std::ostringstream s;
+  s << "  eigenvalue " << f.index << ": lambda = " << format(f.lambda)
+    << ", V = h^2 lambda = " << format(f.V) << ": " << to_string(f.hazard);
+  if (f.hazard == Hazard::unstable)
+    s << " (|tr S(V, z)| = " << format(std::abs(f.trace), 15) << " at z = " << format(f.z)
+      << ": the method grows where the equation "
+      << (f.lambda + f.z / (h * h) < 0 ? "grows more slowly)" : "is bounded)");
+  else if (f.hazard == Hazard::resonance)
+    s << " (h sqrt(lambda) = " << format(std::sqrt(f.V)) << " near "
+      << format(f.pole / std::numbers::pi, 4) << " pi, harmonic " << f.harmonic
+      << "; tr S(V, 0) = " << format(f.trace) << ")";
+  else if (std::isinf(f.pole))
+    s << " (V beyond " << format(generated::kPoleSearchMax)
+      << ", where the method's poles are not known)";
+  else
+    s << " (pole v = " << format(f.pole) << ")";
+  return s.str() + "\n";
+}
+
+// The information part: where the differential equation itself grows (at most 3 eigenvalues
+// listed).
+std::string equation_lines(const std::vector<AdvisorFinding>& equation, double h) {
+  if (equation.empty()) return "";
+  std::ostringstream s;
+  s << "information: the differential equation itself grows along " << equation.size()
+    << " eigenvalue(s) of M (lambda + kappa < 0: M + Hessian of U has a negative direction); "
+       "every method follows that growth at any h, so it is not a fault of h\n";
+  for (size_t i = 0; i < std::min<size_t>(equation.size(), 3); ++i) {
+    const AdvisorFinding& f = equation[i];
+    s << "  eigenvalue " << f.index << ": lambda = " << format(f.lambda)
+      << ", growth rate mu = " << format(f.rate)
+      << " per unit time (e^{h mu} = " << format(std::exp(h * f.rate))
+      << " per step; the method's |tr S| = " << format(std::abs(f.trace)) << ")\n";
+  }
+  if (equation.size() > 3) s << "  ...\n";
+  return s.str();
+}
+
+}  // namespace
 
 std::string StepSizeAdvice::report(const Method& method) const {
   std::ostringstream s;
   s << method.name() << ", h = " << format(h, 12) << ", Hessian of U in [" << format(hessian.lo)
     << ", " << format(hessian.hi) << "]: ";
-  if (safe()) {
-    s << "no eigenvalue of M in an unstable band, at a resonance or near a pole\n";
-    return s.str();
-  }
-  s << findings.size() << " eigenvalue(s) of M flagged\n";
-  for (const AdvisorFinding& f : findings) {
-    s << "  eigenvalue " << f.index << ": lambda = " << format(f.lambda)
-      << ", V = h^2 lambda = " << format(f.V) << ": " << to_string(f.hazard);
-    if (f.hazard == Hazard::unstable)
-      s << " (|tr S(V, z)| = " << format(std::abs(f.trace), 15) << " > 2 at z = " << format(f.z)
-        << ")";
-    else if (f.hazard == Hazard::resonance)
-      s << " (h sqrt(lambda) = " << format(std::sqrt(f.V)) << " near "
-        << format(f.pole / std::numbers::pi, 4) << " pi, harmonic " << f.harmonic
-        << "; tr S(V, 0) = " << format(f.trace) << ")";
-    else if (std::isinf(f.pole))
-      s << " (V beyond " << format(generated::kPoleSearchMax)
-        << ", where the method's poles are not known)";
-    else
-      s << " (pole v = " << format(f.pole) << ")";
-    s << "\n";
-  }
+  if (safe())
+    s << "the method is stable at h: no eigenvalue of M in an unstable band, at a resonance of "
+         "an excited mode or near a pole\n";
+  else
+    s << findings.size() << " eigenvalue(s) of M flagged\n";
+  for (const AdvisorFinding& f : findings) s << finding_line(f, h);
+  s << equation_lines(equation, h);
+  if (safe()) return s.str();
   if (std::isnan(suggested_h))
     s << "no step size within the searched range avoids them\n";
   else
@@ -262,9 +356,11 @@ HessianBounds hessian_bounds_along(const Method& method, const System& system, d
 }
 
 StepSizeAdvice advise_step_size(const Method& method, const System& system, double h,
-                                const Eigen::VectorXd& q0, const AdvisorOptions& options) {
-  return advise_step_size(method, system.M.eigenvalues(), h, hessian_bounds_at(system, q0),
-                          options);
+                                const Eigen::VectorXd& q0, const Eigen::VectorXd& p0,
+                                const AdvisorOptions& options) {
+  const Eigen::VectorXd energy = mode_energies(system.M, q0, p0);  // (checks q0, p0)
+  return advise_step_size(method, system.M.eigenvalues(), h, hessian_bounds_at(system, q0), options,
+                          energy);
 }
 
 }  // namespace erkn

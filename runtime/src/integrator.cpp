@@ -136,10 +136,10 @@ std::unique_ptr<detail::StepperBase> make_stepper(const Method& method, System s
   throw Error("unknown structure of M");
 }
 
-// Options::check_stability: refuses h when the step-size advisor flags it at q.
-void require_advised(const Method& method, const System& system, double h,
-                     const Eigen::VectorXd& q) {
-  const StepSizeAdvice advice = advise_step_size(method, system, h, q);
+// Options::check_stability: refuses h when the step-size advisor flags it at (q, p).
+void require_advised(const Method& method, const System& system, double h, const Eigen::VectorXd& q,
+                     const Eigen::VectorXd& p) {
+  const StepSizeAdvice advice = advise_step_size(method, system, h, q, p);
   if (!advice.safe()) throw Error("Options::check_stability refuses " + advice.report(method));
 }
 
@@ -154,7 +154,7 @@ Integrator::Integrator(const Method& method, System system, double h, const Eige
   if (!system.gradient) throw Error("System::gradient is not set");
   if (options.energy_tolerance > 0 && !system.potential)
     throw Error("Options::energy_tolerance (the energy monitor) needs System::potential");
-  if (options.check_stability) require_advised(method, system, h, q0);
+  if (options.check_stability) require_advised(method, system, h, q0, p0);
   stepper_ = make_stepper(method, std::move(system), h, options, q0.size());
   q_ = q0;
   p_ = p0;
@@ -286,7 +286,7 @@ void Integrator::set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p, d
 
 void Integrator::set_step_size(double h) {
   require_step_size(h);
-  if (options_.check_stability) require_advised(method_, system(), h, q());
+  if (options_.check_stability) require_advised(method_, system(), h, q(), p());
   auto fresh = make_stepper(method_, system(), h, options_, q_.size());
   fresh->set_state(q(), p());  // (the summation errors are dropped)
   t_base_ = t();
@@ -467,13 +467,17 @@ void Integrator::check_guard(const char* failure) {
 // The step-size advisor's verdict at h from the current state (erkn/advisor.hpp).
 std::string Integrator::likely_cause() const {
   try {
-    const StepSizeAdvice advice = advise_step_size(method_, system(), h_, q());
+    const StepSizeAdvice advice = advise_step_size(method_, system(), h_, q(), p());
+    if (advice.safe() && !advice.equation.empty())
+      return "the differential equation's own growth, not the step size, by the step-size "
+             "advisor: " +
+             advice.report(method_);
     if (advice.safe())
       return "not the step size by the step-size advisor (no eigenvalue of M in an unstable "
-             "band, at a resonance or near a pole at h = " +
+             "band, at a resonance of an excited mode or near a pole at h = " +
              format(h_) +
-             " with the Hessian of U at the kept state): the differential "
-             "equation's own growth, or a Hessian range the kept state does not show";
+             " with the Hessian of U at the kept state): a Hessian range or a mode's energy the "
+             "kept state does not show";
     return "the step size, by the step-size advisor: " + advice.report(method_);
   } catch (const Error& e) {
     return std::string("unknown (the step-size advisor cannot judge h: ") + e.what() + ")";

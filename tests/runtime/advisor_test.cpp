@@ -103,7 +103,7 @@ TEST(Advisor, AcceptsANonResonantStepAndItsRunIsAccurate) {
   const Eigen::VectorXd &q = fpu_problem().q0, &p = fpu_problem().p0;
   for (const Method& m : methods_of(Kind::erkn)) {
     SCOPED_TRACE(std::string(m.name()));
-    const StepSizeAdvice advice = advise_step_size(m, fpu(), 1 / kOmega, q);
+    const StepSizeAdvice advice = advise_step_size(m, fpu(), 1 / kOmega, q, fpu_problem().p0);
     EXPECT_TRUE(advice.safe()) << advice.report(m);
     EXPECT_EQ(advice.suggested_h, 1 / kOmega);
     EXPECT_LT(energy_error(m, 1 / kOmega, 5000), 0.02);
@@ -141,7 +141,7 @@ TEST(Advisor, HessianRangeAlongAPilotRunContainsTheInitialOne) {
                Error);
 }
 
-TEST(Advisor, FlagsPolesAndTheLinearlyUnstableBandOfEveryMethod) {
+TEST(Advisor, FlagsThePolesOfEveryMethod) {
   for (const Method& m : Method::all()) {
     SCOPED_TRACE(std::string(m.name()));
     for (double P : m.poles()) {
@@ -151,14 +151,39 @@ TEST(Advisor, FlagsPolesAndTheLinearlyUnstableBandOfEveryMethod) {
       EXPECT_EQ(a.findings[0].hazard, Hazard::pole);
       EXPECT_EQ(a.findings[0].pole, P);
     }
-    // A strongly negative Hessian (U unbounded below): the test equation itself grows, and so
-    // must every method's S(V, z) there.
+  }
+}
+
+// A strongly negative Hessian (lambda + kappa = -49: the test equation itself grows like
+// e^{7 t}): every method grows with it, which is the equation's growth, reported as information
+// and not flagged. Negative control: the same methods at lambda + kappa >= 0 (V = 0, z > 0, where
+// the equation is bounded) with |tr S| > 2 are flagged as unstable.
+TEST(Advisor, SeparatesTheEquationsGrowthFromTheMethods) {
+  int method_unstable = 0;
+  for (const Method& m : Method::all()) {
+    SCOPED_TRACE(std::string(m.name()));
     const StepSizeAdvice a =
         advise_step_size(m, Eigen::VectorXd::Constant(1, 1.0), 0.1, {-50, -50});
-    ASSERT_FALSE(a.safe());
-    EXPECT_EQ(a.findings[0].hazard, Hazard::unstable);
-    EXPECT_GT(std::abs(a.findings[0].trace), 2.0);
+    EXPECT_TRUE(a.safe()) << a.report(m);
+    ASSERT_EQ(a.equation.size(), 1u);
+    EXPECT_EQ(a.equation[0].hazard, Hazard::equation);
+    EXPECT_NEAR(a.equation[0].rate, 7.0, 1e-12);
+    EXPECT_GT(std::abs(a.equation[0].trace), 2.0);  // (the method does grow)
+    EXPECT_NE(a.report(m).find("differential equation itself grows"), std::string::npos);
+    // The first z in (0, 40] where the method is unstable on the bounded equation y'' = -kappa y.
+    const Coefficients c = m.at(0.0, 0.0);
+    for (double z = 0.01; z <= 40; z += 0.01) {
+      if (std::abs(stability_matrix(m, c, 0.0, z).trace()) <= 2 + 1e-6) continue;
+      const StepSizeAdvice b =
+          advise_step_size(m, Eigen::VectorXd::Zero(1), 1.0, {z, z});  // (h = 1: z = kappa)
+      EXPECT_FALSE(b.safe()) << "z = " << z;
+      if (!b.safe()) EXPECT_EQ(b.findings[0].hazard, Hazard::unstable);
+      EXPECT_TRUE(b.equation.empty());
+      ++method_unstable;
+      break;
+    }
   }
+  EXPECT_GT(method_unstable, 0);  // (the control has cases)
 }
 
 TEST(Advisor, RefusesInvalidInput) {

@@ -125,7 +125,7 @@ TEST(LargeStep, EntireMethodsAcceptAnyStepSizeAndStayExactForFreeMotion) {
       const LD q = std::cos(w * t) * q0[e] + std::sin(w * t) / w * p0[e];
       EXPECT_NEAR(run.q()[e], double(q), 64 * n * 2.2e-16 * double(w * h) * 1.0) << e;
     }
-    const StepSizeAdvice advice = advise_step_size(m, run.system(), h, q0);
+    const StepSizeAdvice advice = advise_step_size(m, run.system(), h, q0, p0);
     for (const AdvisorFinding& f : advice.findings) EXPECT_NE(f.hazard, Hazard::pole);
   }
 }

@@ -5,11 +5,17 @@
 // of U. Taking each eigenvalue lambda of M with a Hessian value kappa from a range [lo, hi] that
 // bounds K's eigenvalues gives the test equation of stability.hpp with
 //     V = h^2 lambda,   z = h^2 kappa,   kappa in [lo, hi].
-// For every eigenvalue lambda the advisor reports
+// Two kinds of growth are told apart. Where lambda + kappa < 0 the differential equation itself
+// grows (y'' = mu^2 y, mu = sqrt(-(lambda + kappa)): a negative direction of M + K, e.g.
+// sine-Gordon at u = pi): every method must follow it, and the advisor reports it as
+// information (StepSizeAdvice::equation), not as a fault of h. The method's hazards at h, which
+// it flags (StepSizeAdvice::findings), are for every eigenvalue lambda:
 //   pole       V within pole_margin (relative) of a pole of the coefficients (ERKN methods);
-//   unstable   |tr S(V, z)| > 2 + trace_tolerance for some sampled z: |rho(S)| > 1, the linear
-//              solution grows geometrically;
-//   resonance  (ERKN methods, lambda > 0) r h sqrt(lambda) within
+//   unstable   for a sampled z with lambda + kappa >= 0: |tr S(V, z)| > 2 + trace_tolerance,
+//              |rho(S)| > 1 where the solution is bounded; with lambda + kappa < 0: the method's
+//              growth ln rho(S) per step exceeds kMethodGrowthFactor times the equation's h mu;
+//   resonance  (ERKN methods, lambda > 0, the mode excited: see min_excitation) r h sqrt(lambda)
+//              within
 //                  (D - r) h sqrt(hi) + r sigma(V)
 //              of a multiple 2 pi j (j >= 1) for some r = 1 .. D - 1, D the polynomial degree of
 //              U (AdvisorOptions::potential_degree). There tr S(V, 0) = 2 cos(h sqrt(lambda)) is
@@ -20,11 +26,15 @@
 //              k pi, r = 1 the aliased stiff mode forcing the slow motion near 2 k pi). sigma(V)
 //              is the tongue's half-width from S itself: the symmetric traceless part of
 //              S(V, z) - S(V, 0) in the coordinates where S(V, 0) is a rotation, maximised over z.
+//              A resonance moves energy into or out of the mode at lambda: a mode without energy
+//              (the short waves of smooth data on a grid, whose dense spectrum always has some
+//              eigenvalue in a band) is not flagged when the state is known.
 //              Derivation and the FPU runs that check it: README, "Resonances".
 // What it cannot guarantee: K and M need not commute and K changes along the solution, so this is
 // a per-eigenvalue model of the linearisation; a range [lo, hi] estimated at the initial state
-// can be exceeded later. An h it accepts is not a proof of bounded energy, and a flagged h is not
-// a proof of blow-up (an unexcited mode cannot resonate).
+// can be exceeded later, and energy can reach a mode later. An h it accepts is not a proof of
+// bounded energy, and a flagged h is not a proof of blow-up. Its false-alarm and miss rates on a
+// sweep of step sizes against 1e5-step runs: docs/advisor.md.
 #pragma once
 
 #include <Eigen/Core>
@@ -57,17 +67,24 @@ struct AdvisorOptions {
   /// (max_change / search_step <= 1e5, else erkn::Error).
   double max_change = 0.5;
   double search_step = 1e-3;
+  /// A resonance is flagged only at eigenvalues holding at least this share of the state's
+  /// E_2 = 1/2 |p|^2 + 1/2 q^T M q (all eigenvalues equal to lambda together), when the state is
+  /// known (mode energies given): round-off and smooth data leave short waves far below it.
+  double min_excitation = 1e-8;
 };
 
-enum class Hazard { unstable, resonance, pole };
+/// The method's hazards (unstable, resonance, pole), and `equation`: the differential
+/// equation's own growth (lambda + kappa < 0), information only.
+enum class Hazard { unstable, resonance, pole, equation };
 std::string_view to_string(Hazard hazard);
 
 struct AdvisorFinding {
   Eigen::Index index = 0;  ///< of the eigenvalue (Stiffness::eigenvalues() order)
   double lambda = 0, V = 0;
   Hazard hazard = Hazard::unstable;
-  double z = 0;      ///< unstable: the sampled z with the largest |tr S|
-  double trace = 0;  ///< unstable: tr S(V, z) there; resonance: tr S(V, 0)
+  double z = 0;      ///< unstable, equation: the sampled z with the largest growth
+  double trace = 0;  ///< unstable, equation: tr S(V, z) there; resonance: tr S(V, 0)
+  double rate = 0;   ///< equation: mu = sqrt(-(lambda + kappa)), the growth per unit time
   double pole = 0;   ///< pole: the pole; resonance: the resonant phase 2 pi j / r
   int harmonic = 0;  ///< resonance: r
 };
@@ -75,7 +92,10 @@ struct AdvisorFinding {
 struct StepSizeAdvice {
   double h = 0;
   HessianBounds hessian;
-  std::vector<AdvisorFinding> findings;  ///< empty: no warning for h
+  std::vector<AdvisorFinding> findings;  ///< the method's hazards at h; empty: no warning
+  /// Information: eigenvalues where the differential equation itself grows (lambda + kappa < 0
+  /// for some kappa); the method follows that growth at any h, so it is no finding.
+  std::vector<AdvisorFinding> equation;
   /// The nearest h without findings, or NaN when none lies within max_change of h.
   double suggested_h = 0;
   bool safe() const { return findings.empty(); }
@@ -84,9 +104,12 @@ struct StepSizeAdvice {
 };
 
 /// The advice for h given M's eigenvalues and the Hessian bounds; erkn::Error on invalid input
-/// (h not finite and > 0, non-finite or negative eigenvalues, lo > hi, invalid options).
+/// (h not finite and > 0, non-finite or negative eigenvalues, lo > hi, invalid options, mode
+/// energies not one finite value >= 0 per eigenvalue). `mode_energy` (optional): the state's
+/// E_2 at each eigenvalue (see min_excitation); empty: every mode counts as excited.
 StepSizeAdvice advise_step_size(const Method& method, const Eigen::VectorXd& eigenvalues, double h,
-                                HessianBounds hessian, const AdvisorOptions& options = {});
+                                HessianBounds hessian, const AdvisorOptions& options = {},
+                                const Eigen::VectorXd& mode_energy = {});
 
 /// The Hessian bounds at q: the extreme eigenvalues of System::hessian at q, or of a
 /// finite-difference Hessian of System::gradient without it (d gradient evaluations; d <= 2000).
@@ -99,8 +122,22 @@ HessianBounds hessian_bounds_along(const Method& method, const System& system, d
                                    const Eigen::VectorXd& q0, const Eigen::VectorXd& p0,
                                    long steps);
 
-/// advise_step_size with M's eigenvalues and the Hessian bounds at q0.
+/// advise_step_size with M's eigenvalues, the Hessian bounds at q0 and the mode energies of
+/// (q0, p0).
 StepSizeAdvice advise_step_size(const Method& method, const System& system, double h,
-                                const Eigen::VectorXd& q0, const AdvisorOptions& options = {});
+                                const Eigen::VectorXd& q0, const Eigen::VectorXd& p0,
+                                const AdvisorOptions& options = {});
+
+/// How much of the state's linear energy sits at each eigenvalue of M (the excitation a resonance
+/// needs): e[i] = the part of E_2 = 1/2 |p|^2 + 1/2 q^T M q in the eigen coordinates whose
+/// eigenvalue is Stiffness::eigenvalues()[i] (circulant: the cosine and the sine of wave number
+/// i), so sum e = E_2 up to round-off; scalar M: one entry, E_2. erkn::Error unless q and p are
+/// finite and of one size d > 0 (= M's).
+Eigen::VectorXd mode_energies(const Stiffness& M, const Eigen::VectorXd& q,
+                              const Eigen::VectorXd& p);
+
+/// The share of the equation's growth a method may add before it counts as the method's: an
+/// unstable finding where lambda + kappa < 0 needs ln rho(S) > kMethodGrowthFactor h mu.
+inline constexpr double kMethodGrowthFactor = 2;
 
 }  // namespace erkn
