@@ -206,15 +206,19 @@ double cpu_seconds() {
 
 }  // namespace
 
-Integrator::Timer::Timer(Integrator& run)
-    : run_(run.timing_ ? nullptr : &run), wall_0_(wall_seconds()), cpu_0_(cpu_seconds()) {
+Integrator::Timer::Timer(Integrator& run, bool read_cpu)
+    : run_(run.timing_ ? nullptr : &run),
+      read_cpu_(read_cpu),
+      wall_0_(run_ ? wall_seconds() : 0),
+      cpu_0_(run_ && read_cpu ? cpu_seconds() : 0) {
   run.timing_ = true;
 }
 
 Integrator::Timer::~Timer() {
   if (!run_) return;
-  run_->statistics_.wall_time += wall_seconds() - wall_0_;
-  run_->statistics_.cpu_time += cpu_seconds() - cpu_0_;
+  const double wall = wall_seconds() - wall_0_;
+  run_->statistics_.wall_time += wall;
+  run_->statistics_.cpu_time += read_cpu_ ? cpu_seconds() - cpu_0_ : wall;
   run_->timing_ = false;
 }
 

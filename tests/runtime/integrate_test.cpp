@@ -101,6 +101,25 @@ TEST(Integrate, WallAndCpuTimeCountEachIntegrateCallOnce) {
   EXPECT_EQ(a.statistics().steps, 1011);
 }
 
+// integrate(t_end) without an observer is timed too (it was not: wall_time stayed 0).
+TEST(Integrate, IntegrateToAnEndTimeIsTimed) {
+  Integrator a(Method::by_name("SERKN2s4"), polynomial_system(), 0.01, Eigen::Vector3d(0.6, 0, 0),
+               Eigen::Vector3d(0, 0.5, 0));
+  const auto start = std::chrono::steady_clock::now();
+  a.integrate(100.0);
+  const double outside = seconds_since(start);
+  EXPECT_GT(a.statistics().wall_time, 0.0);
+  EXPECT_LE(a.statistics().wall_time, outside);
+  EXPECT_GT(a.statistics().cpu_time, 0.0);
+  EXPECT_LE(a.statistics().cpu_time, a.statistics().wall_time + 1e-3);
+  // A short call (10 steps x 3 < kCpuClockWork) counts its wall time as CPU time.
+  const Statistics before = a.statistics();
+  a.integrate(100.1);
+  const double wall = a.statistics().wall_time - before.wall_time;
+  EXPECT_GT(wall, 0.0);
+  EXPECT_NEAR(a.statistics().cpu_time - before.cpu_time, wall, 1e-12);
+}
+
 // CPU seconds of the calling thread, the clock Statistics::cpu_time reads.
 double thread_cpu_seconds() {
   timespec ts{};

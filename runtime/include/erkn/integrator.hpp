@@ -83,7 +83,11 @@ struct Statistics {
   long newton_iterations = 0;     ///< Newton iterations, over all fallbacks
   long state_loads = 0;  ///< transforms of the state back to physical coordinates after steps
   double wall_time = 0;  ///< seconds (steady clock) spent in integrate() and step(n) calls
-  double cpu_time = 0;   ///< CPU seconds of the calling thread there (callbacks included)
+  /// CPU seconds of the calling thread there (callbacks included). A call of integrate(t_end)
+  /// without an observer and of less than Integrator::kCpuClockWork steps x dimension counts its
+  /// wall time instead: no user code runs in it, and a thread CPU clock read (a system call,
+  /// ~2 us on a virtual machine) would cost more than its steps.
+  double cpu_time = 0;
 };
 
 class Integrator {
@@ -129,6 +133,7 @@ class Integrator {
   /// (no transform back) until q() or p() asks for it.
   void integrate(double t_end) {
     const EndPlan plan = prepare_end(t_end, 1);
+    const Timer timer(*this, double(plan.whole) * double(q_.size()) >= kCpuClockWork);
     for (long n = 1; n <= plan.whole; ++n) step();
     if (plan.shorter) step_to(t_end);
   }
@@ -156,6 +161,8 @@ class Integrator {
   /// Counts its gradient evaluations and iterations in statistics(), not in steps.
   void state_at(double t, Eigen::VectorXd& q, Eigen::VectorXd& p);
 
+  /// Below this many steps x dimension, integrate(t_end) counts wall time as CPU time.
+  static constexpr double kCpuClockWork = 16384;
   /// At most this many steps per integrate call: beyond 2^53 the grid t0 + n h is not exact.
   static constexpr double kMaxSteps = 9007199254740992.0;
 
@@ -205,16 +212,18 @@ class Integrator {
   double short_h_ = 0;
 
   // Adds the wall and CPU time of its lifetime to statistics_ unless an outer Timer (a nested
-  // integrate call) already does.
+  // integrate call) already does; a nested one reads no clock. Without `read_cpu` its wall time
+  // counts as CPU time (Statistics::cpu_time).
   class Timer {
    public:
-    explicit Timer(Integrator& run);
+    explicit Timer(Integrator& run, bool read_cpu = true);
     ~Timer();
     Timer(const Timer&) = delete;
     Timer& operator=(const Timer&) = delete;
 
    private:
     Integrator* run_;  // null when nested
+    bool read_cpu_;
     double wall_0_, cpu_0_;
   };
   bool timing_ = false;
