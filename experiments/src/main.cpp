@@ -6,6 +6,7 @@
 #include <set>
 
 #include "charts.hpp"
+#include "erkn/method.hpp"
 #include "grid_scenes.hpp"
 #include "options.hpp"
 #include "raw_results.hpp"
@@ -131,6 +132,7 @@ int main(int argc, char** argv) {
   try {
     const Options o = parse_options(argc, argv);
     if (o.help) return std::cout << usage(), 0;
+    for (const std::string& file : o.methods_files) erkn::Method::load(file);
     if (o.list) return list(), 0;
     return run(o, command_line(argc, argv));
   } catch (const std::invalid_argument& e) {

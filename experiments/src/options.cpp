@@ -66,13 +66,16 @@ void set_full(RunConfig& c) {
 
 std::string usage() {
   return "usage: erkn-experiments [--quick | --full] [--problems P1,P2,P3,scaling,stiff,grids]\n"
-         "                        [--methods NAME,...] [--steps H,...] [--out DIR] [--list]\n"
+         "                        [--methods NAME,...] [--methods-file F.json] [--steps H,...]\n"
+         "                        [--out DIR] [--list]\n"
          "  --quick      small sweep (default): step factor 2, best of up to 5 timings, the\n"
          "               deciding runs timed again in 5 interleaved rounds\n"
          "  --full       fine sweep: step factor sqrt 2, up to 2e6 steps, best of 7 timings,\n"
          "               9 interleaved rounds\n"
          "  --problems   which scenes to run (default: all; grids writes DIR/grids.md)\n"
          "  --methods    the paper's names, e.g. SERKN3s4(1),RKN3s4(1),Gauss2 (default: all)\n"
+         "  --methods-file F.json  adds the explicit methods of F (erkn-generate --json), checked\n"
+         "               against the order conditions they claim; repeatable\n"
          "  --steps      fixed step sizes on [0, 10], e.g. 1/40,1/80 (no extension)\n"
          "  --out DIR    writes DIR/results.md and DIR/charts/ (default: docs)\n"
          "  --list       lists the problems and methods and exits\n"
@@ -96,6 +99,8 @@ Options parse_options(int argc, char** argv) {
       o.problems = split(arg, value());
     else if (arg == "--methods")
       o.methods = split(arg, value());
+    else if (arg == "--methods-file")
+      o.methods_files.push_back(value());
     else if (arg == "--steps") {
       o.config.steps.clear();
       for (const std::string& h : split(arg, value())) o.config.steps.push_back(steps_of(h));

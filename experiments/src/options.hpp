@@ -12,7 +12,10 @@ namespace ex {
 struct Options {
   std::vector<std::string> problems{"P1", "P2", "P3", "scaling", "stiff", "grids"};
   std::vector<std::string> methods;  ///< empty: all
-  std::string mode = "quick";        ///< "quick", "full" or "custom" (with --steps)
+  /// --methods-file F.json (repeatable): a user's explicit methods (erkn-generate --json),
+  /// loaded into the registry (erkn::Method::load) before the methods are chosen.
+  std::vector<std::string> methods_files;
+  std::string mode = "quick";  ///< "quick", "full" or "custom" (with --steps)
   std::filesystem::path out = "docs";
   bool list = false;
   bool help = false;  // --help: print the usage and exit 0

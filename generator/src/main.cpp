@@ -1,5 +1,11 @@
-// erkn-generate: derives every method of generator/methods.spec and writes generated/.
-//   erkn-generate SPEC OUTDIR
+// erkn-generate: derives and certifies methods from spec files (the language is documented at
+// the top of generator/methods.spec and in docs/user-methods.md).
+//   erkn-generate SPEC OUTDIR                 erkn's own generated/ (methods.def, tables)
+//   erkn-generate SPEC... --out DIR [--json]  a user's methods: DIR/erkn_methods.cpp (compiled
+//                                             into a program, erkn_add_methods), DIR/derivation.md,
+//                                             and with --json DIR/methods.json (Method::load)
+// A spec whose claimed order is not certified is refused: exit status 1, the method and the
+// first failing tree on stderr.
 #include <chrono>
 #include <fstream>
 #include <iostream>
@@ -9,34 +15,98 @@
 #include "emit.hpp"
 #include "numerics.hpp"
 
-int main(int argc, char** argv) {
-  using namespace erkn::gen;
-  if (argc != 3) {
-    std::cerr << "usage: erkn-generate SPEC OUTDIR\n";
-    return 2;
+namespace {
+
+using namespace erkn::gen;
+
+struct Arguments {
+  std::vector<std::string> specs;
+  std::string out;  // --out DIR: a user's methods
+  bool json = false;
+  std::string legacy_dir;  // SPEC OUTDIR
+};
+
+Arguments parse(int argc, char** argv) {
+  Arguments a;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--out" && i + 1 < argc)
+      a.out = argv[++i];
+    else if (arg == "--json")
+      a.json = true;
+    else if (arg.starts_with("--"))
+      throw std::invalid_argument("unknown option " + arg);
+    else
+      a.specs.push_back(arg);
   }
-  try {
-    auto t0 = std::chrono::steady_clock::now();
-    std::ifstream in(argv[1]);
-    if (!in) throw std::runtime_error(std::string("cannot read ") + argv[1]);
-    std::vector<Derived> out;
-    for (const MethodSpec& spec : read_specs(in)) {
-      Derived m = derive(spec);
-      for (Coefficient& k : m.coefficients) {
-        try {
-          locate_poles(k);
-        } catch (const std::exception& err) {  // name the method and the coefficient
-          throw std::runtime_error(spec.name + ": " + k.name + ": " + err.what());
-        }
-      }
-      std::cerr << "derived " << spec.name << ": order " << m.certificate.order << " certified ("
-                << m.certificate.checked.size() << " conditions, " << m.certify_seconds << " s)\n";
-      out.push_back(std::move(m));
+  if (a.out.empty() && a.specs.size() == 2 && !a.json)
+    a.legacy_dir = a.specs.back(), a.specs.pop_back();
+  if (a.specs.empty() || (a.out.empty() && a.legacy_dir.empty()))
+    throw std::invalid_argument("usage");
+  return a;
+}
+
+Derived derive_certified(const MethodSpec& spec) {
+  Derived m = derive(spec);
+  for (Coefficient& k : m.coefficients) {
+    try {
+      locate_poles(k);
+    } catch (const std::exception& err) {  // name the method and the coefficient
+      throw std::runtime_error(spec.name + ": " + k.name + ": " + err.what());
     }
-    emit(out, argv[2], "cmake --build <build> --target regenerate");
+  }
+  std::cerr << "derived " << spec.name << ": order " << m.certificate.order << " certified ("
+            << m.certificate.checked.size() << " conditions, " << m.certify_seconds << " s)\n";
+  return m;
+}
+
+std::vector<Derived> derive_all(const std::vector<std::string>& files) {
+  std::vector<Derived> out;
+  for (const std::string& file : files) {
+    std::ifstream in(file);
+    if (!in) throw std::runtime_error("cannot read " + file);
+    std::vector<MethodSpec> specs;
+    try {
+      specs = read_specs(in);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(file + ": " + e.what());
+    }
+    for (const MethodSpec& spec : specs) out.push_back(derive_certified(spec));
+  }
+  return out;
+}
+
+std::string joined(const std::vector<std::string>& xs) {
+  std::string out;
+  for (const std::string& x : xs) out += (out.empty() ? "" : " ") + x;
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Arguments a = parse(argc, argv);
+    auto t0 = std::chrono::steady_clock::now();
+    const std::vector<Derived> out = derive_all(a.specs);
+    if (!a.legacy_dir.empty()) {
+      emit(out, a.legacy_dir, "cmake --build <build> --target regenerate");
+    } else {
+      const std::string command = "erkn-generate " + joined(a.specs) + " --out " + a.out;
+      emit_user(out, a.out, command, joined(a.specs));
+      if (a.json) {
+        std::ofstream f(a.out + "/methods.json", std::ios::binary);
+        if (!(f << methods_json(out))) throw std::runtime_error("cannot write methods.json");
+      }
+    }
     std::chrono::duration<double> dt = std::chrono::steady_clock::now() - t0;
     std::cerr << "erkn-generate: " << out.size() << " methods (and their RKN limits) in "
               << dt.count() << " s\n";
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "erkn-generate: "
+              << (std::string(e.what()) == "usage" ? "" : e.what() + std::string("\n"))
+              << "usage: erkn-generate SPEC OUTDIR | erkn-generate SPEC... --out DIR [--json]\n";
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << "erkn-generate: " << e.what() << "\n";
     return 1;

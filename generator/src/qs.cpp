@@ -223,6 +223,8 @@ std::string rounded(const numeric& x, int digits) {
 }
 }  // namespace
 
+std::string Qs::decimal(int digits) const { return rounded(to_float(digits + 15), digits); }
+
 std::string Qs::to_string() const {
   std::ostringstream os;
   if (approx_) return rounded(a_, kPrintDigits);

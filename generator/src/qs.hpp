@@ -47,6 +47,8 @@ class Qs {
   GiNaC::numeric to_float(int digits) const;  ///< value as a CLN float with `digits` digits
   double to_double() const;
   std::string to_string() const;  ///< GiNaC syntax, e.g. "1/2-1/10*sqrt(15)"
+  /// Plain decimal rounded to `digits` significant digits, e.g. "0.1127016653792583114820735".
+  std::string decimal(int digits) const;
 
   friend Qs operator+(const Qs& x, const Qs& y);
   friend Qs operator-(const Qs& x, const Qs& y) { return x + (-y); }

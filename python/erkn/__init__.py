@@ -28,15 +28,15 @@ import time
 import numpy as np
 
 from ._erkn import (Error, StepSizeAdvice, Stiffness, System, builtin_potentials, circulant,
-                    dense, diagonal, grid, methods, scalar, tableau, trace_tolerance)
+                    dense, diagonal, grid, load_methods, methods, scalar, tableau,
+                    trace_tolerance)
 from . import _erkn
 
 __version__ = "@PROJECT_VERSION@"
 __all__ = ["Ensemble", "Error", "Integrator", "Options", "Solution", "StepSizeAdvice",
            "Stiffness", "advise_step_size", "circulant", "dense", "diagonal", "grid",
-           "hessian_bounds_along", "hessian_bounds_at", "methods", "mode_energies", "potential",
-           "scalar", "solve",
-           "stability", "system", "tableau"]
+           "hessian_bounds_along", "hessian_bounds_at", "load_methods", "methods", "mode_energies",
+           "potential", "scalar", "solve", "stability", "system", "tableau"]
 
 _DEFAULT_METHOD = "SERKN2s4"
 

@@ -83,6 +83,18 @@ void bind_registry(py::module_& m) {
       },
       "every generated method as a dict with the fields of `erkn list --json`: name, kind "
       "(explicit, erkn, rkn), stages, order, generalized_order, poles, source, paper, id");
+  m.def(
+      "load_methods",
+      [](const std::string& path) {
+        py::list out;
+        for (const Method& method : Method::load(path)) out.append(describe(method));
+        return out;
+      },
+      py::arg("path"),
+      "adds the explicit methods of a file written by `erkn-generate --json` to the registry "
+      "(erkn.methods(), method=NAME everywhere), after checking the orders they claim against "
+      "the order conditions; erkn.Error names the failing condition and adds none of them. "
+      "Returns their dicts (the fields of erkn.methods())");
   m.def("tableau", &tableau, py::arg("name"), py::arg("v") = 0.0,
         "coefficients of a method at v = h^2 lambda >= 0 (erkn.Error at a pole)");
   m.def("_stability", &stability, py::arg("name"), py::arg("V"), py::arg("z"));

@@ -1,5 +1,6 @@
 // erkn: the command-line face of the library.
 //   erkn list [--json]             every method: kind, stages, certified order, source
+//                                  (--methods-file F.json: with a user's methods)
 //   erkn tableau NAME ...          coefficients at a v, Taylor series, or poles (JSON)
 //   erkn run ...                   the paper's problems against peers: charts, docs/results.md
 //   erkn stability NAME|all ...    stability regions of S(V, z) (CSV and charts)
@@ -18,7 +19,7 @@ namespace {
 
 int usage(bool help) {
   return erkn::cli::print_usage(
-      "usage: erkn list [--json] | --version | --help\n"
+      "usage: erkn list [--json] [--methods-file F.json]... | --version | --help\n"
       "       erkn tableau NAME (--v X | --series K | --poles VMAX)\n"
       "       erkn run [--quick | --full] [experiment options; erkn run --help]\n"
       "       erkn stability NAME|all [--vmax V --zmin Z --zmax Z --grid N --out DIR]\n"

@@ -76,14 +76,32 @@ void list_json() {
   std::cout << "\n]\n";
 }
 
+// Loads the files of every `--methods-file F.json` pair (Method::load) and removes the pairs;
+// returns the new argc.
+int load_methods_files(int argc, char** argv) {
+  int kept = 0;
+  for (int i = 0; i < argc; ++i) {
+    if (std::string(argv[i]) == "--methods-file") {
+      if (i + 1 >= argc)
+        throw Error("--methods-file needs a file (erkn-generate --json writes it)");
+      Method::load(argv[++i]);
+    } else {
+      argv[kept++] = argv[i];
+    }
+  }
+  return kept;
+}
+
 int list_command(int argc, char** argv) {
   const auto list_usage = [](bool help) {
     return print_usage(
-        "usage: erkn list [--json]   every method: kind, stages, certified order,"
-        " source\n",
+        "usage: erkn list [--json] [--methods-file F.json]...   every method: kind, stages,\n"
+        "       certified order, source; with a user's methods (erkn-generate --json), checked\n"
+        "       against the order conditions they claim\n",
         help);
   };
   if (asks_for_help(argc, argv)) return list_usage(true);
+  argc = load_methods_files(argc, argv);
   if (argc == 2 && std::string(argv[1]) == "--json") {
     list_json();
     return 0;

@@ -6,16 +6,21 @@
 #include <type_traits>
 
 #include "erkn/error.hpp"
+#include "method_registry.hpp"
 
 namespace erkn {
 namespace {
 
-const std::array kAll = {
+// erkn's own methods first; Method::add appends. A deque: references stay valid.
+std::deque<Method>& registry() {
+  static std::deque<Method> all = {
 #define ERKN_METHOD(id, name, stages, order, kind) \
   Method(MethodId::id, &generated::kTables[int(MethodId::id)]),
 #include "erkn/generated/methods.def"
 #undef ERKN_METHOD
-};
+  };
+  return all;
+}
 
 std::string format_double(double x) {
   std::ostringstream os;
@@ -24,24 +29,53 @@ std::string format_double(double x) {
   return os.str();
 }
 
+double sinc(double t) { return t == 0.0 ? 1.0 : std::sin(t) / t; }
+
 }  // namespace
 
 const Method& Method::get(MethodId id) {
   const auto index = static_cast<std::underlying_type_t<MethodId>>(id);
-  if (index < 0 || size_t(index) >= kAll.size())
+  if (index < 0 || size_t(index) >= registry().size())
     throw Error("unknown method id " + std::to_string(index) + "; ids are 0.." +
-                std::to_string(kAll.size() - 1));
-  return kAll[size_t(index)];
+                std::to_string(registry().size() - 1));
+  return registry()[size_t(index)];
 }
 
-std::span<const Method> Method::all() { return kAll; }
+const std::deque<Method>& Method::all() { return registry(); }
 
 const Method& Method::by_name(std::string_view name) {
-  for (const Method& m : kAll)
+  for (const Method& m : registry())
     if (m.name() == name || m.id_name() == name) return m;
   std::string known;
-  for (const Method& m : kAll) known += (known.empty() ? "" : ", ") + std::string(m.name());
+  for (const Method& m : registry()) known += (known.empty() ? "" : ", ") + std::string(m.name());
   throw Error("unknown method '" + std::string(name) + "'; known methods: " + known);
+}
+
+void detail::check_addable(const generated::Table& table, std::span<const double> modified) {
+  const std::string name = table.name ? table.name : "";
+  if (name.empty() || !table.id || !table.c || !table.d)
+    throw Error("method table '" + name + "' lacks its name, id, nodes c or weights d");
+  for (double e : modified)
+    if (e != 0)
+      throw Error(name +
+                  ": modified kicks (e_i != 0, a force-gradient term) are not supported by "
+                  "this runtime: erkn::generated::Table has no modified-kick field and the "
+                  "steppers no kick with grad(|grad U|^2); use a method with plain kicks");
+  if (table.stages < 1 || table.stages > kMaxStages)
+    throw Error(name + ": " + std::to_string(table.stages) + " stages; this runtime takes 1.." +
+                std::to_string(kMaxStages) + " (kMaxStages, from erkn's own largest method)");
+  if (!table.coefficients && !table.explicit_method)
+    throw Error(name + ": an implicit method needs its emitted coefficient function");
+  for (const Method& m : registry())
+    if (m.name() == name || m.id_name() == table.id || m.name() == table.id || m.id_name() == name)
+      throw Error("cannot add method '" + name + "' (id " + table.id + "): '" +
+                  std::string(m.name()) + "' is already listed under that name or id");
+}
+
+const Method& Method::add(const generated::Table& table, std::span<const double> modified) {
+  detail::check_addable(table, modified);
+  registry().emplace_back(MethodId(registry().size()), &table);
+  return registry().back();
 }
 
 std::string_view Method::kind_name() const {
@@ -58,6 +92,21 @@ double Method::nearest_pole(double v) const {
 double Method::pole_within(double v, double tolerance) const {
   double p = nearest_pole(v);
   return p > 0 && std::abs(v - p) <= tolerance * p ? p : -1.0;
+}
+
+void Method::evaluate(double v, double* b, double* bbar, double* abar) const {
+  if (table_->coefficients) return table_->coefficients(v, b, bbar, abar);
+  // The explicit family (DESIGN.md): b_i = d_i phi0((1-c_i)^2 v), bbar_i = d_i (1-c_i)
+  // phi1((1-c_i)^2 v), abar_ij = d_j (c_i-c_j) phi1((c_i-c_j)^2 v), abar_ii = 0; phi0(w^2 v) =
+  // cos(w x), phi1(w^2 v) = sinc(w x), x = sqrt(v), as the emitted functions evaluate them.
+  const double x = std::sqrt(v), *c = table_->c, *d = table_->d;
+  for (int i = 0; i < stages(); ++i) {
+    b[i] = d[i] * std::cos(std::abs(1 - c[i]) * x);
+    bbar[i] = d[i] * (1 - c[i]) * sinc(std::abs(1 - c[i]) * x);
+    for (int j = 0; j < i; ++j)
+      abar[i * (i + 1) / 2 + j] = d[j] * (c[i] - c[j]) * sinc(std::abs(c[i] - c[j]) * x);
+    abar[i * (i + 1) / 2 + i] = 0.0;
+  }
 }
 
 Coefficients Method::at(double v, double pole_tolerance) const {
@@ -81,7 +130,7 @@ Coefficients Method::at(double v, double pole_tolerance) const {
   Coefficients k;
   k.s = stages();
   for (int i = 0; i < k.s; ++i) k.c[i] = table_->c[i];
-  table_->coefficients(v, k.b.data(), k.bbar.data(), k.abar_packed.data());
+  evaluate(v, k.b.data(), k.bbar.data(), k.abar_packed.data());
   return k;
 }
 

@@ -108,7 +108,7 @@ class StepCoefficients {
       }
       const auto set = [&](int slot, double x) { slots_.set(slot, e, x); };
       const double v = h * h * lambda[e];
-      table.coefficients(v, co.b.data(), co.bbar.data(), co.abar_packed.data());
+      method.evaluate(v, co.b.data(), co.bbar.data(), co.abar_packed.data());
       for (int i = 0; i < s_; ++i) {
         const double c = table.c[i];
         set(i, phi0(c * c * v));

@@ -1,10 +1,16 @@
-// The method registry: every method the generator emitted, by id or by the paper's name.
-// The list comes from generated/include/erkn/generated/methods.def; nothing here is per-method.
+// The method registry: every method the generator emitted, by id or by the paper's name, and the
+// methods a program adds: tables erkn-generate emitted for a user's spec (erkn_add_methods in
+// CMake, compiled into the program, added at its start) and method files (Method::load).
+// erkn's own list comes from generated/include/erkn/generated/methods.def; nothing here is
+// per-method.
 #pragma once
 
 #include <array>
+#include <deque>
 #include <span>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "erkn/generated/tables.hpp"
 
@@ -35,7 +41,23 @@ class Method {
   /// Lookup by the paper's name ("SERKN3s4(1)") or the id ("SERKN3s4_1"); throws erkn::Error
   /// naming the unknown method and listing the known ones.
   static const Method& by_name(std::string_view name);
-  static std::span<const Method> all();
+  /// erkn's own methods (methods.def order), then the added ones in the order they were added.
+  /// References stay valid when methods are added.
+  static const std::deque<Method>& all();
+
+  /// Adds a method defined outside erkn's tables (the source erkn_add_methods compiles calls it
+  /// at program start). `table` and what it points to must outlive the program. `modified`: the
+  /// modified-kick coefficients e_1..e_s (empty: plain kicks). Throws erkn::Error, adding
+  /// nothing, for a name or id already listed, stages outside 1..kMaxStages, an implicit table
+  /// without its coefficient function, or modified kicks (the runtime has no modified force).
+  /// Not thread-safe: add methods before other threads look methods up.
+  static const Method& add(const generated::Table& table, std::span<const double> modified = {});
+  /// Reads a method file written by `erkn-generate --json` (explicit methods: constant
+  /// coefficients), checks the orders each method claims against the order conditions
+  /// (order_conditions.hpp, long double) and adds the methods. Throws erkn::Error, adding none
+  /// of the file's methods, for an unreadable or malformed file, a failing condition (named, with
+  /// its residual), modified kicks, a kind other than explicit, or a name already listed.
+  static std::vector<Method> load(const std::string& path);
 
   MethodId id() const { return id_; }
   std::string_view name() const { return table_->name; }
@@ -62,6 +84,10 @@ class Method {
   /// pole_tolerance of a pole (the message names the pole), or (methods not entire()) v beyond
   /// kPoleSearchMax.
   Coefficients at(double v, double pole_tolerance = 1e-6) const;
+  /// b[s], bbar[s], abar[s(s+1)/2] at v (unchecked: at() checks v): the table's emitted
+  /// function, or for an explicit method given as data (Method::load) the explicit family's
+  /// closed forms from c and d.
+  void evaluate(double v, double* b, double* bbar, double* abar) const;
   /// Taylor coefficient of v^k (k < generated::kSeriesTerms) of coefficient function `index`
   /// (order b_1..b_s, bbar_1..bbar_s, abar_11, abar_21, abar_22, ...).
   double series(int index, int k) const;

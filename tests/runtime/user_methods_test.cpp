@@ -1,0 +1,179 @@
+// Methods a program adds (Method::add, Method::load) and the numeric order check they pass.
+// Its own executable: the methods it adds must not join the registry loops of the other tests.
+#include <gtest/gtest.h>
+
+#include <cfloat>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "erkn/erkn.hpp"
+#include "order_conditions.hpp"
+
+namespace erkn {
+namespace {
+
+std::vector<long double> as_long(const double* x, int s) { return {x, x + s}; }
+
+std::string error_of(auto&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// The numeric check reproduces the generator's certified orders for every explicit method.
+TEST(OrderConditions, ReproduceTheCertifiedOrdersOfEveryExplicitMethod) {
+  int checked = 0;
+  for (const Method& m : Method::all()) {
+    if (!m.is_explicit() || m.kind() != Kind::erkn) continue;
+    const auto c = as_long(m.table().c, m.stages()), d = as_long(m.table().d, m.stages());
+    const auto g = m.generalized_order();
+    const auto r = detail::check_order(c, d, m.order(), g, 64 * DBL_EPSILON);
+    EXPECT_EQ(r.order, m.order()) << m.name();
+    EXPECT_EQ(r.failure, "") << m.name();
+    for (size_t K = 0; K < g.size(); ++K)
+      EXPECT_EQ(r.generalized[K], g[K]) << m.name() << " K " << K + 1;
+    // Negative controls: c_1 moved by 1e-9 loses the order; so does d_1 (sum d_i = 1 fails).
+    auto c2 = c;
+    c2[0] += 1e-9L;
+    const auto r2 = detail::check_order(c2, d, m.order(), g, 64 * DBL_EPSILON);
+    EXPECT_LT(r2.order, m.order()) << m.name();
+    EXPECT_NE(r2.failure.find("tree ["), std::string::npos) << m.name();
+    auto d2 = d;
+    d2[0] *= 1 + 1e-9L;
+    EXPECT_EQ(detail::check_order(c, d2, m.order(), g, 64 * DBL_EPSILON).order, 0) << m.name();
+    ++checked;
+  }
+  EXPECT_GE(checked, 11);
+}
+
+// A long decimal of a registry constant ("1/2" or a >= 45-digit decimal); "" for others.
+std::string decimal(const std::string& exact) {
+  char buf[64];
+  if (auto slash = exact.find('/'); slash != std::string::npos) {
+    if (exact.find_first_not_of("0123456789/-") != std::string::npos) return "";
+    std::snprintf(buf, sizeof buf, "%.25Lg",
+                  std::stold(exact.substr(0, slash)) / std::stold(exact.substr(slash + 1)));
+    return buf;
+  }
+  if (exact.find_first_not_of("0123456789.-e") != std::string::npos) return "";
+  return exact;
+}
+
+// A method file for registry method m under `name`, or "" when m's constants are not decimals.
+std::string method_json(const Method& m, const std::string& name, const std::string& extra = "") {
+  std::string c, d, g;
+  for (int i = 0; i < m.stages(); ++i) {
+    const std::string ci = decimal(m.table().c_exact[i]), di = decimal(m.table().d_exact[i]);
+    if (ci.empty() || di.empty()) return "";
+    c += (i ? ", " : "") + ci, d += (i ? ", " : "") + di;
+  }
+  for (int x : m.generalized_order()) g += (g.empty() ? "" : ", ") + std::to_string(x);
+  return "{\"methods\": [{\"name\": \"" + name +
+         "\", \"kind\": \"explicit\", \"stages\": " + std::to_string(m.stages()) +
+         ", \"order\": " + std::to_string(m.order()) + ", \"generalized_order\": [" + g +
+         "], \"c\": [" + c + "], \"d\": [" + d + "]" + extra + "}]}\n";
+}
+
+std::string write_file(const std::string& name, const std::string& text) {
+  const std::string path = testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+System duffing() {
+  System s;
+  s.M = Stiffness::scalar(100.0);
+  s.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) {
+    g = 0.0009 * (q - 2 * q.cwiseProduct(q).cwiseProduct(q));
+  };
+  s.potential = [](const Eigen::VectorXd& q) {
+    return 0.0009 * (0.5 * q.squaredNorm() - 0.5 * q.array().pow(4).sum());
+  };
+  return s;
+}
+
+// Loaded from data, a registry method integrates bit-identically to the compiled one.
+TEST(MethodLoad, LoadedExplicitMethodsIntegrateBitIdenticallyToTheCompiledOnes) {
+  int loaded = 0;
+  for (size_t k = 0; k < Method::all().size(); ++k) {
+    const Method m = Method::all()[k];
+    if (!m.is_explicit() || m.kind() != Kind::erkn || m.name().ends_with("_data")) continue;
+    const std::string json = method_json(m, std::string(m.name()) + "_data");
+    if (json.empty()) continue;
+    const auto added = Method::load(write_file(std::string(m.id_name()) + ".json", json));
+    ASSERT_EQ(added.size(), 1u);
+    EXPECT_EQ(&Method::by_name(std::string(m.name()) + "_data"), &Method::all().back());
+    Eigen::VectorXd q0(1), p0(1);
+    q0 << 0.0;
+    p0 << 10.0;
+    Integrator a(m, duffing(), 0.01, q0, p0), b(added[0], duffing(), 0.01, q0, p0);
+    a.integrate(1.0), b.integrate(1.0);
+    EXPECT_EQ(a.q()[0], b.q()[0]) << m.name();
+    EXPECT_EQ(a.p()[0], b.p()[0]) << m.name();
+    for (double v : {0.0, 0.3, 7.0}) {  // and its coefficients are the compiled ones
+      const Coefficients x = m.at(v), y = added[0].at(v);
+      for (int i = 0; i < m.stages(); ++i) EXPECT_NEAR(x.b[i], y.b[i], 1e-14) << m.name();
+    }
+    ++loaded;
+  }
+  EXPECT_GE(loaded, 6);
+}
+
+TEST(MethodLoad, ChangedDigitIsRefusedNamingTheConditionAndAddsNothing) {
+  const Method& m = Method::by_name("Yoshida4");
+  std::string json = method_json(m, "Yoshida4_changed");
+  const size_t at = json.find("\"d\": [") + 12;  // the 5th digit of d_1
+  json[at] = json[at] == '9' ? '8' : char(json[at] + 1);
+  const size_t before = Method::all().size();
+  const std::string e = error_of([&] { Method::load(write_file("changed.json", json)); });
+  EXPECT_NE(e.find("Yoshida4_changed"), std::string::npos) << e;
+  EXPECT_NE(e.find("claims order 4"), std::string::npos) << e;
+  EXPECT_NE(e.find("tree ["), std::string::npos) << e;
+  EXPECT_EQ(Method::all().size(), before);
+  EXPECT_THROW(Method::by_name("Yoshida4_changed"), Error);
+}
+
+TEST(MethodLoad, RefusesModifiedKicksImplicitKindsDuplicatesAndMalformedFiles) {
+  const Method& m = Method::by_name("Yoshida4");
+  const size_t before = Method::all().size();
+  const auto refusal = [&](const std::string& json) {
+    return error_of([&] { Method::load(write_file("refused.json", json)); });
+  };
+  EXPECT_NE(
+      refusal(method_json(m, "Y_mod", ", \"modified\": [0, -0.01, 0]")).find("modified kicks"),
+      std::string::npos);
+  std::string implicit = method_json(m, "Y_impl");
+  implicit.replace(implicit.find("explicit"), 8, "erkn");
+  EXPECT_NE(refusal(implicit).find("only explicit methods"), std::string::npos);
+  EXPECT_NE(refusal(method_json(m, "Yoshida4")).find("already listed"), std::string::npos);
+  EXPECT_NE(refusal("{\"methods\": [").find("malformed JSON"), std::string::npos);
+  EXPECT_NE(error_of([] { Method::load("/nonexistent/m.json"); }).find("cannot read"),
+            std::string::npos);
+  EXPECT_EQ(Method::all().size(), before);
+}
+
+TEST(MethodAdd, AddedTablesJoinTheRegistryAndBadOnesAreRefused) {
+  generated::Table t = Method::by_name("Strang").table();
+  t.name = "MyStrang", t.id = "MyStrang";
+  const size_t before = Method::all().size();
+  const Method& added = Method::add(t);
+  EXPECT_EQ(&Method::by_name("MyStrang"), &added);
+  EXPECT_EQ(&Method::get(added.id()), &added);
+  EXPECT_EQ(Method::all().size(), before + 1);
+  EXPECT_NE(error_of([&] { Method::add(t); }).find("already listed"), std::string::npos);
+  generated::Table big = t;
+  big.name = big.id = "Big", big.stages = kMaxStages + 1;
+  EXPECT_NE(error_of([&] { Method::add(big); }).find("stages"), std::string::npos);
+  generated::Table mod = t;
+  mod.name = mod.id = "Mod";
+  const double e[] = {-1.0 / 72};
+  EXPECT_NE(error_of([&] { Method::add(mod, e); }).find("modified kicks"), std::string::npos);
+  EXPECT_EQ(Method::all().size(), before + 1);
+}
+
+}  // namespace
+}  // namespace erkn
