@@ -337,12 +337,12 @@ class Stepper final : public StepperBase {
       if (it == 1) change_first = std::sqrt(change2), g_first_hat_ = G(i);
       if (it > 1) {
         const double theta = delta / delta_old;
-        if (theta < 1 && theta / (1 - theta) * delta <= stage_tolerance()) return true;
+        if (theta < 1 && theta / (1 - theta) * delta <= options_.tolerance) return true;
         if (theta >= options_.max_theta)
           return delta <= options_.roundoff_level;  // stagnation at round-off, else diverging
         // Too slow: theta^n/(1-theta) * delta would need more iterations than are left.
         const double needed =
-            std::log(stage_tolerance() * (1 - theta) / (theta * delta)) / std::log(theta);
+            std::log(options_.tolerance * (1 - theta) / (theta * delta)) / std::log(theta);
         // Also when Newton's last solve of this stage cost fewer evaluations than are needed.
         const bool newton_cheaper = newton_cost_[i] > 0 && needed > newton_cost_[i];
         if ((it + needed > options_.max_fixed_point_iterations || newton_cheaper) &&
@@ -381,24 +381,11 @@ class Stepper final : public StepperBase {
   static constexpr int kThetaRefresh = 8;
   static constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-  // The stage tolerance: Options::tolerance, times kResetShare while the starting-guess history
-  // is empty (construction, set_state, a shorter step, a monitor rollback). With a history the
-  // extrapolated guess is so close that the last update lies far below the tolerance (and a
-  // first-iteration stop needs kFirstShare of it); from a guess without one theta/(1-theta) |dQ|
-  // can pass the tolerance while the stage is still far off. FPU (omega = 50), h omega = 1, the
-  // first step at the default 1e-14 against stages iterated to round-off: SERKN3s4(1) 1.0e-11
-  // (6 gradient evaluations; 9 at 1e-15 and below reach round-off), SERKN4s6 6.7e-12
-  // (stage_solver_test). A few more evaluations, once per reset.
-  static constexpr double kResetShare = 0.01;
-  double stage_tolerance() const {
-    return history_ == 0 ? kResetShare * options_.tolerance : options_.tolerance;
-  }
-
   bool contraction_proves(int i, double delta) {
     if (theta_[i] < 0 || ++theta_age_[i] >= kThetaRefresh) return false;
     const double theta = kThetaSafety * theta_[i];
     return theta < 0.5 &&
-           theta / (1 - theta) * delta * weight_[i] <= kFirstShare * stage_tolerance();
+           theta / (1 - theta) * delta * weight_[i] <= kFirstShare * options_.tolerance;
   }
 
   // theta along the first update, |h^2 abar_ii (g(Q_1) - g(Q_0))| / |Q_1 - Q_0|, with g(Q_0) in
@@ -470,7 +457,7 @@ class Stepper final : public StepperBase {
   // iteration stagnates at round-off.
   bool newton_converged(double delta, double delta_old, int it) const {
     const double theta = it > 1 ? delta / delta_old : 1;
-    return delta == 0 || (theta < 1 && theta / (1 - theta) * delta <= stage_tolerance()) ||
+    return delta == 0 || (theta < 1 && theta / (1 - theta) * delta <= options_.tolerance) ||
            (it > 1 && theta >= 1 && delta <= options_.roundoff_level);
   }
 
@@ -546,7 +533,7 @@ class Stepper final : public StepperBase {
       F_ += Q_ - r_;
       residual = F_.norm() / std::max(Q_.norm(), 1e-300);
       const double forcing =
-          std::clamp(kLinearShare * stage_tolerance() / residual, kKrylovTolerance, kMaxForcing);
+          std::clamp(kLinearShare * options_.tolerance / residual, kKrylovTolerance, kMaxForcing);
       gmres_->solve(apply, precondition, F_, Q_new_, forcing, kKrylovMaxIterations);
       Q_ -= Q_new_;
       ++stats.newton_iterations, ++stats.stage_iterations;
@@ -554,7 +541,7 @@ class Stepper final : public StepperBase {
       if (!std::isfinite(delta)) break;
       // |Q_before - Q*| <= delta / (1 - theta): the iterate before this update may already be
       // within the tolerance, and its gradient is known (no confirming evaluation).
-      if (it > 1 && delta < delta_old && delta / (1 - delta / delta_old) <= stage_tolerance()) {
+      if (it > 1 && delta < delta_old && delta / (1 - delta / delta_old) <= options_.tolerance) {
         Q_ += Q_new_;
         transform_.forward(gU_, G(i));
         return;
