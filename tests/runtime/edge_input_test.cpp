@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "problems.hpp"
+#include "refusals.hpp"
 
 namespace erkn::test {
 namespace {
@@ -15,36 +16,6 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 const Eigen::Vector3d kQ(0.6, -0.4, 0.3), kP(0.2, 0.5, -0.7);
-
-// The message of the erkn::Error f throws ("" if it throws none).
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
-#define EXPECT_CONTAINS(text, part)                          \
-  EXPECT_NE(std::string(text).find(part), std::string::npos) \
-      << "'" << (text) << "' lacks '" << (part) << "'"
-
-// Everything a refused call must leave alone.
-struct Snapshot {
-  Eigen::VectorXd q, p;
-  double t, h;
-  long steps;
-  explicit Snapshot(const Integrator& r)
-      : q(r.q()), p(r.p()), t(r.t()), h(r.h()), steps(r.statistics().steps) {}
-  void expect_same(const Integrator& r) const {
-    EXPECT_EQ(r.q(), q);
-    EXPECT_EQ(r.p(), p);
-    EXPECT_EQ(r.t(), t);
-    EXPECT_EQ(r.h(), h);
-    EXPECT_EQ(r.statistics().steps, steps);
-  }
-};
 
 Integrator running(const char* method = "SERKN2s4", double h = 0.1) {
   Integrator run(Method::by_name(method), polynomial_system(), h, kQ, kP);

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "problems.hpp"
+#include "refusals.hpp"
 
 namespace erkn::test {
 namespace {
@@ -90,21 +91,6 @@ System quartic(const Stiffness& M) {
   };
   return s;
 }
-
-struct Snapshot {
-  Eigen::VectorXd q, p;
-  double t, h;
-  long steps;
-  explicit Snapshot(const Integrator& r)
-      : q(r.q()), p(r.p()), t(r.t()), h(r.h()), steps(r.statistics().steps) {}
-  void expect_same(const Integrator& r) const {
-    EXPECT_EQ(r.q(), q);
-    EXPECT_EQ(r.p(), p);
-    EXPECT_EQ(r.t(), t);
-    EXPECT_EQ(r.h(), h);
-    EXPECT_EQ(r.statistics().steps, steps);
-  }
-};
 
 // Runs f: true if it succeeded, false if it threw erkn::Error; anything else fails the test.
 template <class F>

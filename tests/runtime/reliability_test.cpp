@@ -7,6 +7,7 @@
 #include <regex>
 
 #include "problems.hpp"
+#include "refusals.hpp"
 
 namespace erkn::test {
 namespace {
@@ -14,20 +15,6 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 const Eigen::Vector3d kQ(0.6, -0.4, 0.3), kP(0.2, 0.5, -0.7);
-
-// The message of the erkn::Error f throws ("" if it throws none).
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
-#define EXPECT_CONTAINS(text, part)                          \
-  EXPECT_NE(std::string(text).find(part), std::string::npos) \
-      << "'" << (text) << "' lacks " << (part)
 
 const Method& method() { return Method::by_name("SERKN2s4"); }
 
