@@ -4,13 +4,7 @@
 # consumer, and the Python package from the prefix.
 # Inputs: SOURCE_DIR, WORK, CXX, LAUNCHER (may be empty), PYTHON (may be empty), PY_DIR,
 # VERSION, CONSUMER_SOURCE.
-function(run)
-  execute_process(COMMAND ${ARGV} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "failed (${rc}): ${ARGV}\n${out}\n${err}")
-  endif()
-  set(out "${out}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/run.cmake)
 
 set(build ${WORK}/build)
 set(prefix ${WORK}/prefix)

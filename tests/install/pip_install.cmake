@@ -2,14 +2,8 @@
 # site-packages, for NumPy and pytest; --no-index: nothing from the network), then run the
 # README's Python example (python/tests/test_readme.py) against the installed package, from
 # outside the source tree. Inputs: SOURCE_DIR, WORK, PYTHON, VERSION, LAUNCHER (may be empty).
-function(run)
-  execute_process(COMMAND ${ARGV} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err
-                  WORKING_DIRECTORY ${WORK})
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "failed (${rc}): ${ARGV}\n${out}\n${err}")
-  endif()
-  set(out "${out}" PARENT_SCOPE)
-endfunction()
+set(RUN_DIRECTORY ${WORK})
+include(${CMAKE_CURRENT_LIST_DIR}/run.cmake)
 
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})

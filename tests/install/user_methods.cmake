@@ -6,13 +6,7 @@
 # - the time erkn_add_methods adds: the build with sb3a.spec minus the build without specs.
 # - the build tree's erkn list / run --methods-file take methods.json; a changed digit is refused.
 # Inputs: BUILD_DIR, PREFIX, WORK, CXX, SOURCE (tests/install/user_methods), ERKN_CLI.
-function(run)
-  execute_process(COMMAND ${ARGV} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "failed (${rc}): ${ARGV}\n${out}\n${err}")
-  endif()
-  set(out "${out}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/run.cmake)
 # Configures and builds the project in WORK/name with SPECS; sets seconds to the build's wall
 # time (configure excluded), rc, out.
 function(build_project name specs method)

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "problems.hpp"
+#include "refusals.hpp"
 
 namespace erkn::test {
 namespace {
@@ -15,16 +16,6 @@ const Eigen::Vector3d kQ(0.6, -0.4, 0.3), kP(0.2, 0.5, -0.7);
 
 Integrator make(double h, const Method& m = Method::by_name("SERKN2s4")) {
   return Integrator(m, polynomial_system(), h, kQ, kP);
-}
-
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(Output, OffGridEndTakesWholeStepsThenOneShorterStepOfTheSameMethod) {

@@ -9,20 +9,14 @@
 
 #include "erkn/erkn.hpp"
 #include "order_conditions.hpp"
+#include "refusals.hpp"
 
 namespace erkn {
 namespace {
 
 std::vector<long double> as_long(const double* x, int s) { return {x, x + s}; }
 
-std::string error_of(auto&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 // The numeric check reproduces the generator's certified orders for every explicit method.
 TEST(OrderConditions, ReproduceTheCertifiedOrdersOfEveryExplicitMethod) {
