@@ -23,14 +23,31 @@ struct Arguments {
   std::vector<std::string> specs;
   std::string out;  // --out DIR: a user's methods
   bool json = false;
+  bool help = false;
   std::string legacy_dir;  // SPEC OUTDIR
 };
+
+constexpr const char* kUsage =
+    "usage: erkn-generate SPEC OUTDIR | erkn-generate SPEC... --out DIR [--json]\n";
+
+constexpr const char* kHelp =
+    "Derives the methods of each SPEC file (the spec language: docs/user-methods.md), certifies\n"
+    "their claimed orders from the SEN-trees and polishes their coefficients.\n"
+    "  SPEC... --out DIR  writes DIR/erkn_methods.cpp (compile it into a program, as\n"
+    "                     erkn_add_methods does) and DIR/derivation.md\n"
+    "  --json             also writes DIR/methods.json (erkn::Method::load, erkn.load_methods)\n"
+    "  SPEC OUTDIR        erkn's own generated/ tables (the regenerate target)\n"
+    "  --help             this text\n"
+    "Exit status: 0 done, 1 a spec refused (the method and the first failing tree are named),\n"
+    "2 a usage error.\n";
 
 Arguments parse(int argc, char** argv) {
   Arguments a;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--out" && i + 1 < argc)
+    if (arg == "--help" || arg == "-h")
+      a.help = true;
+    else if (arg == "--out" && i + 1 < argc)
       a.out = argv[++i];
     else if (arg == "--json")
       a.json = true;
@@ -39,6 +56,7 @@ Arguments parse(int argc, char** argv) {
     else
       a.specs.push_back(arg);
   }
+  if (a.help) return a;
   if (a.out.empty() && a.specs.size() == 2 && !a.json)
     a.legacy_dir = a.specs.back(), a.specs.pop_back();
   if (a.specs.empty() || (a.out.empty() && a.legacy_dir.empty()))
@@ -87,6 +105,10 @@ std::string joined(const std::vector<std::string>& xs) {
 int main(int argc, char** argv) {
   try {
     const Arguments a = parse(argc, argv);
+    if (a.help) {
+      std::cout << kUsage << kHelp;
+      return 0;
+    }
     auto t0 = std::chrono::steady_clock::now();
     const std::vector<Derived> out = derive_all(a.specs);
     if (!a.legacy_dir.empty()) {
@@ -104,8 +126,7 @@ int main(int argc, char** argv) {
               << dt.count() << " s\n";
   } catch (const std::invalid_argument& e) {
     std::cerr << "erkn-generate: "
-              << (std::string(e.what()) == "usage" ? "" : e.what() + std::string("\n"))
-              << "usage: erkn-generate SPEC OUTDIR | erkn-generate SPEC... --out DIR [--json]\n";
+              << (std::string(e.what()) == "usage" ? "" : e.what() + std::string("\n")) << kUsage;
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "erkn-generate: " << e.what() << "\n";
