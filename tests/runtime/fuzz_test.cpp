@@ -1,9 +1,11 @@
 // A bounded fuzz of the API (fixed seed): random structures and sizes of M, states of random
-// size with non-finite entries, extreme step sizes, through the constructor, set_state,
-// set_step_size and step. Every call either succeeds or throws erkn::Error (nothing else), a
-// refused call changes nothing, and an accepted state stays finite.
+// size with non-finite entries, extreme step sizes and times, through the constructor,
+// set_state, set_step_size, step, integrate (with and without output times) and state_at. Every
+// call either succeeds or throws erkn::Error (nothing else), a refused call changes nothing, a
+// run that fails on the way keeps its steps, and an accepted state stays finite.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 #include <optional>
 #include <random>
@@ -107,6 +109,79 @@ bool attempt(F&& f, int& refused) {
   }
 }
 
+// A time to integrate to from t(): mostly within 40 steps, sometimes one that must be refused.
+double end_time(Fuzzer& f, const Integrator& run) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const double odd[] = {std::numeric_limits<double>::quiet_NaN(), kInf, -kInf, run.t() - run.h(),
+                        run.t() + 1e300};
+  return f.index(5) == 0 ? odd[f.index(5)] : run.t() + run.h() * f.uniform(0, 40);
+}
+
+// integrate(t_end), with output times or without: a call refused before its first step changes
+// nothing; one that fails on the way keeps the steps it took (t() between the start and t_end);
+// one that succeeds ends at t_end having called the observer once per output time, in order.
+void fuzz_integrate(Fuzzer& f, Integrator& run, int& refused) {
+  const Snapshot before(run);
+  const double t_end = end_time(f, run);
+  std::vector<double> times(size_t(f.index(4)));
+  for (double& tau : times)
+    tau = f.index(6) == 0 ? f.value() : run.t() + (t_end - run.t()) * f.uniform(0, 1);
+  if (f.index(3) != 0) std::sort(times.begin(), times.end());
+  std::vector<double> seen;
+  const bool with_times = f.index(2) == 0;
+  const bool ok = attempt(
+      [&] {
+        if (!with_times) return run.integrate(t_end);
+        const Eigen::Map<const Eigen::VectorXd> at(times.data(), Eigen::Index(times.size()));
+        run.integrate(t_end, at,
+                      [&](double tau, const auto&, const auto&) { seen.push_back(tau); });
+      },
+      refused);
+  if (ok) {
+    EXPECT_EQ(run.t(), t_end);
+    if (with_times) EXPECT_EQ(seen, times);
+  } else if (run.statistics().steps == before.steps) {
+    before.expect_same(run);
+  } else {
+    EXPECT_GT(run.t(), before.t);
+    EXPECT_LE(run.t(), t_end);
+  }
+}
+
+// state_at never changes the integrator's state, whether it succeeds or not.
+void fuzz_state_at(Fuzzer& f, Integrator& run, int& refused) {
+  const Snapshot before(run);
+  Eigen::VectorXd q, p;
+  const double t = f.index(4) == 0 ? f.value() : run.t() + run.h() * f.uniform(-0.2, 1.2);
+  if (attempt([&] { run.state_at(t, q, p); }, refused))
+    EXPECT_TRUE(q.allFinite() && p.allFinite() && q.size() == before.q.size());
+  before.expect_same(run);
+}
+
+// One random mutating call on run; a refused call changes nothing.
+void fuzz_call(Fuzzer& f, Integrator& run, Eigen::Index d, int& refused) {
+  const Snapshot before(run);
+  bool ok = true;
+  switch (f.index(5)) {
+    case 0:
+      ok = attempt([&] { run.step(); }, refused);
+      break;
+    case 1: {
+      const Eigen::Index m = f.size(d);
+      ok = attempt([&] { run.set_state(f.vector(m), f.vector(m), f.value(0, 10)); }, refused);
+      break;
+    }
+    case 2:
+      ok = attempt([&] { run.set_step_size(f.step_size()); }, refused);
+      break;
+    case 3:
+      return fuzz_integrate(f, run, refused);
+    default:
+      return fuzz_state_at(f, run, refused);
+  }
+  if (!ok) before.expect_same(run);
+}
+
 TEST(Fuzz, ApiCallsSucceedOrRefuseWithoutSideEffects) {
   Fuzzer f;
   int built = 0, refused = 0, calls = 0;
@@ -123,26 +198,11 @@ TEST(Fuzz, ApiCallsSucceedOrRefuseWithoutSideEffects) {
         refused);
     if (!run) continue;
     ++built;
-    for (int k = 0; k < 6; ++k) {
+    for (int k = 0; k < 6; ++k, ++calls) {
       SCOPED_TRACE(std::string(method.name()) + ", case " + std::to_string(n));
-      const Snapshot before(*run);
-      bool ok = false;
-      ++calls;
-      switch (f.index(3)) {
-        case 0:
-          ok = attempt([&] { run->step(); }, refused);
-          break;
-        case 1: {
-          const Eigen::Index m = f.size(d);
-          ok = attempt([&] { run->set_state(f.vector(m), f.vector(m), f.value(0, 10)); }, refused);
-          break;
-        }
-        default:
-          ok = attempt([&] { run->set_step_size(f.step_size()); }, refused);
-      }
-      if (!ok) before.expect_same(*run);
+      fuzz_call(f, *run, d, refused);
       EXPECT_TRUE(run->q().allFinite() && run->p().allFinite() && std::isfinite(run->t()));
-      EXPECT_EQ(run->q().size(), before.q.size());
+      EXPECT_EQ(run->q().size(), d);
     }
   }
   std::cout << calls << " calls (" << built << " integrators built), " << refused
