@@ -27,6 +27,11 @@ if [ -x "$build"/bench/erkn_integrate_benchmark ]; then
       --server "$build"/bench/erkn_integrate_benchmark --markdown docs/benchmarks.md > /dev/null
   fi
 fi
+# erkn.solve(tol) (method and h chosen) against the cheapest (method, h) of a sweep over the
+# registry: error window and CPU ratio per scene and tolerance (issue 20).
+if [ -x "$build"/bench/erkn_accuracy_benchmark ]; then
+  "$build"/bench/erkn_accuracy_benchmark --markdown docs/accuracy.md 2> /dev/null
+fi
 if [ -x "$build"/runtime/mpi/erkn-mpi ]; then  # MPI scaling on 1, 2 and 4 ranks (erkn::mpi built)
   [ "$(id -u)" -ne 0 ] || export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
   export OMPI_MCA_btl_vader_single_copy_mechanism=none  # (CMA fails in containers)

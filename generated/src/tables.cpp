@@ -14,6 +14,7 @@ namespace erkn::generated {
 namespace {
 
 using support::horner;
+using support::kNotReached;
 using support::sinc;
 using support::sincl;
 
@@ -62,6 +63,7 @@ constexpr double series[] = {
 };
 
 constexpr int generalized_order[] = {2, 2, 4, 6, 8};
+constexpr double generalized_error_constant[] = {0.125, 0.833333, 1.37328, 1.98894, 2.99696};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -121,6 +123,7 @@ constexpr double series[] = {
 };
 
 constexpr int generalized_order[] = {2, 2, 4, 6, 8};
+constexpr double generalized_error_constant[] = {0.125, 0.333333, 0.313692, 0.239319, 0.184562};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -228,6 +231,7 @@ constexpr double poles[] = {
 };
 
 constexpr int generalized_order[] = {3, 3, 4, 6, 8};
+constexpr double generalized_error_constant[] = {0.00279487, 0.00277572, 0.00325726, 0.00391984, 0.0027873};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -354,6 +358,7 @@ constexpr double poles[] = {
 };
 
 constexpr int generalized_order[] = {4, 4, 4, 6, 8};
+constexpr double generalized_error_constant[] = {0.00838781, 0.00894594, 0.00196419, 0.00294823, 0.00232961};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -532,6 +537,7 @@ constexpr double poles[] = {
 };
 
 constexpr int generalized_order[] = {6, 4, 5, 6, 8};
+constexpr double generalized_error_constant[] = {0.000539225, 0.0083346, 0.00010267, 7.62521e-05, 0.00018083};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -720,6 +726,7 @@ constexpr double poles[] = {
 };
 
 constexpr int generalized_order[] = {6, 4, 5, 6, 8};
+constexpr double generalized_error_constant[] = {0.000539225, 0.0612821, 0.0443846, 0.0162159, 0.0150694};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -808,6 +815,7 @@ constexpr double series[] = {
 };
 
 constexpr int generalized_order[] = {2, 2, 4, 6, 8};
+constexpr double generalized_error_constant[] = {0.125, 0.166667, 0.0506897, 0.0181436, 0.007063};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -957,6 +965,7 @@ constexpr double series[] = {
 };
 
 constexpr int generalized_order[] = {4, 4, 4, 6, 8};
+constexpr double generalized_error_constant[] = {0.0149928, 0.0612442, 0.147332, 0.0257368, 0.0153137};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -1065,6 +1074,7 @@ constexpr double series[] = {
 };
 
 constexpr int generalized_order[] = {4, 2, 4, 6, 8};
+constexpr double generalized_error_constant[] = {0.00838781, 0.0223291, 0.0117851, 0.0066552, 0.00370364};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -1218,6 +1228,7 @@ constexpr double series[] = {
 };
 
 constexpr int generalized_order[] = {6, 2, 4, 6, 8};
+constexpr double generalized_error_constant[] = {0.000539225, 0.0112692, 0.00451035, 0.0016654, 0.000816559};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -1436,6 +1447,7 @@ constexpr double series[] = {
 };
 
 constexpr int generalized_order[] = {8, 2, 4, 6, 8};
+constexpr double generalized_error_constant[] = {3.42365e-05, 0.00679355, 0.00278531, 0.000983265, 0.000376687};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -1900,6 +1912,7 @@ constexpr double series[] = {
 };
 
 constexpr int generalized_order[] = {4, 4, 4, 6, 8};
+constexpr double generalized_error_constant[] = {5.17534e-05, 2.30953e-05, 2.19197e-05, 7.65698e-05, 0.000228391};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -2388,6 +2401,7 @@ constexpr double series[] = {
 };
 
 constexpr int generalized_order[] = {8, 6, 4, 6, 8};
+constexpr double generalized_error_constant[] = {3.35136e-05, 6.46051e-05, 9.63668e-05, 6.85434e-05, 5.69808e-05};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -2976,6 +2990,7 @@ constexpr double series[] = {
 };
 
 constexpr int generalized_order[] = {10, 6, 4, 6, 8, 10};
+constexpr double generalized_error_constant[] = {5.50066e-07, 3.1119e-05, 7.40347e-05, 4.63321e-05, 3.057e-05, 1.89982e-05};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -3574,6 +3589,7 @@ constexpr double series[] = {
 };
 
 constexpr int generalized_order[] = {8, 6, 4, 6, 8};
+constexpr double generalized_error_constant[] = {3.38586e-05, 5.54098e-05, 0.00036751, 0.000204194, 0.000123632};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -4672,6 +4688,7 @@ constexpr double series[] = {
 };
 
 constexpr int generalized_order[] = {6, 6, 6, 6, 8};
+constexpr double generalized_error_constant[] = {7.74595e-06, 2.50326e-06, 5.74964e-07, 1.36734e-07, 9.97049e-07};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -6130,6 +6147,7 @@ constexpr double series[] = {
 };
 
 constexpr int generalized_order[] = {6, 6, 6, 6, 8};
+constexpr double generalized_error_constant[] = {2.9532e-06, 4.17928e-07, 1.09123e-07, 1.19551e-07, 5.70295e-07};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -6359,6 +6377,7 @@ constexpr double series[] = {
 };
 
 constexpr int generalized_order[] = {3, 3, 4, 6, 8};
+constexpr double generalized_error_constant[] = {0.00279487, 0.00277572, 0.00325726, 0.00391984, 0.0027873};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -6462,6 +6481,7 @@ constexpr double series[] = {
 };
 
 constexpr int generalized_order[] = {4, 4, 4, 6, 8};
+constexpr double generalized_error_constant[] = {0.00838781, 0.00564832, 0.00196419, 0.00294823, 0.00232961};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -6615,6 +6635,7 @@ constexpr double series[] = {
 };
 
 constexpr int generalized_order[] = {6, 4, 5, 6, 8};
+constexpr double generalized_error_constant[] = {0.000539225, 0.000149176, 0.00010267, 7.62521e-05, 0.00018083};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -6773,6 +6794,7 @@ constexpr double series[] = {
 };
 
 constexpr int generalized_order[] = {6, 4, 5, 6, 8};
+constexpr double generalized_error_constant[] = {0.000539225, 0.0623765, 0.0443846, 0.0162159, 0.0150694};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -6991,6 +7013,7 @@ constexpr double series[] = {
 };
 
 constexpr int generalized_order[] = {6, 6, 6, 6, 8};
+constexpr double generalized_error_constant[] = {0.000493331, 0.000339939, 0.000177025, 6.12443e-05, 0.000162744};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
   const double x = std::sqrt(v);
@@ -8332,169 +8355,169 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
 }  // namespace
 
 const Table kTables[] = {
-    {"SERKN1s2(1)", "SERKN1s2_1", 1, 2, false, false, true,
+    {"SERKN1s2(1)", "SERKN1s2_1", 1, 2, 0.842656, false, false, true,
      "Sec. 3.1, case one",
-     SERKN1s2_1::generalized_order, std::size(SERKN1s2_1::generalized_order),
+     SERKN1s2_1::generalized_order, SERKN1s2_1::generalized_error_constant, std::size(SERKN1s2_1::generalized_order),
      SERKN1s2_1::c, SERKN1s2_1::d, SERKN1s2_1::c_exact, SERKN1s2_1::d_exact, SERKN1s2_1::coefficients, SERKN1s2_1::series,
      SERKN1s2_1::closed_forms, nullptr, 0},
-    {"SERKN1s2(2)", "SERKN1s2_2", 1, 2, false, false, true,
+    {"SERKN1s2(2)", "SERKN1s2_2", 1, 2, 0.356, false, false, true,
      "Sec. 3.1, case two",
-     SERKN1s2_2::generalized_order, std::size(SERKN1s2_2::generalized_order),
+     SERKN1s2_2::generalized_order, SERKN1s2_2::generalized_error_constant, std::size(SERKN1s2_2::generalized_order),
      SERKN1s2_2::c, SERKN1s2_2::d, SERKN1s2_2::c_exact, SERKN1s2_2::d_exact, SERKN1s2_2::coefficients, SERKN1s2_2::series,
      SERKN1s2_2::closed_forms, nullptr, 0},
-    {"SERKN2s3", "SERKN2s3", 2, 3, false, false, true,
+    {"SERKN2s3", "SERKN2s3", 2, 3, 0.00393903, false, false, true,
      "Sec. 3.2, case one: c1 = 1/5, abar22 = abar11 and the last condition of (r)",
-     SERKN2s3::generalized_order, std::size(SERKN2s3::generalized_order),
+     SERKN2s3::generalized_order, SERKN2s3::generalized_error_constant, std::size(SERKN2s3::generalized_order),
      SERKN2s3::c, SERKN2s3::d, SERKN2s3::c_exact, SERKN2s3::d_exact, SERKN2s3::coefficients, SERKN2s3::series,
      SERKN2s3::closed_forms, SERKN2s3::poles, std::size(SERKN2s3::poles)},
-    {"SERKN2s4", "SERKN2s4", 2, 4, false, false, true,
+    {"SERKN2s4", "SERKN2s4", 2, 4, 0.0124195, false, false, true,
      "Sec. 3.2, case two: abar11, abar22 from the 8th (corrected) and 9th conditions of (s)",
-     SERKN2s4::generalized_order, std::size(SERKN2s4::generalized_order),
+     SERKN2s4::generalized_order, SERKN2s4::generalized_error_constant, std::size(SERKN2s4::generalized_order),
      SERKN2s4::c, SERKN2s4::d, SERKN2s4::c_exact, SERKN2s4::d_exact, SERKN2s4::coefficients, SERKN2s4::series,
      SERKN2s4::closed_forms, SERKN2s4::poles, std::size(SERKN2s4::poles)},
-    {"SERKN3s4(1)", "SERKN3s4_1", 3, 4, false, false, true,
+    {"SERKN3s4(1)", "SERKN3s4_1", 3, 4, 0.0083346, false, false, true,
      "Sec. 3.3, case one, eq. (ekrnD); abar_ii from (Schems100) 8-10",
-     SERKN3s4_1::generalized_order, std::size(SERKN3s4_1::generalized_order),
+     SERKN3s4_1::generalized_order, SERKN3s4_1::generalized_error_constant, std::size(SERKN3s4_1::generalized_order),
      SERKN3s4_1::c, SERKN3s4_1::d, SERKN3s4_1::c_exact, SERKN3s4_1::d_exact, SERKN3s4_1::coefficients, SERKN3s4_1::series,
      SERKN3s4_1::closed_forms, SERKN3s4_1::poles, std::size(SERKN3s4_1::poles)},
-    {"SERKN3s4(2)", "SERKN3s4_2", 3, 4, false, false, true,
+    {"SERKN3s4(2)", "SERKN3s4_2", 3, 4, 0.0612821, false, false, true,
      "Sec. 3.3, case two, eq. (ekrnE); abar_ii from (Schems100) 8-10",
-     SERKN3s4_2::generalized_order, std::size(SERKN3s4_2::generalized_order),
+     SERKN3s4_2::generalized_order, SERKN3s4_2::generalized_error_constant, std::size(SERKN3s4_2::generalized_order),
      SERKN3s4_2::c, SERKN3s4_2::d, SERKN3s4_2::c_exact, SERKN3s4_2::d_exact, SERKN3s4_2::coefficients, SERKN3s4_2::series,
      SERKN3s4_2::closed_forms, SERKN3s4_2::poles, std::size(SERKN3s4_2::poles)},
-    {"Strang", "Strang", 1, 2, false, true, false,
+    {"Strang", "Strang", 1, 2, 0.208333, false, true, false,
      "Strang, SIAM J. Numer. Anal. 5 (1968) 506-517: half drift, kick, half drift (also SABA_1 of Laskar & Robutel 2001)",
-     Strang::generalized_order, std::size(Strang::generalized_order),
+     Strang::generalized_order, Strang::generalized_error_constant, std::size(Strang::generalized_order),
      Strang::c, Strang::d, Strang::c_exact, Strang::d_exact, Strang::coefficients, Strang::series,
      Strang::closed_forms, nullptr, 0},
-    {"Yoshida4", "Yoshida4", 3, 4, false, true, false,
+    {"Yoshida4", "Yoshida4", 3, 4, 0.160258, false, true, false,
      "Yoshida, Phys. Lett. A 150 (1990) 262-268, eq. (5.19): triple jump of Strang, w1 = 1/(2-2^(1/3)), w0 = -2^(1/3) w1",
-     Yoshida4::generalized_order, std::size(Yoshida4::generalized_order),
+     Yoshida4::generalized_order, Yoshida4::generalized_error_constant, std::size(Yoshida4::generalized_order),
      Yoshida4::c, Yoshida4::d, Yoshida4::c_exact, Yoshida4::d_exact, Yoshida4::coefficients, Yoshida4::series,
      Yoshida4::closed_forms, nullptr, 0},
-    {"SABA2", "SABA2", 2, 2, false, true, false,
+    {"SABA2", "SABA2", 2, 2, 0.0223291, false, true, false,
      "Laskar & Robutel, Celest. Mech. Dyn. Astron. 80 (2001) 39-62: SABA_2, kicks at the Gauss-Legendre nodes with their weights (rebound src/integrator_saba.c)",
-     SABA2::generalized_order, std::size(SABA2::generalized_order),
+     SABA2::generalized_order, SABA2::generalized_error_constant, std::size(SABA2::generalized_order),
      SABA2::c, SABA2::d, SABA2::c_exact, SABA2::d_exact, SABA2::coefficients, SABA2::series,
      SABA2::closed_forms, nullptr, 0},
-    {"SABA3", "SABA3", 3, 2, false, true, false,
+    {"SABA3", "SABA3", 3, 2, 0.0112692, false, true, false,
      "Laskar & Robutel, Celest. Mech. Dyn. Astron. 80 (2001) 39-62: SABA_3, Gauss-Legendre nodes and weights (rebound src/integrator_saba.c)",
-     SABA3::generalized_order, std::size(SABA3::generalized_order),
+     SABA3::generalized_order, SABA3::generalized_error_constant, std::size(SABA3::generalized_order),
      SABA3::c, SABA3::d, SABA3::c_exact, SABA3::d_exact, SABA3::coefficients, SABA3::series,
      SABA3::closed_forms, nullptr, 0},
-    {"SABA4", "SABA4", 4, 2, false, true, false,
+    {"SABA4", "SABA4", 4, 2, 0.00679355, false, true, false,
      "Laskar & Robutel, Celest. Mech. Dyn. Astron. 80 (2001) 39-62: SABA_4, Gauss-Legendre nodes and weights (rebound src/integrator_saba.c)",
-     SABA4::generalized_order, std::size(SABA4::generalized_order),
+     SABA4::generalized_order, SABA4::generalized_error_constant, std::size(SABA4::generalized_order),
      SABA4::c, SABA4::d, SABA4::c_exact, SABA4::d_exact, SABA4::coefficients, SABA4::series,
      SABA4::closed_forms, nullptr, 0},
-    {"SRKN6b", "SRKN6b", 7, 4, false, true, false,
+    {"SRKN6b", "SRKN6b", 7, 4, 6.07641e-05, false, true, false,
      "Blanes & Moan, J. Comput. Appl. Math. 142 (2002) 313-330, Table 3, SRKN_6^b (BAB: kicks at c = 0 and 1), published digits as in Principia integrators/methods.hpp (BlanesMoan2002SRKN6B), polished by erkn-generate",
-     SRKN6b::generalized_order, std::size(SRKN6b::generalized_order),
+     SRKN6b::generalized_order, SRKN6b::generalized_error_constant, std::size(SRKN6b::generalized_order),
      SRKN6b::c, SRKN6b::d, SRKN6b::c_exact, SRKN6b::d_exact, SRKN6b::coefficients, SRKN6b::series,
      SRKN6b::closed_forms, nullptr, 0},
-    {"ABA864", "ABA864", 7, 4, false, true, false,
+    {"ABA864", "ABA864", 7, 4, 9.63668e-05, false, true, false,
      "Blanes, Casas, Farres, Laskar, Makazaga & Murua, Appl. Numer. Math. 68 (2013) 58-72: ABA(8,6,4), published digits as in rebound src/integrator_saba.c (reb_saba_c, reb_saba_d), polished by erkn-generate",
-     ABA864::generalized_order, std::size(ABA864::generalized_order),
+     ABA864::generalized_order, ABA864::generalized_error_constant, std::size(ABA864::generalized_order),
      ABA864::c, ABA864::d, ABA864::c_exact, ABA864::d_exact, ABA864::coefficients, ABA864::series,
      ABA864::closed_forms, nullptr, 0},
-    {"ABA1064", "ABA1064", 8, 4, false, true, false,
+    {"ABA1064", "ABA1064", 8, 4, 7.40347e-05, false, true, false,
      "Blanes, Casas, Farres, Laskar, Makazaga & Murua, Appl. Numer. Math. 68 (2013) 58-72: ABA(10,6,4), published digits as in rebound src/integrator_saba.c (reb_saba_c, reb_saba_d), polished by erkn-generate",
-     ABA1064::generalized_order, std::size(ABA1064::generalized_order),
+     ABA1064::generalized_order, ABA1064::generalized_error_constant, std::size(ABA1064::generalized_order),
      ABA1064::c, ABA1064::d, ABA1064::c_exact, ABA1064::d_exact, ABA1064::coefficients, ABA1064::series,
      ABA1064::closed_forms, nullptr, 0},
-    {"ABAH864", "ABAH864", 8, 4, false, true, false,
+    {"ABAH864", "ABAH864", 8, 4, 0.00036751, false, true, false,
      "Blanes, Casas, Farres, Laskar, Makazaga & Murua, Appl. Numer. Math. 68 (2013) 58-72: ABAH(8,6,4), published digits as in rebound src/integrator_saba.c (reb_saba_c, reb_saba_d), polished by erkn-generate",
-     ABAH864::generalized_order, std::size(ABAH864::generalized_order),
+     ABAH864::generalized_order, ABAH864::generalized_error_constant, std::size(ABAH864::generalized_order),
      ABAH864::c, ABAH864::d, ABAH864::c_exact, ABAH864::d_exact, ABAH864::coefficients, ABAH864::series,
      ABAH864::closed_forms, nullptr, 0},
-    {"SRKN11b", "SRKN11b", 12, 6, false, true, false,
+    {"SRKN11b", "SRKN11b", 12, 6, 8.16182e-06, false, true, false,
      "Blanes & Moan, J. Comput. Appl. Math. 142 (2002) 313-330, Table 3, SRKN_11^b (BAB: kicks at c = 0 and 1), published digits as in Principia integrators/methods.hpp (BlanesMoan2002SRKN11B), polished by erkn-generate",
-     SRKN11b::generalized_order, std::size(SRKN11b::generalized_order),
+     SRKN11b::generalized_order, SRKN11b::generalized_error_constant, std::size(SRKN11b::generalized_order),
      SRKN11b::c, SRKN11b::d, SRKN11b::c_exact, SRKN11b::d_exact, SRKN11b::coefficients, SRKN11b::series,
      SRKN11b::closed_forms, nullptr, 0},
-    {"SRKN14a", "SRKN14a", 14, 6, false, true, false,
+    {"SRKN14a", "SRKN14a", 14, 6, 2.98701e-06, false, true, false,
      "Blanes & Moan, J. Comput. Appl. Math. 142 (2002) 313-330, Table 3, SRKN_14^a (ABA), published digits as in Principia integrators/methods.hpp (BlanesMoan2002SRKN14A), polished by erkn-generate",
-     SRKN14a::generalized_order, std::size(SRKN14a::generalized_order),
+     SRKN14a::generalized_order, SRKN14a::generalized_error_constant, std::size(SRKN14a::generalized_order),
      SRKN14a::c, SRKN14a::d, SRKN14a::c_exact, SRKN14a::d_exact, SRKN14a::coefficients, SRKN14a::series,
      SRKN14a::closed_forms, nullptr, 0},
-    {"SERKN2s3pf", "SERKN2s3pf", 2, 3, false, false, false,
+    {"SERKN2s3pf", "SERKN2s3pf", 2, 3, 0.00393903, false, false, false,
      "this project: SERKN2s3 (Sec. 3.2, case one) with abar11 = abar22 = their value at V = 0",
-     SERKN2s3pf::generalized_order, std::size(SERKN2s3pf::generalized_order),
+     SERKN2s3pf::generalized_order, SERKN2s3pf::generalized_error_constant, std::size(SERKN2s3pf::generalized_order),
      SERKN2s3pf::c, SERKN2s3pf::d, SERKN2s3pf::c_exact, SERKN2s3pf::d_exact, SERKN2s3pf::coefficients, SERKN2s3pf::series,
      SERKN2s3pf::closed_forms, nullptr, 0},
-    {"SERKN2s4pf", "SERKN2s4pf", 2, 4, false, false, false,
+    {"SERKN2s4pf", "SERKN2s4pf", 2, 4, 0.0103013, false, false, false,
      "this project: SERKN2s4 (Sec. 3.2, case two) with abar11, abar22 = their values at V = 0",
-     SERKN2s4pf::generalized_order, std::size(SERKN2s4pf::generalized_order),
+     SERKN2s4pf::generalized_order, SERKN2s4pf::generalized_error_constant, std::size(SERKN2s4pf::generalized_order),
      SERKN2s4pf::c, SERKN2s4pf::d, SERKN2s4pf::c_exact, SERKN2s4pf::d_exact, SERKN2s4pf::coefficients, SERKN2s4pf::series,
      SERKN2s4pf::closed_forms, nullptr, 0},
-    {"SERKN3s4pf(1)", "SERKN3s4pf_1", 3, 4, false, false, false,
+    {"SERKN3s4pf(1)", "SERKN3s4pf_1", 3, 4, 0.000149176, false, false, false,
      "this project: SERKN3s4(1) (Sec. 3.3, case one) with abar_ii = their values at V = 0",
-     SERKN3s4pf_1::generalized_order, std::size(SERKN3s4pf_1::generalized_order),
+     SERKN3s4pf_1::generalized_order, SERKN3s4pf_1::generalized_error_constant, std::size(SERKN3s4pf_1::generalized_order),
      SERKN3s4pf_1::c, SERKN3s4pf_1::d, SERKN3s4pf_1::c_exact, SERKN3s4pf_1::d_exact, SERKN3s4pf_1::coefficients, SERKN3s4pf_1::series,
      SERKN3s4pf_1::closed_forms, nullptr, 0},
-    {"SERKN3s4pf(2)", "SERKN3s4pf_2", 3, 4, false, false, false,
+    {"SERKN3s4pf(2)", "SERKN3s4pf_2", 3, 4, 0.0623765, false, false, false,
      "this project: SERKN3s4(2) (Sec. 3.3, case two) with abar_ii = their values at V = 0",
-     SERKN3s4pf_2::generalized_order, std::size(SERKN3s4pf_2::generalized_order),
+     SERKN3s4pf_2::generalized_order, SERKN3s4pf_2::generalized_error_constant, std::size(SERKN3s4pf_2::generalized_order),
      SERKN3s4pf_2::c, SERKN3s4pf_2::d, SERKN3s4pf_2::c_exact, SERKN3s4pf_2::d_exact, SERKN3s4pf_2::coefficients, SERKN3s4pf_2::series,
      SERKN3s4pf_2::closed_forms, nullptr, 0},
-    {"SERKN4s6", "SERKN4s6", 4, 6, false, false, false,
+    {"SERKN4s6", "SERKN4s6", 4, 6, 0.000627712, false, false, false,
      "this project: generator/search/order6_four_stages.py (issue 8), c = (x1, x2, 1-x2, 1-x1), d = (y1, 1/2-y1, 1/2-y1, y1)",
-     SERKN4s6::generalized_order, std::size(SERKN4s6::generalized_order),
+     SERKN4s6::generalized_order, SERKN4s6::generalized_error_constant, std::size(SERKN4s6::generalized_order),
      SERKN4s6::c, SERKN4s6::d, SERKN4s6::c_exact, SERKN4s6::d_exact, SERKN4s6::coefficients, SERKN4s6::series,
      SERKN4s6::closed_forms, nullptr, 0},
-    {"RKN1s2(1)", "RKN1s2_1", 1, 2, true, false, true,
+    {"RKN1s2(1)", "RKN1s2_1", 1, 2, 0.841625, true, false, true,
      "V -> 0 limit of SERKN1s2(1) (Sec. 3.1, case one)",
-     nullptr, 0,
+     nullptr, nullptr, 0,
      RKN1s2_1::c, RKN1s2_1::d, RKN1s2_1::c_exact, RKN1s2_1::d_exact, RKN1s2_1::coefficients, RKN1s2_1::series,
      RKN1s2_1::closed_forms, nullptr, 0},
-    {"RKN1s2(2)", "RKN1s2_2", 1, 2, true, false, true,
+    {"RKN1s2(2)", "RKN1s2_2", 1, 2, 0.353553, true, false, true,
      "V -> 0 limit of SERKN1s2(2) (Sec. 3.1, case two)",
-     nullptr, 0,
+     nullptr, nullptr, 0,
      RKN1s2_2::c, RKN1s2_2::d, RKN1s2_2::c_exact, RKN1s2_2::d_exact, RKN1s2_2::coefficients, RKN1s2_2::series,
      RKN1s2_2::closed_forms, nullptr, 0},
-    {"RKN2s3", "RKN2s3", 2, 3, true, false, true,
+    {"RKN2s3", "RKN2s3", 2, 3, 0.0038162, true, false, true,
      "V -> 0 limit of SERKN2s3 (Sec. 3.2, case one: c1 = 1/5, abar22 = abar11 and the last condition of (r))",
-     nullptr, 0,
+     nullptr, nullptr, 0,
      RKN2s3::c, RKN2s3::d, RKN2s3::c_exact, RKN2s3::d_exact, RKN2s3::coefficients, RKN2s3::series,
      RKN2s3::closed_forms, nullptr, 0},
-    {"RKN2s4", "RKN2s4", 2, 4, true, false, true,
+    {"RKN2s4", "RKN2s4", 2, 4, 0.00977046, true, false, true,
      "V -> 0 limit of SERKN2s4 (Sec. 3.2, case two: abar11, abar22 from the 8th (corrected) and 9th conditions of (s))",
-     nullptr, 0,
+     nullptr, nullptr, 0,
      RKN2s4::c, RKN2s4::d, RKN2s4::c_exact, RKN2s4::d_exact, RKN2s4::coefficients, RKN2s4::series,
      RKN2s4::closed_forms, nullptr, 0},
-    {"RKN3s4(1)", "RKN3s4_1", 3, 4, true, false, true,
+    {"RKN3s4(1)", "RKN3s4_1", 3, 4, 0.000145197, true, false, true,
      "V -> 0 limit of SERKN3s4(1) (Sec. 3.3, case one, eq. (ekrnD); abar_ii from (Schems100) 8-10)",
-     nullptr, 0,
+     nullptr, nullptr, 0,
      RKN3s4_1::c, RKN3s4_1::d, RKN3s4_1::c_exact, RKN3s4_1::d_exact, RKN3s4_1::coefficients, RKN3s4_1::series,
      RKN3s4_1::closed_forms, nullptr, 0},
-    {"RKN3s4(2)", "RKN3s4_2", 3, 4, true, false, true,
+    {"RKN3s4(2)", "RKN3s4_2", 3, 4, 0.0607129, true, false, true,
      "V -> 0 limit of SERKN3s4(2) (Sec. 3.3, case two, eq. (ekrnE); abar_ii from (Schems100) 8-10)",
-     nullptr, 0,
+     nullptr, nullptr, 0,
      RKN3s4_2::c, RKN3s4_2::d, RKN3s4_2::c_exact, RKN3s4_2::d_exact, RKN3s4_2::coefficients, RKN3s4_2::series,
      RKN3s4_2::closed_forms, nullptr, 0},
-    {"RKN2s3pf", "RKN2s3pf", 2, 3, true, false, false,
+    {"RKN2s3pf", "RKN2s3pf", 2, 3, 0.0038162, true, false, false,
      "V -> 0 limit of SERKN2s3pf (this project: SERKN2s3 (Sec. 3.2, case one) with abar11 = abar22 = their value at V = 0)",
-     nullptr, 0,
+     nullptr, nullptr, 0,
      RKN2s3pf::c, RKN2s3pf::d, RKN2s3pf::c_exact, RKN2s3pf::d_exact, RKN2s3pf::coefficients, RKN2s3pf::series,
      RKN2s3pf::closed_forms, nullptr, 0},
-    {"RKN2s4pf", "RKN2s4pf", 2, 4, true, false, false,
+    {"RKN2s4pf", "RKN2s4pf", 2, 4, 0.00977046, true, false, false,
      "V -> 0 limit of SERKN2s4pf (this project: SERKN2s4 (Sec. 3.2, case two) with abar11, abar22 = their values at V = 0)",
-     nullptr, 0,
+     nullptr, nullptr, 0,
      RKN2s4pf::c, RKN2s4pf::d, RKN2s4pf::c_exact, RKN2s4pf::d_exact, RKN2s4pf::coefficients, RKN2s4pf::series,
      RKN2s4pf::closed_forms, nullptr, 0},
-    {"RKN3s4pf(1)", "RKN3s4pf_1", 3, 4, true, false, false,
+    {"RKN3s4pf(1)", "RKN3s4pf_1", 3, 4, 0.000145197, true, false, false,
      "V -> 0 limit of SERKN3s4pf(1) (this project: SERKN3s4(1) (Sec. 3.3, case one) with abar_ii = their values at V = 0)",
-     nullptr, 0,
+     nullptr, nullptr, 0,
      RKN3s4pf_1::c, RKN3s4pf_1::d, RKN3s4pf_1::c_exact, RKN3s4pf_1::d_exact, RKN3s4pf_1::coefficients, RKN3s4pf_1::series,
      RKN3s4pf_1::closed_forms, nullptr, 0},
-    {"RKN3s4pf(2)", "RKN3s4pf_2", 3, 4, true, false, false,
+    {"RKN3s4pf(2)", "RKN3s4pf_2", 3, 4, 0.0607129, true, false, false,
      "V -> 0 limit of SERKN3s4pf(2) (this project: SERKN3s4(2) (Sec. 3.3, case two) with abar_ii = their values at V = 0)",
-     nullptr, 0,
+     nullptr, nullptr, 0,
      RKN3s4pf_2::c, RKN3s4pf_2::d, RKN3s4pf_2::c_exact, RKN3s4pf_2::d_exact, RKN3s4pf_2::coefficients, RKN3s4pf_2::series,
      RKN3s4pf_2::closed_forms, nullptr, 0},
-    {"RKN4s6", "RKN4s6", 4, 6, true, false, false,
+    {"RKN4s6", "RKN4s6", 4, 6, 0.000593208, true, false, false,
      "V -> 0 limit of SERKN4s6 (this project: generator/search/order6_four_stages.py (issue 8), c = (x1, x2, 1-x2, 1-x1), d = (y1, 1/2-y1, 1/2-y1, y1))",
-     nullptr, 0,
+     nullptr, nullptr, 0,
      RKN4s6::c, RKN4s6::d, RKN4s6::c_exact, RKN4s6::d_exact, RKN4s6::coefficients, RKN4s6::series,
      RKN4s6::closed_forms, nullptr, 0},
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace erkn::gen {
@@ -95,6 +96,24 @@ bool any_approx(const SeriesTableau& t) {
          approx(t.bbar_mod) || approx(t.abar_mod);
 }
 
+// The norms of Certificate::error_constant and generalized_error_constant: residuals of the
+// first failing power, over all trees (K = 0) or the trees with K f-vertices.
+double leading_norm(const Certificate& cert, int power, int K) {
+  if (power > cert.max_power) return std::numeric_limits<double>::quiet_NaN();
+  double sum = 0;
+  for (const CheckedCondition& c : cert.checked)
+    if (c.condition.power == power && (K == 0 || cert.trees[c.condition.tree].fvertices == K))
+      sum += c.value * c.value;
+  return std::sqrt(sum);
+}
+
+void error_constants(Certificate& cert) {
+  cert.error_constant = leading_norm(cert, cert.order + 1, 0);
+  for (size_t K = 0; K < cert.generalized.size(); ++K)
+    cert.generalized_error_constant.push_back(
+        leading_norm(cert, cert.generalized[K] + 1, int(K) + 1));
+}
+
 }  // namespace
 
 std::vector<Qs> residuals(const SeriesTableau& t, const std::vector<SenTree>& trees,
@@ -160,7 +179,7 @@ Certificate certify(const SeriesTableau& t, bool rkn, int max_power) {
     if (rkn && (oc.j > 0 || !tree.nystrom)) continue;
     const Qs residual = residual_of(t, w, oc);
     CheckedCondition row{oc, residual.is_approx() ? approx_string(residual) : residual.to_string(),
-                         residual.is_zero()};
+                         residual.to_double(), residual.is_zero()};
     if (!row.holds) {
       out.order = std::min(out.order, oc.power - 1);
       int& g = out.generalized[tree.fvertices - 1];
@@ -168,6 +187,7 @@ Certificate certify(const SeriesTableau& t, bool rkn, int max_power) {
     }
     out.checked.push_back(std::move(row));
   }
+  error_constants(out);
   return out;
 }
 

@@ -27,6 +27,7 @@ struct SeriesTableau {
 struct CheckedCondition {
   OrderCondition condition;
   std::string residual;  ///< exact, or its value in the working precision
+  double value = 0;      ///< the residual as a double
   bool holds = false;
 };
 
@@ -36,6 +37,14 @@ struct Certificate {
   /// generalized[K-1]: the order in h of the eps^K terms for H = A + eps B (trees with K
   /// f-vertices), capped at max_power.
   std::vector<int> generalized;
+  /// The leading local error: the 2-norm of the residuals of every condition of power
+  /// order + 1 (the coefficients of h^(order+1) M^j F(tau) in the local errors of q and p, V^j
+  /// counting as h^(2j), i.e. the h -> 0 constant at fixed M for both families); NaN if
+  /// order == max_power (no condition checked fails).
+  double error_constant = 0;
+  /// generalized_error_constant[K-1]: the same norm over the trees with K f-vertices at power
+  /// generalized[K-1] + 1; NaN where generalized[K-1] == max_power.
+  std::vector<double> generalized_error_constant;
   std::vector<CheckedCondition> checked;  ///< every condition checked, by increasing power
   std::string arithmetic;                 ///< how the residuals were computed and judged
   std::vector<SenTree> trees;

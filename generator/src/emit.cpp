@@ -1,6 +1,7 @@
 #include "emit.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -132,11 +133,21 @@ std::string poles_array(const std::vector<double>& poles) {
   return "constexpr double poles[] = {\n" + joined(poles, num, true) + "};\n\n";
 }
 
+// An error constant with 6 significant digits (byte-identical on regeneration; the residuals
+// are exact or 60-digit), kNotReached where no condition checked fails.
+std::string error_number(double x) {
+  if (std::isnan(x)) return "kNotReached";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.6g", x);
+  return buf;
+}
+
 std::string generalized_array(const Derived& m, bool rkn) {
   if (rkn) return "";
   auto str = [](int x) { return std::to_string(x); };
   return "constexpr int generalized_order[] = {" + joined(m.certificate.generalized, str) +
-         "};\n\n";
+         "};\nconstexpr double generalized_error_constant[] = {" +
+         joined(m.certificate.generalized_error_constant, error_number) + "};\n\n";
 }
 
 // Index of every frequency w of the closed forms (cos(w x), sinc(w x), x = sqrt(v)).
@@ -232,11 +243,12 @@ std::string table_entry(const Derived& m, bool rkn) {
       rkn ? "V -> 0 limit of " + m.spec.name + " (" + m.spec.source + ")" : m.spec.source;
   std::ostringstream os;
   os << "    {" << quoted(name) << ", " << quoted(id) << ", " << m.stages() << ", " << cert.order
-     << ", " << (rkn ? "true" : "false") << ", "
+     << ", " << error_number(cert.error_constant) << ", " << (rkn ? "true" : "false") << ", "
      << (m.spec.kind == SpecKind::explicit_erkn ? "true" : "false") << ", "
      << (m.spec.paper ? "true" : "false") << ",\n     " << quoted(ref) << ",\n     "
-     << (rkn ? std::string("nullptr, 0")
-             : id + "::generalized_order, std::size(" + id + "::generalized_order)")
+     << (rkn ? std::string("nullptr, nullptr, 0")
+             : id + "::generalized_order, " + id + "::generalized_error_constant, std::size(" + id +
+                   "::generalized_order)")
      << ",\n     " << id << "::c, " << id << "::d, " << id << "::c_exact, " << id << "::d_exact, "
      << id << "::coefficients, " << id << "::series,\n     " << id << "::closed_forms, "
      << (has_poles ? id + "::poles, std::size(" + id + "::poles)" : std::string("nullptr, 0"))
@@ -297,7 +309,8 @@ std::string tables_cpp(const std::vector<Derived>& methods, const std::string& c
       "// switches to its Taylor series below a threshold chosen by the generator (numerics.hpp).\n"
       "#include \"erkn/generated/tables.hpp\"\n\n#include <cmath>\n#include <iterator>\n\n"
       "#include \"erkn/table_support.hpp\"\n\nnamespace erkn::generated {\nnamespace {\n\n"
-      "using support::horner;\nusing support::sinc;\nusing support::sincl;\n\n";
+      "using support::horner;\nusing support::kNotReached;\nusing support::sinc;\n"
+      "using support::sincl;\n\n";
   for (const auto& [e, rkn] : registry(methods)) out += method_cpp(*e, rkn);
   out += "}  // namespace\n\nconst Table kTables[] = {\n";
   for (const auto& [e, rkn] : registry(methods)) out += table_entry(*e, rkn);
@@ -323,7 +336,11 @@ std::string certificate_md(const Derived& m) {
      << ", " << cert.arithmetic << "): **order " << cert.order << "**"
      << (cert.order == cert.max_power ? " (every condition checked holds)" : "")
      << "; generalized order for H = A + eps B (order in h per power of eps): "
-     << generalized_md(cert) << ".";
+     << generalized_md(cert) << ". Error constant (2-norm of the residuals at h^" << cert.order + 1
+     << ", the leading local error terms): "
+     << (std::isnan(cert.error_constant) ? "none (every condition checked holds)"
+                                         : error_number(cert.error_constant))
+     << ".";
   if (!m.spec.rkn.empty())
     md << " Its V -> 0 limit " << m.spec.rkn << " (Nystrom trees, V^0): order "
        << m.rkn_certificate.order << ".";

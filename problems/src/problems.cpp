@@ -145,7 +145,38 @@ Problem problem_by_key(const std::string& key) {
   if (key == "P2") return duffing();
   if (key == "P3") return stellar_orbits();
   if (key == "FPU") return fpu();
-  throw std::invalid_argument("unknown problem '" + key + "' (known: P1, P2, P3, FPU)");
+  if (key == "HH") return henon_heiles();
+  throw std::invalid_argument("unknown problem '" + key + "' (known: P1, P2, P3, FPU, HH)");
+}
+
+Problem henon_heiles(double energy) {
+  if (!(energy > 0.005 && energy < 1.0 / 6))
+    throw std::invalid_argument("Henon-Heiles energy must lie in (0.005, 1/6), got " +
+                                format_number(energy));
+  Problem p;
+  p.key = "HH";
+  p.title = "Henon-Heiles, H0 = " + format_number(energy);
+  p.M = LinearPart::scalar(1);
+  const double y0 = 0.1, v0 = y0 * y0 / 2 - y0 * y0 * y0 / 3;  // the energy at q = (0, y0)
+  p.q0 = Eigen::Vector2d(0, y0);
+  p.p0 = Eigen::Vector2d(std::sqrt(2 * (energy - v0)), 0);
+  p.t_error = 20;
+  p.grad_u = [](const Vec& q, Vec& g) {
+    g.resize(2);
+    g[0] = 2 * q[0] * q[1];
+    g[1] = q[0] * q[0] - q[1] * q[1];
+  };
+  p.potential = [](const Vec& q) { return q[0] * q[0] * q[1] - q[1] * q[1] * q[1] / 3; };
+  p.hessian_u = [](const Vec& q) {
+    Eigen::MatrixXd h(2, 2);
+    h << 2 * q[1], 2 * q[0], 2 * q[0], -2 * q[1];
+    return h;
+  };
+  p.force_ld = [](const VecLD& q, VecLD& f) {
+    f[0] = -q[0] - 2 * q[0] * q[1];
+    f[1] = -q[1] - q[0] * q[0] + q[1] * q[1];
+  };
+  return p;
 }
 
 }  // namespace erkn::problems

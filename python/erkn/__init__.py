@@ -3,6 +3,8 @@
     sol = erkn.solve(M, grad, q0=q0, p0=p0, t_span=(0.0, 10.0), h=0.025, method="SERKN2s4",
                      t_eval=np.linspace(0, 10, 101))
     sol.t, sol.q, sol.p, sol.energy, sol.stats, sol.method
+    sol = erkn.solve(M, grad, q0=q0, p0=p0, t_span=(0.0, 10.0), tol=1e-8)   # method, h chosen
+    sol.choice["method"], sol.choice["h"], sol.choice["reason"]
 
 Settings: options=erkn.Options(...) (every field of erkn::Options, validated on assignment), or
 the shortcuts energy_tolerance= and check_stability=. Also: erkn.advise_step_size (the step-size
@@ -214,10 +216,13 @@ class Integrator(_erkn._Integrator):
 
 class Solution:
     """t (n,), q and p (n, d): row k is the state at t[k]; energy (n,) or None without a
-    potential; stats: the integrator's counters and wall time; method: the method's name."""
+    potential; stats: the integrator's counters and wall time; method: the method's name;
+    choice: with tol=, how the method and h were chosen (a dict: method, h, estimated_error,
+    reason, pilot_cpu_time, pilot_gradient_evaluations, candidates), else None."""
 
-    def __init__(self, t, q, p, energy, stats, method):
+    def __init__(self, t, q, p, energy, stats, method, choice=None):
         self.t, self.q, self.p, self.energy, self.stats, self.method = t, q, p, energy, stats, method
+        self.choice = choice
 
     def __repr__(self):
         span = f" in [{self.t[0]:g}, {self.t[-1]:g}]" if self.t.size else ""
@@ -225,33 +230,51 @@ class Solution:
                 f"d={self.q.shape[1]})")
 
 
-def solve(M, grad, *, q0, p0, t_span, h, method=_DEFAULT_METHOD, t_eval=None, every=1,
+def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None, every=1,
           potential=None, hessian=None, options=None, energy_tolerance=None,
-          check_stability=None):
-    """Integrates q'' + M q = -grad U(q) over t_span = (t0, t1) with step h.
+          check_stability=None, pilot_fraction=1.0 / 32, safety=1.0):
+    """Integrates q'' + M q = -grad U(q) over t_span = (t0, t1) with step h, or to a tolerance.
+
+    tol: the requested global error (max norm of q's error at t1). With tol, method "auto"
+    (the default then) and h None, erkn chooses both (erkn/accuracy.hpp: the methods' certified
+    orders and error constants, a short pilot on this problem with h and h/2 over
+    pilot_fraction of t_span, the advisor on M's spectrum) and aims at safety * tol; a given
+    method or h is kept. sol.choice says what was chosen and why. Without tol, h is required
+    and method defaults to "SERKN2s4".
 
     Output at t_eval (any ascending times in t_span), else at t0, every `every`-th step and
     t1. The energy H = p.p/2 + q.M q/2 + U(q) is reported when U is known (a built-in, or the
     `potential` callable); `hessian(q)` (or hessian(q, out)) helps the stage solver's Newton
     fallback. options: an erkn.Options (or a dict of its fields); energy_tolerance= and
-    check_stability= set those fields. Raises erkn.Error with erkn's message on any bad input or failed step; an error
-    (or an exception from a callback) during the run carries the output up to the last completed
-    step as its `solution` attribute."""
+    check_stability= set those fields. Raises erkn.Error with erkn's message on any bad input
+    or failed step; an error (or an exception from a callback) during the run carries the
+    output up to the last completed step as its `solution` attribute."""
     if len(t_span) != 2:
         raise Error(f"t_span must be (t0, t1); got {t_span!r}")
     t0, t1 = (_real(x, "t_span") for x in t_span)
-    run = Integrator(M, grad, q0=q0, p0=p0, h=h, method=method, t0=t0, potential=potential,
-                     hessian=hessian, options=options, energy_tolerance=energy_tolerance,
-                     check_stability=check_stability)
+    choice = None
+    if tol is not None and (method in (None, "auto") or h is None):
+        q0, p0 = _state(q0, "q0"), _state(p0, "p0")
+        opts = Options._of(options, energy_tolerance=energy_tolerance,
+                           check_stability=check_stability)
+        choice = _erkn._choose(_system(M, grad, q0.size, potential, hessian), q0, p0, t0, t1,
+                               _real(tol, "tol"), method or "auto", float(h or 0.0),
+                               float(pilot_fraction), float(safety), opts)
+        method, h = choice["method"], choice["h"]
+    elif h is None or method == "auto":
+        raise Error("solve: give h (and a method), or tol= to let erkn choose them")
+    run = Integrator(M, grad, q0=q0, p0=p0, h=h, method=method or _DEFAULT_METHOD, t0=t0,
+                     potential=potential, hessian=hessian, options=options,
+                     energy_tolerance=energy_tolerance, check_stability=check_stability)
     if t_eval is not None:
         t_eval = np.ascontiguousarray(t_eval, dtype=float)
     try:
         t, q, p, energy = run.run(t1, t_eval, every)
     except Exception as e:  # keep the output up to the last completed step (if a step began)
         if run._partial is not None:
-            e.solution = Solution(*run._partial, run.statistics, run.method)
+            e.solution = Solution(*run._partial, run.statistics, run.method, choice)
         raise
-    return Solution(t, q, p, energy, run.statistics, run.method)
+    return Solution(t, q, p, energy, run.statistics, run.method, choice)
 
 
 def stability(name, V, z=0.0):

@@ -1,11 +1,13 @@
 // The step-size advisor (erkn/advisor.hpp): advise_step_size with its findings and report, and
-// the Hessian bounds it takes, at a state or along a pilot run.
+// the Hessian bounds it takes, at a state or along a pilot run; the accuracy-driven choice of
+// method and step (erkn/accuracy.hpp) behind erkn.solve(..., tol=).
 #include "erkn/advisor.hpp"
 
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "erkn/accuracy.hpp"
 #include "system.hpp"
 
 namespace erkn::python {
@@ -84,8 +86,44 @@ void bind_advice(py::module_& m) {
 
 }  // namespace
 
+namespace {
+
+// erkn::Choice as the dict Solution.choice carries.
+py::dict choice_dict(const Choice& c) {
+  py::dict d;
+  d["method"] = c.method, d["h"] = c.h, d["estimated_error"] = c.estimated_error;
+  d["pilot_cpu_time"] = c.pilot_cpu, d["pilot_gradient_evaluations"] = c.pilot_gradient_evaluations;
+  d["reason"] = c.reason;
+  py::list candidates;
+  for (const Candidate& k : c.candidates) {
+    py::dict e;
+    e["method"] = k.method, e["piloted"] = k.piloted, e["h"] = k.h;
+    e["estimated_error"] = k.estimated_error, e["predicted_cpu_time"] = k.predicted_cpu;
+    candidates.append(e);
+  }
+  d["candidates"] = candidates;
+  return d;
+}
+
+void bind_choice(py::module_& m) {
+  m.def(
+      "_choose",
+      [](const PySystem& s, const Eigen::VectorXd& q0, const Eigen::VectorXd& p0, double t0,
+         double t1, double tol, const std::string& method, double h, double pilot_fraction,
+         double safety, const Options& options) {
+        AccuracyRequest r{tol, method, h, pilot_fraction, safety};
+        return choice_dict(choose_method_and_step(s.system, q0, p0, t0, t1, r, options));
+      },
+      py::arg("system"), py::arg("q0"), py::arg("p0"), py::arg("t0"), py::arg("t1"), py::arg("tol"),
+      py::arg("method"), py::arg("h"), py::arg("pilot_fraction"), py::arg("safety"),
+      py::arg("options"));
+}
+
+}  // namespace
+
 void bind_advisor(py::module_& m) {
   bind_advice(m);
+  bind_choice(m);
   m.def(
       "_advise",
       [](const std::string& method, const Eigen::VectorXd& eigenvalues, double h, double lo,

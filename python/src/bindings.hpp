@@ -18,7 +18,8 @@ void bind_system(py::module_& m);
 void bind_integrator(py::module_& m);
 /// Options (every erkn::Options field, validated on assignment by erkn::validate).
 void bind_options(py::module_& m);
-/// advise_step_size with its report, hessian_bounds_at and hessian_bounds_along.
+/// advise_step_size with its report, hessian_bounds_at and hessian_bounds_along; _choose
+/// (choose_method_and_step).
 void bind_advisor(py::module_& m);
 /// Ensemble: trajectories on threads, without the GIL for built-in potentials.
 void bind_ensemble(py::module_& m);

@@ -3,6 +3,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <limits>
 
 #include "bindings.hpp"
@@ -21,6 +22,14 @@ py::dict describe(const Method& m) {
   d["order"] = m.order();
   d["generalized_order"] =
       std::vector<int>(m.generalized_order().begin(), m.generalized_order().end());
+  // NaN (no failing condition checked) is None, as `erkn list --json` writes null.
+  const auto constant = [](double x) -> py::object {
+    return std::isnan(x) ? py::object(py::none()) : py::object(py::float_(x));
+  };
+  d["error_constant"] = constant(m.error_constant());
+  py::list generalized_constants;
+  for (double x : m.generalized_error_constant()) generalized_constants.append(constant(x));
+  d["generalized_error_constant"] = generalized_constants;
   d["poles"] = std::vector<double>(m.poles().begin(), m.poles().end());
   d["source"] = std::string(m.reference());
   d["paper"] = m.from_paper();
@@ -82,7 +91,8 @@ void bind_registry(py::module_& m) {
         return out;
       },
       "every generated method as a dict with the fields of `erkn list --json`: name, kind "
-      "(explicit, erkn, rkn), stages, order, generalized_order, poles, source, paper, id");
+      "(explicit, erkn, rkn), stages, order, generalized_order, error_constant, "
+      "generalized_error_constant (None: no failing condition checked), poles, source, paper, id");
   m.def(
       "load_methods",
       [](const std::string& path) {

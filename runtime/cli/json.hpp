@@ -1,6 +1,7 @@
 // Minimal JSON writing for the CLI: numbers with 17 significant digits, lists, strings.
 #pragma once
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -12,6 +13,9 @@ inline std::string json_number(double x) {
   std::snprintf(buf, sizeof buf, "%.17g", x);
   return buf;
 }
+
+/// A number, or null for NaN (JSON has no NaN).
+inline std::string json_number_or_null(double x) { return std::isnan(x) ? "null" : json_number(x); }
 
 inline std::string json_list(const std::vector<double>& xs) {
   std::string out = "[";

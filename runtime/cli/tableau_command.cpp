@@ -6,6 +6,7 @@
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -55,8 +56,16 @@ double parse_number(const char* option, const char* text) {
   return x;
 }
 
-// One JSON object per method: name, kind, stages, certified order, generalized order, poles,
-// source, whether it is one of the paper's methods, and the id (erkn.methods() has the same).
+// A list of error constants, null where the generator found no failing condition.
+std::string json_constants(std::span<const double> xs) {
+  std::string out = "[";
+  for (size_t i = 0; i < xs.size(); ++i) out += (i ? ", " : "") + json_number_or_null(xs[i]);
+  return out + "]";
+}
+
+// One JSON object per method: name, kind, stages, certified order, generalized order, the
+// error constants, poles, source, whether it is one of the paper's methods, and the id
+// (erkn.methods() has the same).
 void list_json() {
   std::cout << "[";
   bool first = true;
@@ -67,6 +76,9 @@ void list_json() {
               << ", \"kind\": " << json_string(std::string(m.kind_name()))
               << ", \"stages\": " << m.stages() << ", \"order\": " << m.order()
               << ", \"generalized_order\": " << json_list(generalized)
+              << ", \"error_constant\": " << json_number_or_null(m.error_constant())
+              << ", \"generalized_error_constant\": "
+              << json_constants(m.generalized_error_constant())
               << ", \"poles\": " << json_list(poles)
               << ", \"source\": " << json_string(std::string(m.reference()))
               << ", \"paper\": " << (m.from_paper() ? "true" : "false")

@@ -1,15 +1,14 @@
 #include "erkn/integrator.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <ctime>
 #include <limits>
 #include <string>
 #include <type_traits>
 #include <utility>
 
 #include "blowup_guard.hpp"
+#include "clock.hpp"
 #include "erkn/advisor.hpp"
 #include "erkn/error.hpp"
 #include "explicit_stepper.hpp"
@@ -191,20 +190,8 @@ void Integrator::step(long n) {
   for (long k = 0; k < n; ++k) step();
 }
 
-namespace {
-
-double wall_seconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-// CPU time of the calling thread: an Ensemble's trajectories on other threads do not count.
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
-}  // namespace
+using detail::cpu_seconds;
+using detail::wall_seconds;
 
 Integrator::Timer::Timer(Integrator& run, bool read_cpu)
     : run_(run.timing_ ? nullptr : &run),

@@ -45,6 +45,8 @@ class EachProblem : public ::testing::TestWithParam<int> {
         return duffing();
       case 2:
         return stellar_orbits();
+      case 4:
+        return erkn::problems::henon_heiles();
       default:  // the stiff scene's kappa scales grad U, U and the Hessian alike
         return sine_gordon(4, 10);
     }
@@ -86,7 +88,7 @@ TEST_P(EachProblem, EigenvaluesAreThoseOfTheDenseMatrix) {
   EXPECT_LT((dense - ours).lpNorm<Eigen::Infinity>(), 1e-9 * (1 + dense.maxCoeff()));
 }
 
-INSTANTIATE_TEST_SUITE_P(P1P2P3AndKappa, EachProblem, ::testing::Values(0, 1, 2, 3));
+INSTANTIATE_TEST_SUITE_P(P1P2P3KappaAndHenonHeiles, EachProblem, ::testing::Values(0, 1, 2, 3, 4));
 
 TEST(Problems, SineGordonGridAndInitialData) {
   const Problem p = sine_gordon(32);

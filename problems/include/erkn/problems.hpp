@@ -62,8 +62,12 @@ Problem sine_gordon_2d(int n);
 /// x0_1 = 1, x0_1' = 1, x1_1 = 1/omega, x1_1' = 1, all else 0. Its numerical resonances at
 /// h omega near k pi are what erkn::advise_step_size is tested on.
 Problem fpu(int m = 3, double omega = 50);
+/// Henon-Heiles: H = |p|^2/2 + |q|^2/2 + q1^2 q2 - q2^3/3 (M = I, U = q1^2 q2 - q2^3/3), started
+/// at q = (0, 0.1), p = (p1, 0) with p1 > 0 from the energy H0 (below the escape energy 1/6);
+/// error at t = 20.
+Problem henon_heiles(double energy = 0.13);
 
-/// "P1", "P2", "P3" -> the paper's problem, "FPU" -> fpu(); throws std::invalid_argument
+/// "P1", "P2", "P3" -> the paper's problem, "FPU" -> fpu(), "HH" -> henon_heiles(); throws std::invalid_argument
 /// otherwise.
 Problem problem_by_key(const std::string& key);
 

@@ -33,6 +33,7 @@
 // ("SERKN3s4(1)") or the id ("SERKN3s4_1"), Method::get(MethodId::SERKN3s4_1) the id.
 #pragma once
 
+#include "erkn/accuracy.hpp"
 #include "erkn/advisor.hpp"
 #include "erkn/ensemble.hpp"
 #include "erkn/error.hpp"

@@ -77,6 +77,14 @@ class Method {
   std::span<const int> generalized_order() const {
     return {table_->generalized_order, size_t(table_->ngeneralized)};
   }
+  /// The generator's leading error constant (table.hpp: the 2-norm of the residuals of the
+  /// order conditions of power order() + 1); NaN if none of the conditions checked fails.
+  double error_constant() const { return table_->error_constant; }
+  /// The same per power of eps (index K-1), at power generalized_order()[K-1] + 1; empty for
+  /// RKN limits, NaN entries where no condition checked fails.
+  std::span<const double> generalized_error_constant() const {
+    return {table_->generalized_error_constant, size_t(table_->ngeneralized)};
+  }
   std::string_view reference() const { return table_->reference; }
   int num_coefficients() const { return 2 * stages() + stages() * (stages() + 1) / 2; }
 

@@ -13,6 +13,12 @@ struct Table {
   /// Classical order certified by the generator: every order condition of eq. (f) (SEN-trees)
   /// up to h^order holds (generated/derivation.md lists them).
   int order;
+  /// The leading local error term's size: the 2-norm of the residuals of every order condition
+  /// of power order + 1 (the coefficients of h^(order+1) M^j F(tau), V^j = h^2j M^j counted in
+  /// h, in the local errors of q and p; for the implicit family the V-dependence enters through
+  /// these [V^j] terms, i.e. it is the h -> 0 constant at fixed M). NaN if every condition the
+  /// generator checked holds.
+  double error_constant;
   bool rkn;               ///< true: V -> 0 limit (constant coefficients, force -Mq - grad U)
   bool explicit_method;   ///< abar_ii = 0: a splitting method (exact linear flow and kicks)
   bool paper;             ///< a method of the source paper (or its V -> 0 limit)
@@ -20,6 +26,9 @@ struct Table {
   /// For H = A + eps B: generalized_order[K-1] is the order in h of the eps^K terms of the
   /// local error (certified, capped at the powers checked); empty for RKN limits.
   const int* generalized_order;
+  /// generalized_error_constant[K-1]: the same norm over the trees with K f-vertices at power
+  /// generalized_order[K-1] + 1 (NaN where none of them fails up to the powers checked).
+  const double* generalized_error_constant;
   int ngeneralized;
   const double* c;             ///< nodes c_1..c_s
   const double* d;             ///< symplectic weights d_1..d_s of Theorem 2, eq. (g)

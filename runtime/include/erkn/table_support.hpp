@@ -2,10 +2,14 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 
 #include "erkn/generated/tables.hpp"
 
 namespace erkn::generated::support {
+
+/// An error constant the certificate could not give: every condition checked holds.
+inline constexpr double kNotReached = std::numeric_limits<double>::quiet_NaN();
 
 /// sin(t)/t, with its limit 1 at t = 0.
 inline double sinc(double t) { return t == 0.0 ? 1.0 : std::sin(t) / t; }

@@ -1,0 +1,252 @@
+// erkn::solve with tol (method "auto", no h) against an exhaustive sweep over the registry.
+//
+// For every scene (P1, P2, P3, FPU, Henon-Heiles, 2-D sine-Gordon 32^2) and tol = 1e-4, 1e-6,
+// 1e-8, 1e-10: the achieved error of q at t_end (max norm, against the exact solution or a
+// long-double RKF7(8) reference) must lie in [tol/100, 3 tol], and the CPU of the whole solve
+// (choice with its pilots + run) must be <= 1.5x the cheapest (method, h) of the sweep whose
+// error is <= tol. The sweep runs every registry method at h = t_end / n, n = 2 * 2^(k/4), from
+// the coarsest step down until the error is below the smallest tol or the run costs twice the
+// best known for every tol it has not met. The final ratio is re-timed interleaved (auto, best,
+// auto, ...: 7 rounds, median of per-round ratios). Thread CPU time; the machine is shared.
+//
+//   erkn_accuracy_benchmark [--markdown FILE] [--scene KEY]
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <erkn/accuracy.hpp>
+#include <erkn/error.hpp>
+#include <erkn/problems.hpp>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "reference.hpp"
+#include "thread_seconds.hpp"
+
+namespace {
+
+using erkn::problems::Problem;
+constexpr double kTols[] = {1e-4, 1e-6, 1e-8, 1e-10};
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Scene {
+  Problem problem;
+  Eigen::VectorXd reference;
+  std::string reference_note;
+};
+
+Scene scene(Problem p) {
+  ex::Reference r = p.force_ld
+                        ? ex::reference_solution(p, p.t_error, 1e-13)
+                        : ex::reference_solution(p, p.t_error, 1e-12, ex::Precision::double_);
+  return {std::move(p), r.q,
+          r.method + (r.accuracy > 0 ? ", last halving changed " + std::to_string(r.accuracy)
+                                     : std::string())};
+}
+
+struct Run {
+  std::string method;
+  double h = 0, error = kInf, cpu = kInf;
+};
+
+// One fixed-step run as a user calls it: construction + integrate; error at t_end.
+Run fixed(const Scene& s, const erkn::Method& m, double h) {
+  Run out{std::string(m.name()), h};
+  const double t0 = bench::thread_seconds();
+  try {
+    erkn::Integrator it(m, erkn::problems::system(s.problem), h, s.problem.q0, s.problem.p0);
+    it.integrate(s.problem.t_error);
+    out.error = (it.q() - s.reference).lpNorm<Eigen::Infinity>();
+    if (!std::isfinite(out.error)) out.error = kInf;
+  } catch (const erkn::Error&) {  // a pole, a failed stage: no result at this h
+    return out;
+  }
+  out.cpu = bench::thread_seconds() - t0;
+  return out;
+}
+
+// The whole accuracy-driven solve: choice (pilots, advisor) + run.
+Run automatic(const Scene& s, double tol) {
+  erkn::AccuracyRequest r;
+  r.tol = tol;
+  const double t0 = bench::thread_seconds();
+  const erkn::Solution sol = erkn::solve(erkn::problems::system(s.problem), s.problem.q0,
+                                         s.problem.p0, 0, s.problem.t_error, r);
+  Run out{sol.method, sol.h, (sol.q - s.reference).lpNorm<Eigen::Infinity>(),
+          bench::thread_seconds() - t0};
+  return out;
+}
+
+// The cheapest run with error <= tol, per tol, over every method and step of the sweep.
+using Best = std::map<double, Run>;
+
+// Has this method still a tol whose best is unknown or more than half its current cost?
+bool worth_finer(const Best& best, double error, double cpu) {
+  for (double tol : kTols)
+    if (error > tol && (!best.count(tol) || cpu < 2 * best.at(tol).cpu)) return true;
+  return false;
+}
+
+void sweep_method(const Scene& s, const erkn::Method& m, Best& best, long& runs) {
+  for (int k = 0;; ++k) {
+    const double n = std::ceil(2 * std::pow(2.0, k / 4.0));
+    if (n > 4e6) return;
+    const Run r = fixed(s, m, s.problem.t_error / n);
+    ++runs;
+    for (double tol : kTols)
+      if (r.error <= tol && (!best.count(tol) || r.cpu < best.at(tol).cpu)) best[tol] = r;
+    if (r.error <= kTols[3] || (std::isfinite(r.cpu) && r.cpu > 2.0)) return;
+    if (std::isfinite(r.cpu) && !worth_finer(best, r.error, r.cpu)) return;
+  }
+}
+
+// Every registry method, highest order first (they set the bounds that prune the others).
+Best sweep(const Scene& s, long& runs) {
+  std::vector<const erkn::Method*> methods;
+  for (const erkn::Method& m : erkn::Method::all()) methods.push_back(&m);
+  std::stable_sort(methods.begin(), methods.end(),
+                   [](auto* a, auto* b) { return a->order() > b->order(); });
+  Best best;
+  for (const erkn::Method* m : methods) sweep_method(s, *m, best, runs);
+  return best;
+}
+
+double median(std::vector<double> x) {
+  std::sort(x.begin(), x.end());
+  return x[x.size() / 2];
+}
+
+// CPU of auto over CPU of the sweep's best, interleaved: median of 7 per-round ratios.
+double interleaved_ratio(const Scene& s, double tol, const Run& best, Run& last_auto) {
+  std::vector<double> ratios;
+  for (int round = 0; round < 7; ++round) {
+    last_auto = automatic(s, tol);
+    const Run b = fixed(s, erkn::Method::by_name(best.method), best.h);
+    ratios.push_back(last_auto.cpu / b.cpu);
+  }
+  return median(ratios);
+}
+
+struct Row {
+  std::string scene;
+  double tol = 0;
+  Run automatic, best;
+  double ratio = kInf;
+  bool window = false, cheap = false;
+};
+
+std::string sci(double x, int digits = 2) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.*e", digits, x);
+  return buf;
+}
+
+std::string fixed_digits(double x, int digits = 2) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, x);
+  return buf;
+}
+
+std::string markdown_row(const Row& r) {
+  return "| " + r.scene + " | " + sci(r.tol, 0) + " | " + r.automatic.method + " | " +
+         sci(r.automatic.h) + " | " + sci(r.automatic.error) + " | " +
+         (r.window ? "met" : "**NOT met**") + " | " + r.best.method + " | " + sci(r.best.h) +
+         " | " + sci(r.best.error) + " | " + fixed_digits(r.ratio) + " | " +
+         (r.cheap ? "met" : "**NOT met**") + " |\n";
+}
+
+}  // namespace
+
+namespace {
+
+std::vector<Problem> problems_of(const std::string& only) {
+  std::vector<Problem> all = {erkn::problems::sine_gordon(32),  erkn::problems::duffing(),
+                              erkn::problems::stellar_orbits(), erkn::problems::fpu(),
+                              erkn::problems::henon_heiles(),   erkn::problems::sine_gordon_2d(32)};
+  std::vector<Problem> out;
+  for (Problem& p : all)
+    if (only.empty() || p.key == only) out.push_back(std::move(p));
+  return out;
+}
+
+std::vector<Row> rows_of(const Scene& s, std::string& notes) {
+  long runs = 0;
+  const double t0 = bench::thread_seconds();
+  const Best best = sweep(s, runs);
+  notes += "- " + s.problem.key + " (" + s.problem.title +
+           ", t_end = " + fixed_digits(s.problem.t_error, 0) +
+           ", d = " + std::to_string(s.problem.dim()) + "): reference " + s.reference_note +
+           "; sweep " + std::to_string(runs) + " runs, " +
+           fixed_digits(bench::thread_seconds() - t0) + " s CPU.\n";
+  std::vector<Row> out;
+  for (double tol : kTols) {
+    Row r{s.problem.key, tol};
+    if (!best.count(tol)) {
+      notes += "- " + s.problem.key + ", tol " + sci(tol, 0) + ": no swept run reached it.\n";
+      continue;
+    }
+    r.best = best.at(tol);
+    r.ratio = interleaved_ratio(s, tol, r.best, r.automatic);
+    r.window = r.automatic.error <= 3 * tol && r.automatic.error >= tol / 100;
+    r.cheap = r.ratio <= 1.5;
+    std::cerr << markdown_row(r);
+    out.push_back(r);
+  }
+  return out;
+}
+
+std::string markdown(const std::vector<Row>& rows, const std::string& notes) {
+  int window = 0, cheap = 0;
+  for (const Row& r : rows) window += r.window, cheap += r.cheap;
+  std::string out =
+      "# Accuracy-driven runs: erkn::solve(tol) against the cheapest swept (method, h)\n\n"
+      "<!-- Written by bench/accuracy_benchmark.cpp (erkn_accuracy_benchmark --markdown), run "
+      "by scripts/main.sh. Do not edit. -->\n\n"
+      "erkn::solve with tol, method \"auto\" and no h (erkn/accuracy.hpp: error constants, a "
+      "pilot with step doubling, the advisor) against an exhaustive sweep over the registry "
+      "(every method at h = t_end/n, n = 2 * 2^(k/4), pruned where it cannot win). Error: "
+      "max norm of q at t_end against the reference. Targets: error in [tol/100, 3 tol]; CPU "
+      "of the whole solve (choice + run) <= 1.5x the cheapest swept run with error <= tol "
+      "(construction + integrate), re-timed interleaved, median of 7 per-round ratios; thread "
+      "CPU time on a shared machine.\n\n"
+      "Error window met in " +
+      std::to_string(window) + " / " + std::to_string(rows.size()) + " cases, CPU <= 1.5x in " +
+      std::to_string(cheap) + " / " + std::to_string(rows.size()) +
+      ".\n\n| scene | tol | auto | h | error | window | sweep's best | h | error | CPU "
+      "ratio | <= 1.5x |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const Row& r : rows) out += markdown_row(r);
+  return out + "\n" + notes;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string markdown_file, only;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string a = argv[i];
+    if (a == "--markdown")
+      markdown_file = argv[i + 1];
+    else if (a == "--scene")
+      only = argv[i + 1];
+    else {
+      std::cerr << "usage: erkn_accuracy_benchmark [--markdown FILE] [--scene KEY]\n";
+      return 2;
+    }
+  }
+  std::vector<Row> rows;
+  std::string notes;
+  for (Problem& p : problems_of(only)) {
+    const Scene s = scene(std::move(p));
+    for (Row& r : rows_of(s, notes)) rows.push_back(r);
+  }
+  const std::string md = markdown(rows, notes);
+  if (markdown_file.empty()) {
+    std::cout << md;
+  } else {
+    std::ofstream(markdown_file) << md;
+  }
+  return 0;
+}

@@ -1,0 +1,304 @@
+#include "erkn/accuracy.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "accuracy_pilot.hpp"
+#include "clock.hpp"
+#include "erkn/advisor.hpp"
+#include "erkn/error.hpp"
+#include "format.hpp"
+
+namespace erkn {
+namespace {
+
+using detail::Pilot;
+
+// Gradient evaluations per step: s, one less when the last kick is the next step's first (FSAL).
+int gradients_per_step(const Method& m) {
+  const auto& t = m.table();
+  const bool fsal = m.is_explicit() && m.stages() > 1 && t.c[0] == 0 && t.c[m.stages() - 1] == 1;
+  return m.stages() - (fsal ? 1 : 0);
+}
+
+// The a priori error model without F (t_end - t0): sum_K r^K C_K h^(g_K); the classical
+// C h^p where the generalized constants are unknown.
+double model(const Method& m, double r, double h) {
+  const auto g = m.generalized_order();
+  const auto C = m.generalized_error_constant();
+  double sum = 0;
+  for (size_t K = 0; K < g.size(); ++K)
+    if (std::isfinite(C[K])) sum += std::pow(r, double(K + 1)) * C[K] * std::pow(h, g[K]);
+  if (sum == 0 && std::isfinite(m.error_constant()))
+    sum = m.error_constant() * std::pow(h, m.order());
+  return sum;
+}
+
+// The h <= h_max with model(h) = level (model grows with h): bisection in log h.
+double model_step(const Method& m, double r, double level, double h_max) {
+  if (model(m, r, h_max) <= level) return h_max;
+  double lo = h_max * 1e-12, hi = h_max;
+  for (int k = 0; k < 60; ++k) {
+    const double mid = std::sqrt(lo * hi);
+    (model(m, r, mid) > level ? hi : lo) = mid;
+  }
+  return lo;
+}
+
+// r = min(1, max |eigenvalue of U's Hessian at q0| / smallest eigenvalue of M): the size of the
+// perturbation against the linear part (1 where M has a zero eigenvalue or no bounds).
+double perturbation(const System& s, const HessianBounds& b) {
+  const double smallest = s.M.eigenvalues().minCoeff();
+  const double hessian = std::max(std::abs(b.lo), std::abs(b.hi));
+  return smallest > 0 && (b.lo != 0 || b.hi != 0) ? std::min(1.0, hessian / smallest) : 1.0;
+}
+
+// The Hessian bounds at q0 when affordable (a user Hessian, or d <= 256 finite differences).
+HessianBounds bounds_at(const System& s, const Eigen::VectorXd& q0) {
+  return s.hessian || q0.size() <= 256 ? hessian_bounds_at(s, q0) : HessianBounds{};
+}
+
+void validate(const AccuracyRequest& r, double t0, double t_end) {
+  if (!(std::isfinite(t0) && std::isfinite(t_end) && t_end > t0))
+    throw Error("solve: t_end must be finite and after t0, got t0 = " + format(t0) +
+                ", t_end = " + format(t_end));
+  if (!(std::isfinite(r.tol) && r.tol >= 0))
+    throw Error("solve: tol must be finite and >= 0, got " + format(r.tol));
+  if (!(std::isfinite(r.h) && r.h >= 0))
+    throw Error("solve: h must be finite and >= 0 (0: chosen), got " + format(r.h));
+  if (!(r.pilot_fraction > 0 && r.pilot_fraction <= 1))
+    throw Error("solve: pilot_fraction must lie in (0, 1], got " + format(r.pilot_fraction));
+  if (!(r.safety > 0 && r.safety <= 1))
+    throw Error("solve: safety must lie in (0, 1], got " + format(r.safety));
+  if ((r.method == "auto" || r.h == 0) && r.tol == 0)
+    throw Error("solve: give tol (the requested error) to choose " +
+                std::string(r.method == "auto" ? "the method" : "the step size h") +
+                ", or both a method and h");
+}
+
+std::vector<const Method*> candidates(const AccuracyRequest& r) {
+  if (r.method != "auto") return {&Method::by_name(r.method)};
+  std::vector<const Method*> out;
+  for (const Method& m : Method::all())
+    if (m.is_explicit()) out.push_back(&m);
+  return out;
+}
+
+// Everything the search knows: the request, the pilots run so far and their cost.
+struct Search {
+  detail::PilotRequest pilot;
+  double target = 0, r = 1;
+  std::vector<const Method*> methods;
+  std::vector<std::pair<const Method*, Pilot>> piloted;
+  double cpu = 0;
+  long gradients = 0;
+  HessianBounds bounds;         // at q0 (zero when not affordable)
+  double F = 1;                 // the problem factor of the model, from the first pilot
+  double cpu_per_gradient = 0;  // of the first pilot
+};
+
+const Pilot* pilot_of(const Search& s, const Method* m) {
+  for (const auto& [pm, pl] : s.piloted)
+    if (pm == m) return &pl;
+  return nullptr;
+}
+
+// The pilot request with m's error shape.
+detail::PilotRequest shaped(const Search& s, const Method& m) {
+  detail::PilotRequest r = s.pilot;
+  const double rr = s.r;
+  r.shape = [&m, rr](double h) { return model(m, rr, h); };
+  return r;
+}
+
+// The predicted step, error and CPU of m: from its own pilot, else from the calibrated model.
+Candidate predict(const Method& m, const Search& s) {
+  Candidate c{std::string(m.name()), false, 0, s.target, 0};
+  const double span = s.pilot.span;
+  if (const Pilot* pl = pilot_of(s, &m)) {
+    c.piloted = true;
+    const detail::PilotRequest r = shaped(s, m);
+    c.h = detail::step_for(r, *pl, s.target);
+    c.estimated_error = pl->error * r.shape(c.h) / r.shape(pl->h);
+    c.predicted_cpu = pl->cpu_per_gradient * gradients_per_step(m) * std::ceil(span / c.h);
+    return c;
+  }
+  c.h = model_step(m, s.r, s.target / (span * s.F), span);
+  c.predicted_cpu = s.cpu_per_gradient * gradients_per_step(m) * std::ceil(span / c.h);
+  return c;
+}
+
+// Pilots m from h_start; records it (and its cost) when it succeeds. Returns success.
+bool run_pilot(Search& s, const Method& m, double h_start, std::string& failures) {
+  Pilot pl = detail::calibrated_pilot(m, shaped(s, m), h_start, s.target);
+  s.cpu += pl.cpu, s.gradients += pl.gradients;
+  if (!pl.ok) {
+    failures +=
+        std::string(failures.empty() ? "" : "; ") + std::string(m.name()) + ": " + pl.failure;
+    return false;
+  }
+  if (s.piloted.empty()) {
+    const double base = model(m, s.r, pl.h) * s.pilot.span;
+    s.F = base > 0 && pl.error > 0 ? pl.error / base : 1;
+    s.cpu_per_gradient = pl.cpu_per_gradient;
+  }
+  s.piloted.emplace_back(&m, pl);
+  return true;
+}
+
+std::vector<Candidate> ranked(const Search& s) {
+  std::vector<Candidate> out;
+  for (const Method* m : s.methods) out.push_back(predict(*m, s));
+  std::stable_sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) {
+    return a.predicted_cpu < b.predicted_cpu;
+  });
+  return out;
+}
+
+// The first pilot: the model's best method at F = 1 (the next ones if its pilot fails), from the
+// coarsest step (two over the pilot interval): refining costs less than coarsening.
+void first_pilot(Search& s) {
+  std::vector<std::pair<double, const Method*>> order;
+  const double span = s.pilot.span;
+  for (const Method* m : s.methods)
+    order.emplace_back(gradients_per_step(*m) / model_step(*m, s.r, s.target / span, span), m);
+  std::stable_sort(order.begin(), order.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::string failures;
+  for (size_t i = 0; i < order.size() && i < 3; ++i)
+    if (run_pilot(s, *order[i].second, s.pilot.pilot / 2, failures)) return;
+  throw Error("solve: no method could be piloted on this problem (" + failures + ")");
+}
+
+// Pilots what the calibrated model predicts cheaper than every piloted method (by 20 %; at
+// most two more pilots); a method whose pilot fails leaves the candidates.
+void more_pilots(Search& s) {
+  std::string failures;
+  for (int k = 0; k < 2; ++k) {
+    const std::vector<Candidate> list = ranked(s);
+    const auto best =
+        std::find_if(list.begin(), list.end(), [](const Candidate& c) { return c.piloted; });
+    if (list.front().piloted || list.front().predicted_cpu >= 0.8 * best->predicted_cpu) return;
+    const Method& m = Method::by_name(list.front().method);
+    if (!run_pilot(s, m, std::min(s.pilot.pilot / 2, 2 * list.front().h), failures))
+      s.methods.erase(std::find(s.methods.begin(), s.methods.end(), &m));
+  }
+}
+
+// A user-given h: the cheapest candidate predicted to reach the target with it, else the most
+// accurate one.
+Candidate with_given_step(const Search& s, double h) {
+  std::vector<Candidate> list = ranked(s);
+  for (Candidate& c : list) {
+    const Method& m = Method::by_name(c.method);
+    const Pilot* pl = pilot_of(s, &m);
+    c.h = h;
+    c.estimated_error =
+        pl ? pl->error * std::pow(h / pl->h, m.order()) : s.F * s.pilot.span * model(m, s.r, h);
+    c.predicted_cpu = s.cpu_per_gradient * gradients_per_step(m) * std::ceil(s.pilot.span / h);
+  }
+  const auto reaches = [&](const Candidate& c) { return c.estimated_error <= s.target; };
+  const auto cheaper = [&](const Candidate& a, const Candidate& b) {
+    return reaches(a) != reaches(b) ? reaches(a)
+           : reaches(a)             ? a.predicted_cpu < b.predicted_cpu
+                                    : a.estimated_error < b.estimated_error;
+  };
+  return *std::min_element(list.begin(), list.end(), cheaper);
+}
+
+// The advisor's word on h (M's spectrum, Hessian bounds at q0 when affordable): a flagged h is
+// replaced by the suggestion when that is smaller.
+double advised(const Method& m, const System& sys, const HessianBounds& bounds, double h,
+               std::string& note) {
+  const StepSizeAdvice a = advise_step_size(m, sys.M.eigenvalues(), h, bounds);
+  if (a.safe()) {
+    note = "the advisor finds no pole, instability or resonance at this h";
+    return h;
+  }
+  const std::string hazard(to_string(a.findings.front().hazard));
+  if (std::isfinite(a.suggested_h) && a.suggested_h < h) {
+    note = "the advisor flags " + hazard + " at h = " + format(h, 4) + "; its suggestion taken";
+    return a.suggested_h;
+  }
+  note = "the advisor flags " + hazard + " at h = " + format(h, 4) + " (no smaller h suggested)";
+  return h;
+}
+
+}  // namespace
+}  // namespace erkn
+
+namespace erkn {
+namespace {
+
+std::string reason_of(const Choice& c, const Search& s, const std::string& advice) {
+  const Method& m = Method::by_name(c.method);
+  const Pilot* pl = pilot_of(s, &m);
+  std::string out = c.method + " (" + std::string(m.kind_name()) + ", order " +
+                    std::to_string(m.order()) + ", error constant " +
+                    format(m.error_constant(), 3) + "; perturbation size r = " + format(s.r, 3) +
+                    ")";
+  if (pl)
+    out += ": its pilot over " + format(s.pilot.pilot, 4) + " of " + format(s.pilot.span, 4) +
+           " at h = " + format(pl->h, 4) + " and h/2 estimates " + format(pl->error, 3) +
+           " at t_end (step doubling, error grown linearly in t)";
+  out += "; h = " + format(c.h, 6) + " aims at " + format(s.target, 3) + " (estimated " +
+         format(c.estimated_error, 3) + ")";
+  if (c.candidates.size() > 1)
+    out += "; next cheapest: " + c.candidates[1].method + " (predicted CPU " +
+           format(c.candidates[1].predicted_cpu / c.candidates.front().predicted_cpu, 3) + "x)";
+  return out + "; " + advice + ".";
+}
+
+}  // namespace
+
+Choice choose_method_and_step(const System& system, const Eigen::VectorXd& q0,
+                              const Eigen::VectorXd& p0, double t0, double t_end,
+                              const AccuracyRequest& request, const Options& options) {
+  validate(request, t0, t_end);
+  if (request.tol == 0) throw Error("solve: choosing a method or h needs tol > 0");
+  const double cpu_0 = detail::cpu_seconds();
+  Search s;
+  s.pilot = {&system, &q0, &p0, options, t_end - t0, (t_end - t0) * request.pilot_fraction};
+  s.target = request.safety * request.tol;
+  s.methods = candidates(request);
+  if (!system.gradient) throw Error("solve: the system has no gradient");
+  s.bounds = bounds_at(system, q0);
+  s.r = perturbation(system, s.bounds);
+  first_pilot(s);
+  if (request.h == 0) more_pilots(s);
+  const std::vector<Candidate> list = ranked(s);
+  Candidate best = request.h > 0 ? with_given_step(s, request.h)
+                                 : *std::find_if(list.begin(), list.end(),
+                                                 [](const Candidate& c) { return c.piloted; });
+  Choice c{best.method, best.h, best.estimated_error, 0, 0, list, ""};
+  std::string advice = "h given by the user";
+  const Method& m = Method::by_name(c.method);
+  if (request.h == 0) {
+    const double h = advised(m, system, s.bounds, best.h, advice);
+    c.h = s.pilot.span / std::ceil(s.pilot.span / h * (1 - 1e-12));  // whole steps to t_end
+    c.estimated_error *= model(m, s.r, c.h) / model(m, s.r, best.h);
+  }
+  c.reason = reason_of(c, s, advice);
+  c.pilot_gradient_evaluations = s.gradients;
+  c.pilot_cpu = detail::cpu_seconds() - cpu_0;
+  return c;
+}
+
+Solution solve(const System& system, const Eigen::VectorXd& q0, const Eigen::VectorXd& p0,
+               double t0, double t_end, const AccuracyRequest& request, const Options& options) {
+  validate(request, t0, t_end);
+  Solution out;
+  if (request.method == "auto" || request.h == 0)
+    out.choice = choose_method_and_step(system, q0, p0, t0, t_end, request, options);
+  out.method = out.choice ? out.choice->method : request.method;
+  out.h = out.choice ? out.choice->h : request.h;
+  Integrator run(Method::by_name(out.method), system, out.h, q0, p0, options);
+  run.step(run.steps_until(t_end - t0));
+  run.integrate(t_end - t0);  // a shorter last step when t_end is off the grid
+  out.q = run.q(), out.p = run.p(), out.t = t0 + run.t();
+  out.statistics = run.statistics();
+  return out;
+}
+
+}  // namespace erkn

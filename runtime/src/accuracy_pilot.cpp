@@ -1,0 +1,112 @@
+#include "accuracy_pilot.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "clock.hpp"
+#include "erkn/error.hpp"
+
+namespace erkn::detail {
+namespace {
+
+// A pilot estimate this far above the target is refined (not yet asymptotic, and expensive to
+// extrapolate from); this far below it, the pilot is made coarser (cheaper, clear of round-off).
+constexpr double kAsymptotic = 1e3;
+
+struct Track {
+  std::vector<double> t;
+  std::vector<Eigen::VectorXd> q;
+  long gradients = 0;
+};
+
+// n steps of size h from (q0, p0), q recorded after every `every`-th step and the last.
+Track run(const Method& method, const PilotRequest& r, double h, long n, long every) {
+  Integrator it(method, *r.system, h, *r.q0, *r.p0, r.options);
+  Track out;
+  it.integrate(
+      double(n) * h,
+      [&](double t, const Eigen::VectorXd& q, const Eigen::VectorXd&) {
+        out.t.push_back(t), out.q.push_back(q);
+      },
+      every);
+  out.gradients = it.statistics().gradient_evaluations;
+  return out;
+}
+
+// One attempt with n steps of h over the pilot interval: the step-doubling estimate of the h
+// run's error at each checkpoint t_i of the pilot's second half (earlier ones are the size of a
+// local error, not yet a trend), grown linearly to the span; the maximum over those t_i.
+Pilot attempt(const Method& method, const PilotRequest& r, double h, long n) {
+  Pilot out;
+  out.h = h;
+  const double cpu_0 = cpu_seconds();
+  const long every = std::max(1L, n / 8);
+  try {
+    const Track a = run(method, r, h, n, every), b = run(method, r, h / 2, 2 * n, 2 * every);
+    out.gradients = a.gradients + b.gradients;
+    const double two_p = std::exp2(order_at(r, h)), richardson = two_p / (two_p - 1);
+    double roundoff = 0;
+    for (size_t i = 0; i < a.q.size() && i < b.q.size(); ++i) {
+      const double e = (a.q[i] - b.q[i]).lpNorm<Eigen::Infinity>() * richardson;
+      if (!std::isfinite(e)) throw Error("the pilot's state is not finite");
+      if (2 * a.t[i] < a.t.back()) continue;
+      out.error = std::max(out.error, e * r.span / a.t[i]);
+      roundoff = std::max(roundoff, 64 * std::numeric_limits<double>::epsilon() * double(n) *
+                                        a.q[i].lpNorm<Eigen::Infinity>());
+    }
+    out.at_roundoff = out.error * a.t.back() / r.span <= roundoff;
+    out.ok = true;
+  } catch (const Error& e) {  // a step the method refuses or that blows up at this h
+    out.failure = e.what();
+  }
+  out.cpu = cpu_seconds() - cpu_0;
+  out.cpu_per_gradient = out.gradients > 0 ? out.cpu / double(out.gradients) : 0;
+  return out;
+}
+
+}  // namespace
+
+Pilot calibrated_pilot(const Method& method, const PilotRequest& r, double h_start, double target) {
+  double h = h_start, cpu = 0;
+  long gradients = 0;
+  Pilot last;
+  for (int k = 0; k < 8; ++k) {
+    const long n = std::max(2L, std::lround(r.pilot / h));
+    h = r.pilot / double(n);
+    last = attempt(method, r, h, n);
+    cpu += last.cpu, gradients += last.gradients;
+    if (!last.ok) {
+      h /= 4;
+    } else if (last.error > kAsymptotic * target) {
+      h *= std::clamp(std::pow(100 * target / last.error, 1 / order_at(r, h)), 0.125, 0.5);
+    } else if (last.error < target / kAsymptotic && n > 2 && !last.at_roundoff) {
+      h *= std::clamp(std::pow(target / last.error, 1 / order_at(r, h)) / 4, 2.0, 4.0);
+    } else {
+      break;
+    }
+  }
+  last.cpu = cpu, last.gradients = gradients;
+  return last;
+}
+
+double order_at(const PilotRequest& r, double h) {
+  const double ratio = r.shape(h) / r.shape(h / 2);
+  return std::isfinite(ratio) && ratio > 2 ? std::log2(ratio) : 1.0;
+}
+
+double step_for(const PilotRequest& r, const Pilot& pilot, double target) {
+  if (pilot.error <= 0) return r.span;  // exact (e.g. U = 0): one step
+  const double level = r.shape(pilot.h) * target / pilot.error;
+  const double h_max = pilot.at_roundoff ? std::min(r.span, 4 * pilot.h) : r.span;
+  if (r.shape(h_max) <= level) return h_max;
+  double lo = pilot.h * 1e-6, hi = h_max;  // bisection in log h
+  for (int k = 0; k < 60; ++k) {
+    const double mid = std::sqrt(lo * hi);
+    (r.shape(mid) > level ? hi : lo) = mid;
+  }
+  return lo;
+}
+
+}  // namespace erkn::detail

@@ -1,0 +1,49 @@
+// The pilot of an accuracy-driven run (erkn/accuracy.hpp): a method stepped on the user's own
+// problem with h and h/2 over a short interval, the step-doubling error estimate grown to t_end,
+// and the measured cost per gradient evaluation.
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+
+#include "erkn/integrator.hpp"
+
+namespace erkn::detail {
+
+struct PilotRequest {
+  const System* system = nullptr;
+  const Eigen::VectorXd* q0 = nullptr;
+  const Eigen::VectorXd* p0 = nullptr;
+  Options options;
+  double span = 0;   ///< t_end - t0
+  double pilot = 0;  ///< the pilot interval, <= span
+  /// The shape of the method's global error in h (the a priori model up to a factor, growing
+  /// with h): its slope is the order the step doubling and the extrapolation in h assume.
+  std::function<double(double h)> shape;
+};
+
+struct Pilot {
+  bool ok = false;
+  std::string failure;  ///< why the last attempt failed (ok == false)
+  double h = 0;
+  double error = 0;             ///< estimated max-norm error of q at t_end of the run with step h
+  bool at_roundoff = false;     ///< the h and h/2 runs differ only by round-off
+  double cpu = 0;               ///< CPU seconds of all attempts
+  long gradients = 0;           ///< gradient evaluations of all attempts
+  double cpu_per_gradient = 0;  ///< of the accepted attempt
+};
+
+/// Pilots `method` from h_start, refining h until the estimate lies within a factor 1000 of
+/// `target` (below it: coarser, above: finer; at most 8 attempts).
+Pilot calibrated_pilot(const Method& method, const PilotRequest& request, double h_start,
+                       double target);
+
+/// The step reaching `target` from a pilot: shape(h) = shape(h_pilot) target / error, at most
+/// 4 h_pilot when the pilot sat at round-off, at most the span.
+double step_for(const PilotRequest& request, const Pilot& pilot, double target);
+
+/// The order the shape has at h: log2(shape(h) / shape(h/2)), at least 1.
+double order_at(const PilotRequest& request, double h);
+
+}  // namespace erkn::detail

@@ -1,0 +1,100 @@
+// Accuracy-driven runs (erkn/accuracy.hpp): erkn::solve with tol and no method or h reaches an
+// error within [tol/100, 3 tol] at t_end; a given method or h is kept; bad requests are refused.
+// (bench/accuracy_benchmark.cpp measures all problems and tolerances against a full sweep.)
+#include "erkn/accuracy.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "erkn/error.hpp"
+#include "erkn/problems.hpp"
+
+namespace erkn {
+namespace {
+
+double error_of(const Solution& s, const Eigen::VectorXd& reference) {
+  return (s.q - reference).lpNorm<Eigen::Infinity>();
+}
+
+// The registry's explicit method of highest order (most stages on ties), at a step 16 times
+// below the chosen one's: a reference by another route than the choice's pilot.
+Eigen::VectorXd reference(const problems::Problem& p, double h) {
+  const Method* best = nullptr;
+  for (const Method& m : Method::all())
+    if (m.is_explicit() && (!best || m.order() > best->order() ||
+                            (m.order() == best->order() && m.stages() > best->stages())))
+      best = &m;
+  AccuracyRequest r;
+  r.method = std::string(best->name()), r.h = h / 16;
+  return solve(problems::system(p), p.q0, p.p0, 0, p.t_error, r).q;
+}
+
+TEST(Accuracy, AutoReachesTheToleranceWithinTheWindow) {
+  for (const problems::Problem& p : {problems::duffing(), problems::stellar_orbits()})
+    for (double tol : {1e-4, 1e-8}) {
+      AccuracyRequest r;
+      r.tol = tol;
+      const Solution s = solve(problems::system(p), p.q0, p.p0, 0, p.t_error, r);
+      ASSERT_TRUE(s.choice.has_value());
+      const Eigen::VectorXd ref = p.exact ? (*p.exact)(p.t_error) : reference(p, s.h);
+      const double e = error_of(s, ref);
+      EXPECT_LE(e, 3 * tol) << p.key << " tol " << tol << ": " << s.choice->reason;
+      EXPECT_GE(e, tol / 100) << p.key << " tol " << tol << ": " << s.choice->reason;
+      EXPECT_NEAR(s.t, p.t_error, 1e-12);
+      EXPECT_FALSE(s.choice->reason.empty());
+      EXPECT_GT(s.choice->pilot_gradient_evaluations, 0);
+      // Negative control: the step chosen for 1000 tol misses tol.
+      r.tol = 1000 * tol;
+      const Solution loose = solve(problems::system(p), p.q0, p.p0, 0, p.t_error, r);
+      EXPECT_GT(error_of(loose, ref), 3 * tol) << p.key << " tol " << tol;
+    }
+}
+
+TEST(Accuracy, KeepsAGivenMethodAndAGivenStep) {
+  const problems::Problem p = problems::duffing();
+  for (const Method& m : Method::all()) {
+    if (!m.is_explicit() || m.order() != 4) continue;
+    AccuracyRequest r;
+    r.tol = 1e-6, r.method = std::string(m.name());
+    const Solution s = solve(problems::system(p), p.q0, p.p0, 0, p.t_error, r);
+    EXPECT_EQ(s.method, m.name());
+    EXPECT_LE(error_of(s, (*p.exact)(p.t_error)), 3e-6) << m.name();
+    break;
+  }
+  AccuracyRequest r;
+  r.tol = 1e-6, r.h = 0.01;
+  const Solution s = solve(problems::system(p), p.q0, p.p0, 0, p.t_error, r);
+  EXPECT_EQ(s.h, 0.01);
+  EXPECT_LE(error_of(s, (*p.exact)(p.t_error)), 3e-6) << s.method;
+}
+
+TEST(Accuracy, RefusesBadRequestsByName) {
+  const problems::Problem p = problems::duffing();
+  const System sys = problems::system(p);
+  const auto refused = [&](AccuracyRequest r, double t_end, const char* word) {
+    try {
+      solve(sys, p.q0, p.p0, 0, t_end, r);
+      ADD_FAILURE() << "accepted: " << word;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+    }
+  };
+  AccuracyRequest r;
+  refused(r, 1, "tol");  // auto without tol
+  r.tol = -1;
+  refused(r, 1, "tol");
+  r.tol = NAN;
+  refused(r, 1, "tol");
+  r.tol = 1e-6;
+  refused(r, 0, "t_end");
+  r.pilot_fraction = 2;
+  refused(r, 1, "pilot_fraction");
+  r.pilot_fraction = 0.1, r.safety = 0;
+  refused(r, 1, "safety");
+  r.safety = 0.5, r.method = "NoSuchMethod";
+  refused(r, 1, "NoSuchMethod");
+}
+
+}  // namespace
+}  // namespace erkn
