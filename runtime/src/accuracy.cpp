@@ -259,7 +259,7 @@ Choice choose_method_and_step(const System& system, const Eigen::VectorXd& q0,
   if (request.tol == 0) throw Error("solve: choosing a method or h needs tol > 0");
   const double cpu_0 = detail::cpu_seconds();
   Search s;
-  s.pilot = {&system, &q0, &p0, options, t_end - t0, (t_end - t0) * request.pilot_fraction};
+  s.pilot = {&system, &q0, &p0, options, t_end - t0, (t_end - t0) * request.pilot_fraction, {}};
   s.target = request.safety * request.tol;
   s.methods = candidates(request);
   if (!system.gradient) throw Error("solve: the system has no gradient");

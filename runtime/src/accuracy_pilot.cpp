@@ -68,7 +68,9 @@ Pilot attempt(const Method& method, const PilotRequest& r, double h, long n) {
 
 }  // namespace
 
-Pilot calibrated_pilot(const Method& method, const PilotRequest& r, double h_start, double target) {
+Pilot calibrated_pilot(const Method& method, const PilotRequest& request, double h_start,
+                       double target) {
+  PilotRequest r = request;  // the interval grows when two steps over it are already too fine
   double h = h_start, cpu = 0;
   long gradients = 0;
   Pilot last;
@@ -77,12 +79,15 @@ Pilot calibrated_pilot(const Method& method, const PilotRequest& r, double h_sta
     h = r.pilot / double(n);
     last = attempt(method, r, h, n);
     cpu += last.cpu, gradients += last.gradients;
+    const bool too_fine = last.ok && last.error < target / kAsymptotic;
     if (!last.ok) {
       h /= 4;
     } else if (last.error > kAsymptotic * target) {
       h *= std::clamp(std::pow(100 * target / last.error, 1 / order_at(r, h)), 0.125, 0.5);
-    } else if (last.error < target / kAsymptotic && n > 2 && !last.at_roundoff) {
+    } else if (too_fine && n > 2) {
       h *= std::clamp(std::pow(target / last.error, 1 / order_at(r, h)) / 4, 2.0, 4.0);
+    } else if (too_fine && r.pilot < r.span) {
+      r.pilot = std::min(r.span, 4 * r.pilot), h *= 4;
     } else {
       break;
     }

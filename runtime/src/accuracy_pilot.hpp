@@ -35,7 +35,8 @@ struct Pilot {
 };
 
 /// Pilots `method` from h_start, refining h until the estimate lies within a factor 1000 of
-/// `target` (below it: coarser, above: finer; at most 8 attempts).
+/// `target` (above it: finer; below it: coarser, and once at two steps a 4x longer pilot
+/// interval, up to the span; at most 8 attempts).
 Pilot calibrated_pilot(const Method& method, const PilotRequest& request, double h_start,
                        double target);
 
