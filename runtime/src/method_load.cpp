@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -24,6 +25,7 @@ using detail::JsonValue;
 struct OwnedTable {
   std::string name, id, reference;
   std::vector<int> generalized;
+  std::vector<double> generalized_error_constant;
   std::vector<double> c, d, modified, series;
   std::vector<long double> c_long, d_long;  // for the validation
   std::vector<std::string> c_text, d_text, forms;
@@ -130,6 +132,9 @@ std::unique_ptr<OwnedTable> read_method(const JsonValue& m, const std::string& p
                 }() +
                 "), but " + r.failure);
   fill_coefficients(*t);
+  t->generalized_error_constant = r.generalized_error_constant;
+  t->generalized_error_constant.resize(t->generalized.size(),
+                                       std::numeric_limits<double>::quiet_NaN());
   for (auto& x : t->c_text) t->c_exact.push_back(x.c_str());
   for (auto& x : t->d_text) t->d_exact.push_back(x.c_str());
   for (auto& x : t->forms) t->form_ptrs.push_back(x.c_str());
@@ -137,11 +142,13 @@ std::unique_ptr<OwnedTable> read_method(const JsonValue& m, const std::string& p
               t->id.c_str(),
               s,
               order,
+              r.error_constant,
               false,
               true,
               false,
               t->reference.c_str(),
               t->generalized.data(),
+              t->generalized_error_constant.data(),
               int(t->generalized.size()),
               t->c.data(),
               t->d.data(),

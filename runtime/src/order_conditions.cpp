@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace erkn::detail {
 namespace {
@@ -65,6 +66,23 @@ std::string describe(const Tree& x, long double sum, long double residual) {
   return "tree " + x.name + buf;
 }
 
+// The norms of OrderReport::error_constant / generalized_error_constant from each tree's
+// residual, once the measured orders are known.
+void error_constants(OrderReport& r, const std::vector<Tree>& trees,
+                     const std::vector<long double>& residual) {
+  const auto norm = [&](int order, int K) {
+    if (order >= kMaxTreeOrder) return std::numeric_limits<double>::quiet_NaN();
+    long double sum = 0;
+    for (size_t n = 0; n < trees.size(); ++n)
+      if (trees[n].order == order + 1 && (K == 0 || trees[n].forces == K))
+        sum += residual[n] * residual[n];
+    return double(std::sqrt(sum));
+  };
+  r.error_constant = norm(r.order, 0);
+  for (size_t K = 0; K < r.generalized.size(); ++K)
+    r.generalized_error_constant.push_back(norm(r.generalized[K], int(K) + 1));
+}
+
 }  // namespace
 
 OrderReport check_order(std::span<const long double> c, std::span<const long double> d, int order,
@@ -72,7 +90,8 @@ OrderReport check_order(std::span<const long double> c, std::span<const long dou
   static const std::vector<Tree> trees = special_nystrom_trees(kMaxTreeOrder);
   const size_t s = c.size();
   std::vector<std::vector<long double>> phi(trees.size()), phi_abs(trees.size());
-  OrderReport r{kMaxTreeOrder, std::vector<int>(generalized.size(), kMaxTreeOrder), ""};
+  OrderReport r{kMaxTreeOrder, std::vector<int>(generalized.size(), kMaxTreeOrder), "", 0, {}};
+  std::vector<long double> residuals(trees.size(), 0);
   for (size_t n = 0; n < trees.size(); ++n) {
     const Tree& x = trees[n];
     phi[n].assign(s, 1), phi_abs[n].assign(s, 1);
@@ -89,6 +108,7 @@ OrderReport check_order(std::span<const long double> c, std::span<const long dou
     for (size_t i = 0; i < s; ++i) sum += d[i] * phi[n][i], scale += std::abs(d[i]) * phi_abs[n][i];
     const long double residual = sum - 1 / x.gamma;
     if (std::abs(residual) <= tolerance * scale) continue;
+    residuals[n] = residual;
     r.order = std::min(r.order, x.order - 1);
     if (size_t K = size_t(x.forces); K <= r.generalized.size())
       r.generalized[K - 1] = std::min(r.generalized[K - 1], x.order - 1);
@@ -96,6 +116,7 @@ OrderReport check_order(std::span<const long double> c, std::span<const long dou
                                               x.order <= generalized[x.forces - 1]);
     if (claimed && r.failure.empty()) r.failure = describe(x, sum, residual);
   }
+  error_constants(r, trees, residuals);
   return r;
 }
 

@@ -24,6 +24,12 @@ struct OrderReport {
   /// The first failing condition of the claim (empty: the claim holds), e.g.
   /// "tree [c,[c]] (order 4, 2 forces): sum_i d_i Phi_i = 0.041 != 1/gamma = 1/24, residual ..."
   std::string failure;
+  /// 2-norm of the residuals of the trees of order `order + 1` (the measured order), and
+  /// per K of the K-force trees of order generalized[K-1] + 1; NaN beyond kMaxTreeOrder. Over
+  /// these V^0 special Nystrom conditions only: the generator's Table::error_constant also
+  /// counts the M^j F(tau) (j > 0) and q-error conditions, so this is a lower bound of it.
+  double error_constant = 0;
+  std::vector<double> generalized_error_constant;
 };
 
 /// Evaluates every condition in long double; one holds when |sum_i d_i Phi_i - 1/gamma| <=
