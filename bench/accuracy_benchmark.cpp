@@ -32,6 +32,12 @@ using erkn::problems::Problem;
 constexpr double kTols[] = {1e-4, 1e-6, 1e-8, 1e-10};
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+std::string sci(double x, int digits = 2) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.*e", digits, x);
+  return buf;
+}
+
 struct Scene {
   Problem problem;
   Eigen::VectorXd reference;
@@ -43,7 +49,7 @@ Scene scene(Problem p) {
                         ? ex::reference_solution(p, p.t_error, 1e-13)
                         : ex::reference_solution(p, p.t_error, 1e-12, ex::Precision::double_);
   return {std::move(p), r.q,
-          r.method + (r.accuracy > 0 ? ", last halving changed " + std::to_string(r.accuracy)
+          r.method + (r.accuracy > 0 ? ", last halving changed " + sci(r.accuracy, 1)
                                      : std::string())};
 }
 
@@ -137,12 +143,6 @@ struct Row {
   double ratio = kInf;
   bool window = false, cheap = false;
 };
-
-std::string sci(double x, int digits = 2) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.*e", digits, x);
-  return buf;
-}
 
 std::string fixed_digits(double x, int digits = 2) {
   char buf[32];

@@ -1,5 +1,12 @@
+import os
+import pathlib
+
 import numpy as np
 import pytest
+
+# The source tree: ctest sets ERKN_SOURCE_DIR; run by hand (pytest python/tests) it is the
+# checkout this file lies in.
+SOURCE_DIR = pathlib.Path(os.environ.get("ERKN_SOURCE_DIR", pathlib.Path(__file__).parents[2]))
 
 
 @pytest.fixture

@@ -1,8 +1,6 @@
 # erkn.Options: every field of erkn::Options reaches the C++ integrator, with C++'s validation;
 # a refused value names the field and changes nothing.
 import math
-import os
-import pathlib
 import re
 import time
 
@@ -10,6 +8,7 @@ import numpy as np
 import pytest
 
 import erkn
+from conftest import SOURCE_DIR
 
 # Per field: a valid value other than the default, and values the C++ validation refuses (or,
 # for a flag, a value of the wrong type).
@@ -26,7 +25,7 @@ INVALID = {"tolerance": [1.0, -1e-3, math.nan], "roundoff_level": [0.0, 1.0],
 
 def cxx_fields():
     """The fields of struct Options in erkn/integrator.hpp."""
-    header = (pathlib.Path(os.environ["ERKN_SOURCE_DIR"]) / "runtime/include/erkn/integrator.hpp")
+    header = (SOURCE_DIR / "runtime/include/erkn/integrator.hpp")
     body = header.read_text().split("struct Options {", 1)[1].split("};", 1)[0]
     return re.findall(r"^\s*(?:bool|int|double)\s+(\w+)\s*=", body, re.M)
 

@@ -6,10 +6,11 @@ import subprocess
 import sys
 
 import erkn
+from conftest import SOURCE_DIR
 
 
 def readme_example():
-    readme = pathlib.Path(os.environ["ERKN_SOURCE_DIR"]) / "README.md"
+    readme = SOURCE_DIR / "README.md"
     section = readme.read_text().split("\n## Python", 1)[1].split("\n## ", 1)[0]
     blocks = re.findall(r"```python\n(.*?)```", section, re.S)
     assert blocks, "README.md has no ```python block in its Python section"

@@ -7,13 +7,15 @@ import sys
 
 import pytest
 
+from conftest import SOURCE_DIR
+
 pytestmark = pytest.mark.skipif("ERKN_GENERATE" not in os.environ,
                                 reason="erkn-generate's path is not given (no generator)")
 
 
 def explicit_blocks():
     """erkn's own explicit methods with plain kicks, from generator/methods.spec, renamed."""
-    text = open(os.path.join(os.environ["ERKN_SOURCE_DIR"], "generator", "methods.spec")).read()
+    text = (SOURCE_DIR / "generator" / "methods.spec").read_text()
     blocks = re.findall(r"^method .*?(?=^method |\Z)", text, re.S | re.M)
     out = []
     for b in blocks:
