@@ -1,23 +1,27 @@
-// erkn_advisor_sweep [--steps N] [--points K] [--threads T] [OUT.md]: the step-size advisor's
-// false-alarm and miss rates (docs/advisor.md is this program's output). For each scene (FPU,
-// sine-Gordon P1, a 1-D (n = 15) and a 2-D (7^2) Dirichlet wave grid with a cubic force: small
-// enough that the implicit methods' dense Newton fallback, which large h needs on every step,
-// keeps 1e5-step runs affordable; the n = 255 grid is tests/runtime/advisor_state_test.cpp's) and
-// every ERKN method of the registry (explicit splittings included), at h omega = 4 pi k / K,
+// erkn_advisor_sweep [--steps N] [--points K] [--threads T] [--csv FILE] [OUT.md]: the step-size
+// advisor's false-alarm and miss rates (docs/advisor.md is this program's output). For each scene
+// (FPU, sine-Gordon P1, a 1-D (n = 15) and a 2-D (7^2) Dirichlet wave grid with a cubic force:
+// the advisor's logic is the same as at n = 255, and the implicit methods' dense Newton fallback,
+// which large h needs on every step, stays affordable) and every method of the registry (ERKN,
+// explicit splittings and the RKN limits: the advisor covers them all), at h omega = 4 pi k / K,
 // k = 1..K (omega = sqrt of M's largest eigenvalue):
-//   verdict  advise_step_size(method, system, h, q0, p0) flags h: what Options::check_stability
-//            and `erkn advise --problem` ask (Hessian range and mode energies at the start).
-//   truth    the README's "runs clean" ("Resonances"): over N = 1e5 steps with the blow-up guard
-//            off, the relative energy error max |H_n - H_0| / |H_0| (every 50 steps) is below 0.5
-//            and at most 10 times the smaller of the errors at h (1 - 3 %) and h (1 + 3 %); a run
-//            that stops with an erkn::Error (non-finite state, failed stage) is not clean.
-// A false alarm is a flagged h that runs clean, a miss an unflagged h that does not; the rates are
-// false alarms / clean runs and misses / unclean runs. Step sizes the integrator refuses at
-// construction (h^2 lambda on a pole) are counted apart: no run, nothing to predict.
+//   verdict   advise_step_size(method, system, h, q0, p0) flags h (StepSizeAdvice::safe() is
+//             false): what Options::check_stability refuses and `erkn advise --problem` reports
+//             (Hessian range and mode energies at the start).
+//   criterion the relative energy error E = max |H_n - H_0| / |H_0| over N = 1e5 steps of h
+//             (sampled every 50 steps, blow-up guard off) against 0.5, the README's "runs clean"
+//             bound (twice the guard's limit). A run BLOWS UP when E >= 0.5 (it stops there: the
+//             rest cannot undo that) or when a step throws an erkn::Error (a non-finite state, or
+//             a stage solver that fails: the method cannot run at that h); else it is BOUNDED.
+// A false alarm is a flagged h whose run is bounded, a miss an unflagged h whose run blows up;
+// the false-alarm rate is false alarms / bounded runs, the miss rate misses / blown-up runs.
+// Step sizes the integrator refuses at construction (h^2 lambda on a pole) are counted apart.
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <iostream>
 #include <numbers>
@@ -33,6 +37,9 @@ namespace {
 
 using namespace erkn;
 using std::numbers::pi;
+
+constexpr double kBlowUp = 0.5;    // the criterion on the relative energy error
+constexpr long kSampleEvery = 50;  // energy samples, in steps
 
 struct Scene {
   std::string name;
@@ -55,13 +62,17 @@ Scene from_library(const problems::Problem& p, std::string name) {
 Scene wave_grid(int n, int k) {
   const double dx = 1.0 / (n + 1);
   System s;
-  s.M = Stiffness::grid(std::vector<GridAxis>(k, {n, dx, GridAxis::Boundary::dirichlet}));
+  const Eigen::Index d = k == 1 ? n : n * n;
+  // (The grid's matrix, held dense: at d <= 25 every FFTW r2r call allocates its buffers, and
+  // the implicit methods' Newton fallback builds each Jacobian from d such calls.)
+  const Stiffness grid =
+      Stiffness::grid(std::vector<GridAxis>(k, {n, dx, GridAxis::Boundary::dirichlet}));
+  s.M = Stiffness::dense(grid.to_dense(d));
   s.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = q.array().cube(); };
   s.potential = [](const Eigen::VectorXd& q) { return 0.25 * q.array().pow(4).sum(); };
   s.hessian = [](const Eigen::VectorXd& q, Eigen::MatrixXd& H) {
     H = (3 * q.array().square()).matrix().asDiagonal();
   };
-  const Eigen::Index d = k == 1 ? n : n * n;
   Eigen::VectorXd q0(d);
   for (Eigen::Index i = 0; i < d; ++i)  // (row-major: i = i0 n + i1)
     q0[i] = std::sin(pi * (i % n + 1) * dx) * (k == 1 ? 1 : std::sin(pi * (i / n + 1) * dx));
@@ -72,72 +83,78 @@ Scene wave_grid(int n, int k) {
 
 std::vector<Scene> scenes() {
   return {from_library(problems::fpu(3, 50), "FPU (m = 3, omega = 50)"),
-          from_library(problems::sine_gordon(32), "sine-Gordon P1 (N = 32)"), wave_grid(15, 1),
-          wave_grid(7, 2)};
+          from_library(problems::sine_gordon(16), "sine-Gordon P1 (N = 16)"), wave_grid(15, 1),
+          wave_grid(4, 2)};
 }
 
-// max |H_n - H_0| / |H_0| over `steps` steps (every 50; the run stops at the first >= 0.5),
-// infinity when the run stops with an erkn::Error; NaN when the integrator refuses h at
-// construction.
-double energy_error(const Method& m, const Scene& s, double h, long steps) {
+enum class Outcome { refused, blew_up, bounded };
+
+struct Run {
+  Outcome outcome = Outcome::bounded;
+  double error = 0;  // max relative energy error sampled (up to the stop); inf after an Error
+  long steps = 0;    // steps taken
+  std::string why;   // the erkn::Error that stopped it, if one did
+};
+
+// One run of `steps` steps of h against the criterion, stopping as soon as it is met.
+Run run(const Method& m, const Scene& s, double h, long steps) {
   Options unguarded;
   unguarded.blowup_guard = false;
-  std::unique_ptr<Integrator> run;
+  Run r;
+  std::unique_ptr<Integrator> it;
   try {
-    run = std::make_unique<Integrator>(m, s.system, h, s.q0, s.p0, unguarded);
-  } catch (const Error&) {
-    return std::nan("");
+    it = std::make_unique<Integrator>(m, s.system, h, s.q0, s.p0, unguarded);
+  } catch (const Error& e) {
+    return {Outcome::refused, NAN, 0, e.what()};
   }
-  const double H0 = run->energy();
-  double worst = 0;
+  const double H0 = it->energy();
   try {
-    for (long k = 1; k <= steps; ++k) {
-      run->step();
-      if (k % 50 == 0) worst = std::max(worst, std::abs(run->energy() - H0) / std::abs(H0));
-      if (!(worst < 0.5)) break;  // (not clean already: the rest of the run cannot change that)
+    for (r.steps = 1; r.steps <= steps; ++r.steps) {
+      it->step();
+      if (r.steps % kSampleEvery == 0)
+        r.error = std::max(r.error, std::abs(it->energy() - H0) / std::abs(H0));
+      if (!(r.error < kBlowUp)) break;  // (NaN too)
     }
-  } catch (const Error&) {
-    return INFINITY;
+  } catch (const Error& e) {
+    r.error = INFINITY, r.why = e.what();
   }
-  return std::isfinite(worst) ? worst : INFINITY;
+  r.steps = std::min(r.steps, steps);
+  if (!(r.error < kBlowUp)) r.outcome = Outcome::blew_up, r.error = std::max(r.error, kBlowUp);
+  return r;
 }
 
 struct Point {
   size_t scene = 0, method = 0;
   double h_omega = 0;
-  bool flagged = false, refused = false, clean = false;
-  double error = 0, neighbours = 0;  // (neighbours: NaN when not needed)
-  std::string finding;               // the first finding, when flagged
+  bool flagged = false;
+  std::string finding;  // the advisor's first finding, when flagged
+  Run at;               // the run at h
+  double seconds = 0;
 };
 
-// The advisor's verdict and the runs' truth at one point.
+std::string first_finding(const StepSizeAdvice& advice, const Method& m) {
+  const std::string report = advice.report(m);
+  const size_t line = report.find('\n') + 1;
+  return report.substr(line, report.find('\n', line) - line);
+}
+
+// The advisor's verdict and the runs at one point.
 void measure(Point& pt, const Scene& s, const Method& m, long steps) {
+  const auto start = std::chrono::steady_clock::now();
   const double h = pt.h_omega / s.omega;
   AdvisorOptions verdict_only;
   verdict_only.max_change = 0;  // (no search for a suggestion: only the verdict at h counts)
   const StepSizeAdvice advice = advise_step_size(m, s.system, h, s.q0, s.p0, verdict_only);
   pt.flagged = !advice.safe();
-  if (pt.flagged) {
-    const std::string report = advice.report(m);
-    const size_t line = report.find('\n') + 1;
-    pt.finding = report.substr(line, report.find('\n', line) - line);
-  }
-  pt.error = energy_error(m, s, h, steps);
-  pt.refused = std::isnan(pt.error);
-  pt.neighbours = std::nan("");
-  if (pt.refused || !(pt.error < 0.5)) return;
-  // error <= 10 min(below, above) needs both; the second only when the first passes.
-  const double below = energy_error(m, s, 0.97 * h, steps);
-  pt.neighbours = below;
-  if (!(pt.error <= 10 * below)) return;
-  pt.neighbours = std::min(below, energy_error(m, s, 1.03 * h, steps));
-  pt.clean = pt.error <= 10 * pt.neighbours;
+  if (pt.flagged) pt.finding = first_finding(advice, m);
+  pt.at = run(m, s, h, steps);
+  pt.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 struct Args {
   long steps = 100000;
   int points = 16, threads = 2;
-  std::string out;
+  std::string out, csv;
 };
 
 Args parse(int argc, char** argv) {
@@ -150,6 +167,10 @@ Args parse(int argc, char** argv) {
       a.points = std::stoi(argv[++i]);
     else if (i + 1 < argc && arg == "--threads")
       a.threads = std::stoi(argv[++i]);
+    else if (i + 1 < argc && arg == "--csv")
+      a.csv = argv[++i];
+    else if (arg.starts_with("-"))
+      throw Error("erkn_advisor_sweep: unknown option " + arg);
     else
       a.out = arg;
   }
@@ -158,20 +179,14 @@ Args parse(int argc, char** argv) {
   return a;
 }
 
-std::vector<Method> erkn_methods() {
-  std::vector<Method> out;
-  for (const Method& m : Method::all())
-    if (m.kind() == Kind::erkn) out.push_back(m);
-  return out;
-}
-
-// Every point, measured on `threads` threads (each point is independent).
+// Every point, measured on `threads` threads (each point is independent); the most expensive
+// scenes (grids, implicit methods) first, so that no thread is left with a long tail.
 std::vector<Point> sweep(const std::vector<Scene>& sc, const std::vector<Method>& ms,
                          const Args& a) {
   std::vector<Point> points;
-  for (size_t s = 0; s < sc.size(); ++s)
+  for (size_t s = sc.size(); s-- > 0;)
     for (size_t m = 0; m < ms.size(); ++m)
-      for (int k = 1; k <= a.points; ++k) {
+      for (int k = a.points; k >= 1; --k) {
         Point p;
         p.scene = s, p.method = m, p.h_omega = 4 * pi * k / a.points;
         points.push_back(p);
@@ -180,7 +195,7 @@ std::vector<Point> sweep(const std::vector<Scene>& sc, const std::vector<Method>
   auto work = [&] {
     for (size_t i; (i = next++) < points.size();) {
       measure(points[i], sc[points[i].scene], ms[points[i].method], a.steps);
-      if (++done % 50 == 0) std::cerr << done << "/" << points.size() << " points\n";
+      if (++done % 100 == 0) std::cerr << done << "/" << points.size() << " points\n";
     }
   };
   std::vector<std::thread> pool;
@@ -190,67 +205,96 @@ std::vector<Point> sweep(const std::vector<Scene>& sc, const std::vector<Method>
 }
 
 struct Counts {
-  long clean_flagged = 0, clean_passed = 0, unclean_flagged = 0, unclean_passed = 0, refused = 0;
+  long bounded_passed = 0, bounded_flagged = 0, blown_flagged = 0, blown_passed = 0, refused = 0;
   void add(const Point& p) {
-    if (p.refused)
-      ++refused;
-    else if (p.clean)
-      ++(p.flagged ? clean_flagged : clean_passed);
+    if (p.at.outcome == Outcome::refused) return void(++refused);
+    if (p.at.outcome == Outcome::bounded)
+      ++(p.flagged ? bounded_flagged : bounded_passed);
     else
-      ++(p.flagged ? unclean_flagged : unclean_passed);
+      ++(p.flagged ? blown_flagged : blown_passed);
   }
-  double false_alarm() const { return double(clean_flagged) / (clean_flagged + clean_passed); }
-  double miss() const { return double(unclean_passed) / (unclean_flagged + unclean_passed); }
 };
 
 std::string percent(long n, long of) {
-  std::ostringstream s;
-  s << n << " / " << of << " = " << (of ? 100.0 * n / of : 0.0) << " %";
-  return s.str();
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%ld / %ld = %.1f %%", n, of, of ? 100.0 * n / of : 0.0);
+  return buf;
 }
 
 std::string row(const std::string& name, const Counts& c) {
   std::ostringstream s;
-  s << "| " << name << " | " << c.clean_passed << " | " << c.clean_flagged << " | "
-    << c.unclean_flagged << " | " << c.unclean_passed << " | " << c.refused << " | "
-    << percent(c.clean_flagged, c.clean_flagged + c.clean_passed) << " | "
-    << percent(c.unclean_passed, c.unclean_flagged + c.unclean_passed) << " |\n";
+  s << "| " << name << " | " << c.bounded_passed << " | " << c.bounded_flagged << " | "
+    << c.blown_flagged << " | " << c.blown_passed << " | " << c.refused << " | "
+    << percent(c.bounded_flagged, c.bounded_flagged + c.bounded_passed) << " | "
+    << percent(c.blown_passed, c.blown_flagged + c.blown_passed) << " |\n";
   return s.str();
 }
 
 std::string point_line(const Point& p, const std::vector<Scene>& sc,
                        const std::vector<Method>& ms) {
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "| %s | %s | %.4g | %.3g | %.3g | ", sc[p.scene].name.c_str(),
-                std::string(ms[p.method].name()).c_str(), p.h_omega / pi, p.error, p.neighbours);
-  return buf + (p.flagged ? p.finding : std::string("(not flagged)")) + " |\n";
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "| %s | %s | %.4g | %s | %.3g | %ld | ", sc[p.scene].name.c_str(),
+                std::string(ms[p.method].name()).c_str(), p.h_omega / pi,
+                p.flagged ? "flagged" : "not flagged", p.at.error, p.at.steps);
+  const std::string verdict = p.flagged ? p.finding.substr(p.finding.find_first_not_of(' '))
+                                        : std::string("the method is stable at h");
+  return buf + verdict + (p.at.why.empty() ? "" : "; run stopped: " + p.at.why) + " |\n";
+}
+
+// The rates over the methods that integrate M exactly (ERKN and the explicit splittings), per
+// scene and over all; the RKN limits (M in the force, so H's error at h omega >~ 1 is their
+// accuracy, not a growth the advisor could see) in rows of their own.
+std::string rates_table(const std::vector<Point>& points, const std::vector<Scene>& sc,
+                        const std::vector<Method>& ms) {
+  std::ostringstream s;
+  s << "| scene | methods | bounded, not flagged | bounded, flagged (false alarm) | blew up, "
+       "flagged | blew up, not flagged (miss) | refused at construction | false-alarm rate | "
+       "miss rate |\n|---|---|---|---|---|---|---|---|---|\n";
+  for (bool rkn : {false, true}) {
+    const std::string kinds = rkn ? "RKN limits" : "ERKN and splittings";
+    Counts all;
+    for (size_t i = 0; i <= sc.size(); ++i) {
+      Counts c;
+      for (const Point& p : points)
+        if ((ms[p.method].kind() == Kind::rkn) == rkn && (i == sc.size() || p.scene == i)) c.add(p);
+      s << row((i == sc.size() ? "**all**" : sc[i].name) + " | " + kinds, c);
+    }
+  }
+  return s.str();
 }
 
 std::string report(const std::vector<Point>& points, const std::vector<Scene>& sc,
-                   const std::vector<Method>& ms, const Args& a) {
+                   const std::vector<Method>& ms, const Args& a, double seconds, double cpu) {
   std::ostringstream s;
   s << "# The step-size advisor against runs\n\nWritten by `erkn_advisor_sweep` (experiments/src/"
-       "advisor_sweep.cpp; its header defines verdict, truth and rates): "
-    << ms.size() << " ERKN methods of the registry x " << sc.size() << " scenes x " << a.points
+       "advisor_sweep.cpp, whose header defines verdict, criterion and rates; scripts/main.sh "
+       "runs it): "
+    << ms.size() << " methods of the registry x " << sc.size() << " scenes x " << a.points
     << " step sizes h omega = 4 pi k / " << a.points << ", runs of " << a.steps
-    << " steps.\n\n| scene | clean, not flagged | clean, flagged (false alarm) | not clean, "
-       "flagged | not clean, not flagged (miss) | refused at construction | false-alarm rate | "
-       "miss rate |\n|---|---|---|---|---|---|---|---|\n";
-  Counts all;
-  for (size_t i = 0; i < sc.size(); ++i) {
-    Counts c;
-    for (const Point& p : points)
-      if (p.scene == i) c.add(p), (void)0;
-    s << row(sc[i].name, c);
-  }
-  for (const Point& p : points) all.add(p);
-  s << row("all", all);
-  s << "\nFalse alarms and misses (error: the run's relative energy error; neighbours: the smaller "
-       "of h (1 -+ 3 %)'s, where measured):\n\n| scene | method | h omega / pi | error | "
-       "neighbours | advisor |\n|---|---|---|---|---|---|\n";
+    << " steps; a run blows up when its relative energy error reaches " << kBlowUp
+    << " or a step fails. The sweep took " << std::lround(seconds) << " s on " << a.threads
+    << " threads (" << std::lround(cpu) << " s of CPU time).\n\n"
+    << rates_table(points, sc, ms)
+    << "\nEvery disagreement (error: the run's largest sampled relative energy error, at least "
+       "0.5 for a blow-up; steps: those run before it stopped):\n\n| scene | method | h omega / pi "
+       "| advisor | "
+       "error | steps | the advisor's finding; the run's stop |\n"
+       "|---|---|---|---|---|---|---|\n";
   for (const Point& p : points)
-    if (!p.refused && p.clean == p.flagged) s << point_line(p, sc, ms);
+    if (p.at.outcome != Outcome::refused && p.flagged == (p.at.outcome == Outcome::bounded))
+      s << point_line(p, sc, ms);
   return s.str();
+}
+
+void write_csv(const std::string& file, const std::vector<Point>& points,
+               const std::vector<Scene>& sc, const std::vector<Method>& ms) {
+  std::ofstream out(file);
+  out << "scene,method,h_omega_over_pi,flagged,outcome,error,steps,seconds\n";
+  const char* outcome[] = {"refused", "blew_up", "bounded"};
+  for (const Point& p : points)
+    out << '"' << sc[p.scene].name << "\"," << ms[p.method].name() << ',' << p.h_omega / pi << ','
+        << p.flagged << ',' << outcome[int(p.at.outcome)] << ',' << p.at.error << ',' << p.at.steps
+        << ',' << p.seconds << '\n';
 }
 
 }  // namespace
@@ -258,8 +302,13 @@ std::string report(const std::vector<Point>& points, const std::vector<Scene>& s
 int main(int argc, char** argv) try {
   const Args a = parse(argc, argv);
   const std::vector<Scene> sc = scenes();
-  const std::vector<Method> ms = erkn_methods();
-  const std::string md = report(sweep(sc, ms, a), sc, ms, a);
+  const std::vector<Method> ms(Method::all().begin(), Method::all().end());
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<Point> points = sweep(sc, ms, a);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!a.csv.empty()) write_csv(a.csv, points, sc, ms);
+  const std::string md = report(points, sc, ms, a, seconds, double(std::clock()) / CLOCKS_PER_SEC);
   if (a.out.empty()) {
     std::cout << md;
   } else {
