@@ -13,6 +13,7 @@ cmake --build "$build" -j 2
 "$build"/runtime/cli/erkn run --out docs "$@"
 "$build"/runtime/cli/erkn stability all --out docs/charts
 "$build"/experiments/erkn_stability_hmax docs/stability.md
+"$build"/experiments/erkn_advisor_sweep docs/advisor.md  # the advisor against 1e5-step runs
 "$build"/scaling/erkn-ensemble-speedup --out docs
 # What users call (Integrator construction + integrate) against the loop a specialist writes
 # (issue 17; built with FFTW), short mode, twice: the second run writes docs/benchmarks.md with
