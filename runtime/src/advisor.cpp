@@ -10,6 +10,7 @@
 #include "erkn/error.hpp"
 #include "erkn/integrator.hpp"
 #include "format.hpp"
+#include "stage_phases.hpp"
 
 namespace erkn {
 namespace {
@@ -65,10 +66,11 @@ std::vector<double> kappa_samples(HessianBounds k, int n) {
 double coupling_angle(const Method& method, const Coefficients& c, double V,
                       const std::vector<double>& kappa, double h) {
   const double theta = std::sqrt(V);
-  const StabilityMatrix S0 = stability_matrix(method, c, V, 0.0);
+  const detail::StagePhases phases = detail::stage_phases(method, c, V);
+  const StabilityMatrix S0 = detail::stability_matrix(phases, 0.0);
   double sigma = 0;
   for (double k : kappa) {
-    const StabilityMatrix S = stability_matrix(method, c, V, h * h * k);
+    const StabilityMatrix S = detail::stability_matrix(phases, h * h * k);
     const double e11 = S.s11 - S0.s11, e22 = S.s22 - S0.s22;
     const double e12 = theta * (S.s12 - S0.s12), e21 = (S.s21 - S0.s21) / theta;
     sigma = std::max(sigma, std::hypot(0.5 * (e11 - e22), 0.5 * (e12 + e21)));
@@ -134,8 +136,9 @@ bool linear(const Method& method, const Coefficients& c, double h, double lambda
   double largest = 0;
   for (double k : kappa) largest = std::max(largest, std::abs(k));
   const double tolerance = kCurvatureTolerance * (lambda + largest);
+  const detail::StagePhases phases = detail::stage_phases(method, c, f.V);
   for (double k : kappa) {
-    const StabilityMatrix S = stability_matrix(method, c, f.V, h * h * k);
+    const StabilityMatrix S = detail::stability_matrix(phases, h * h * k);
     const double tr = S.finite() ? std::abs(S.trace()) : std::numeric_limits<double>::infinity();
     if (lambda + k < -tolerance) {
       const double mu = std::sqrt(-(lambda + k));

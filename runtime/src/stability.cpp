@@ -6,6 +6,7 @@
 #include "erkn/error.hpp"
 #include "format.hpp"
 #include "phi.hpp"
+#include "stage_phases.hpp"
 
 namespace erkn {
 
@@ -27,16 +28,28 @@ double StabilityMatrix::det_relative_deviation() const {
   return std::abs(det() - 1) / std::max(scale, 1e-300);
 }
 
-StabilityMatrix stability_matrix(const Method& method, const Coefficients& k, double V, double z) {
+namespace detail {
+
+StagePhases stage_phases(const Method& method, const Coefficients& k, double V) {
   // RKN: the V = 0 formula with the whole force (V + z) as the "nonlinearity".
-  const bool rkn = method.kind() == Kind::rkn;
-  const double v = rkn ? 0.0 : V, w = rkn ? V + z : z;
+  StagePhases ph;
+  ph.k = &k, ph.rkn = method.kind() == Kind::rkn, ph.V = V, ph.v = ph.rkn ? 0.0 : V;
+  for (int i = 0; i < k.s; ++i) {
+    const double c = k.c[i];
+    ph.x0[i] = detail::phi0(c * c * ph.v), ph.y0[i] = c * detail::phi1(c * c * ph.v);
+  }
+  ph.p0 = detail::phi0(ph.v), ph.p1 = detail::phi1(ph.v);
+  return ph;
+}
+
+StabilityMatrix stability_matrix(const StagePhases& ph, double z) {
+  const Coefficients& k = *ph.k;
+  const double v = ph.v, w = ph.rkn ? ph.V + z : z;
   const int s = k.s;
   // x = N^-1 phi0(c^2 v), y = N^-1 (c phi1(c^2 v)), N = I + w Abar lower triangular.
   std::array<double, kMaxStages> x{}, y{};
   for (int i = 0; i < s; ++i) {
-    const double c = k.c[i];
-    double xi = detail::phi0(c * c * v), yi = c * detail::phi1(c * c * v);
+    double xi = ph.x0[i], yi = ph.y0[i];
     for (int j = 0; j < i; ++j) xi -= w * k.abar(i, j) * x[j], yi -= w * k.abar(i, j) * y[j];
     const double nii = 1 + w * k.abar(i, i);
     x[i] = xi / nii;
@@ -47,8 +60,13 @@ StabilityMatrix stability_matrix(const Method& method, const Coefficients& k, do
     bbx += k.bbar[i] * x[i], bby += k.bbar[i] * y[i];
     bx += k.b[i] * x[i], by += k.b[i] * y[i];
   }
-  const double p0 = detail::phi0(v), p1 = detail::phi1(v);
-  return {p0 - w * bbx, p1 - w * bby, -v * p1 - w * bx, p0 - w * by};
+  return {ph.p0 - w * bbx, ph.p1 - w * bby, -v * ph.p1 - w * bx, ph.p0 - w * by};
+}
+
+}  // namespace detail
+
+StabilityMatrix stability_matrix(const Method& method, const Coefficients& k, double V, double z) {
+  return detail::stability_matrix(detail::stage_phases(method, k, V), z);
 }
 
 StabilityMatrix stability_matrix(const Method& method, double V, double z) {
