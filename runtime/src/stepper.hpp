@@ -84,9 +84,7 @@ class Stepper final : public StepperBase {
     if (rkn_) Mq_.setZero(d);
     k_.emplace(method, h, lambda);
     for (int i = 0; i < s_; ++i) {
-      const auto ratio = [&](const auto& num) {
-        return (as_array(num).abs() / as_array(k_->abar(i, i)).abs()).maxCoeff();
-      };
+      const auto ratio = [&](const auto& num) { return max_ratio(num, k_->abar(i, i)); };
       weight_[i] = std::max({1.0, ratio(k_->h2bbar(i)), ratio(k_->hb(i) * h)});
     }
     weights_.assign(size_t(s_) * ((kHistory + 1) * s_) * ((kHistory + 1) * s_), 0.0);
@@ -114,14 +112,18 @@ class Stepper final : public StepperBase {
   void step(long step_number, double t, Statistics& stats) override {
     step_number_ = step_number;
     t_ = t;
-    const Statistics before = stats;  // a failed step counts nothing
-    try {
-      implicit_step(stats);
-    } catch (...) {
-      stats = before;
-      throw;
-    }
-    std::rotate(steps_.begin(), steps_.end() - 1, steps_.end());
+    // The step counts into its own record, added to stats once it has succeeded (a failed step
+    // counts nothing).
+    Statistics counts;
+    implicit_step(counts);
+    stats.gradient_evaluations += counts.gradient_evaluations;
+    stats.hessian_evaluations += counts.hessian_evaluations;
+    stats.stage_iterations += counts.stage_iterations;
+    stats.newton_fallbacks += counts.newton_fallbacks;
+    stats.newton_iterations += counts.newton_iterations;
+    Scalar* const oldest = steps_[kHistory];  // (rotated by hand: std::rotate was a call)
+    for (int age = kHistory; age > 0; --age) steps_[age] = steps_[age - 1];
+    steps_[0] = oldest;
     history_ = std::min(history_ + 1, kHistory);
     ++stats.steps;
   }
@@ -308,6 +310,8 @@ class Stepper final : public StepperBase {
   // Fixed point Q <- r_i - h^2 abar_ii(V) g(Q). True when converged, or when the updates stall
   // below Options::roundoff_level (a tolerance under the round-off noise); G(i) then holds the
   // gradient of the last iterate but one (no confirming evaluation).
+  // The tests on theta = delta / delta_old are multiplied out (theta/(1-theta) delta <= tol as
+  // delta^2 <= tol (delta_old - delta)), and the too-slow test needs no logarithm (too_slow).
   bool fixed_point(int i, Statistics& stats) {
     double delta = 0, delta_old = 0, norm2_Q = 0, change_first = 0;
     int extra = 0;  // iterations after convergence from a cold start (reset_tightening)
@@ -321,12 +325,10 @@ class Stepper final : public StepperBase {
       // |dQ| / max(|Q_new|, |Q_old|) in eigen coordinates, so a converged stage needs no inverse
       // transform. Both iterates: an iterate at 0 (a 2-cycle r -> 0 -> r) must not make delta
       // huge and the next theta ~ 0, which would pass the stopping test without converging.
-      // (From squared norms: two square roots, max(|a|, |b|) = sqrt(max(|a|^2, |b|^2)).)
       const double change2 = squared_norm(Q_hat_new_ - Q_hat_);
       if (it == 1) norm2_Q = squared_norm(Q_hat_);  // later: the previous iterate's norm2_new
       const double norm2_new = squared_norm(Q_hat_new_);
-      const double scale = std::max(std::sqrt(std::max(norm2_new, norm2_Q)), 1e-300);
-      delta = change2 == 0 ? 0.0 : std::sqrt(change2) / scale;
+      delta = relative_change(change2, std::max(norm2_new, norm2_Q));
       norm2_Q = norm2_new;
       swap_views(Q_hat_, Q_hat_new_);
       if (it == 2 && change_first > 0) record_contraction(i, change_first, delta, delta_old);
@@ -337,23 +339,15 @@ class Stepper final : public StepperBase {
       if (it == 1 && delta > 0 && contraction_proves(i, delta)) return true;
       if (it == 1) change_first = std::sqrt(change2), g_first_hat_ = G(i);
       if (it > 1) {
-        const double theta = delta / delta_old;
-        if (theta < 1 && theta / (1 - theta) * delta <= options_.tolerance) {
-          if (!reset_tightening(theta / (1 - theta) * delta, extra)) return true;
+        if (delta < delta_old && delta * delta <= options_.tolerance * (delta_old - delta)) {
+          if (!reset_tightening(delta, delta_old, extra)) return true;
           delta_old = delta;  // (converged: the next iteration only tightens, and cannot fail)
           continue;
         }
         if (extra > 0) return true;  // (converged before; this iteration did not contract)
-        if (theta >= options_.max_theta)
+        if (delta >= options_.max_theta * delta_old)
           return delta <= options_.roundoff_level;  // stagnation at round-off, else diverging
-        // Too slow: theta^n/(1-theta) * delta would need more iterations than are left.
-        const double needed =
-            std::log(options_.tolerance * (1 - theta) / (theta * delta)) / std::log(theta);
-        // Also when Newton's last solve of this stage cost fewer evaluations than are needed.
-        const bool newton_cheaper = newton_cost_[i] > 0 && needed > newton_cost_[i];
-        if ((it + needed > options_.max_fixed_point_iterations || newton_cheaper) &&
-            delta > options_.roundoff_level)
-          return false;
+        if (too_slow(i, it, delta, delta_old) && delta > options_.roundoff_level) return false;
       }
       delta_old = delta;
     }
@@ -368,14 +362,37 @@ class Stepper final : public StepperBase {
   // point iterates on after converging, up to kResetExtra times, until the estimate is within
   // kResetShare of the tolerance. Its stopping test stays the tolerance: a tighter one made
   // steps at half the predicted fixed-point limit fall back to Newton (ff85219, reverted).
-  // True when one more iteration is due; counts it in `extra`.
+  // True when one more iteration is due; counts it in `extra`. (The estimate theta/(1-theta)
+  // delta with theta = delta / delta_old is delta^2 / (delta_old - delta).)
   static constexpr double kResetShare = 0.01;
   static constexpr int kResetExtra = 4;
-  bool reset_tightening(double estimate, int& extra) const {
-    if (history_ > 0 || estimate <= kResetShare * options_.tolerance || extra >= kResetExtra)
+  bool reset_tightening(double delta, double delta_old, int& extra) const {
+    if (history_ > 0 || extra >= kResetExtra ||
+        delta * delta / (delta_old - delta) <= kResetShare * options_.tolerance)
       return false;
     ++extra;
     return true;
+  }
+
+  // sqrt(change2 / norm2), norm2 the larger squared norm of the two iterates (floored: an
+  // iterate of norm below 1e-300 counts as 1e-300).
+  static double relative_change(double change2, double norm2) {
+    if (change2 == 0) return 0;
+    if (norm2 >= std::numeric_limits<double>::min()) return std::sqrt(change2 / norm2);
+    return std::sqrt(change2) / std::max(std::sqrt(norm2), 1e-300);
+  }
+
+  // Whether reaching the tolerance at theta = delta / delta_old (< max_theta) would take more
+  // iterations than are left, or more than Newton's last solve of this stage cost: K more
+  // iterations leave theta^(K+1)/(1-theta) delta.
+  bool too_slow(int i, int it, double delta, double delta_old) const {
+    const double theta = delta / delta_old;
+    int left = options_.max_fixed_point_iterations - it;
+    if (newton_cost_[i] > 0) left = std::min(left, int(newton_cost_[i]));
+    double power = theta;  // theta^(left + 1) by squaring
+    for (double base = theta; left > 0; left >>= 1, base *= base)
+      if (left & 1) power *= base;
+    return power * delta > options_.tolerance * (1 - theta);
   }
 
   // The contraction theta of stage i's iteration is a property of h, M and U near the solution:
@@ -405,11 +422,10 @@ class Stepper final : public StepperBase {
   static constexpr int kThetaRefresh = 8;
   static constexpr double kEps = std::numeric_limits<double>::epsilon();
 
+  // theta/(1-theta) delta weight_i <= kFirstShare * tolerance, as delta <= first_limit_[i].
   bool contraction_proves(int i, double delta) {
     if (theta_[i] < 0 || ++theta_age_[i] >= kThetaRefresh) return false;
-    const double theta = kThetaSafety * theta_[i];
-    return theta < 0.5 &&
-           theta / (1 - theta) * delta * weight_[i] <= kFirstShare * options_.tolerance;
+    return delta <= first_limit_[i];
   }
 
   // theta along the first update, |h^2 abar_ii (g(Q_1) - g(Q_0))| / |Q_1 - Q_0|, with g(Q_0) in
@@ -430,6 +446,11 @@ class Stepper final : public StepperBase {
     g_first_hat_ = co(k_->abar(i, i)) * (G(i) - g_first_hat_);
     theta_[i] = std::sqrt(squared_norm(g_first_hat_)) / change_first;
     theta_age_[i] = 0;
+    const double theta = kThetaSafety * theta_[i];
+    first_limit_[i] = !(theta < 0.5) ? -1.0
+                      : theta > 0
+                          ? kFirstShare * options_.tolerance * (1 - theta) / (theta * weight_[i])
+                          : std::numeric_limits<double>::max();
   }
 
   // Newton on F(Q) = Q - r_i + h^2 abar_ii(V) g(Q) from the starting guess, Jacobian
@@ -668,10 +689,13 @@ class Stepper final : public StepperBase {
     error = (error - x) + dx;
   }
 
-  static Eigen::ArrayXd as_array(double x) { return Eigen::ArrayXd::Constant(1, x); }
-  template <class A>
-  static Eigen::ArrayXd as_array(const A& a) {
-    return a;
+  // max_k |num_k| / |den_k| over the eigen coordinates (numbers or arrays; no allocation).
+  template <class A, class B>
+  static double max_ratio(const A& num, const B& den) {
+    if constexpr (std::is_same_v<B, double>)
+      return std::abs(num) / std::abs(den);
+    else
+      return (num.abs() / den.abs()).maxCoeff();
   }
 
   template <size_t n, class T>
@@ -724,7 +748,8 @@ class Stepper final : public StepperBase {
   std::array<int, kMaxStages> adapt_wait_ = filled<kMaxStages>(1);  // steps to adapt_order's check
   std::array<int, kMaxStages> adapt_interval_ = filled<kMaxStages>(1);
   std::array<double, kMaxStages> theta_ = filled<kMaxStages>(-1.0);  // measured; < 0: none
-  std::array<int, kMaxStages> theta_age_{};  // stage solves since the measurement
+  std::array<int, kMaxStages> theta_age_{};       // stage solves since the measurement
+  std::array<double, kMaxStages> first_limit_{};  // the largest delta a first iteration may stop at
   std::array<double, kMaxStages> weight_{};
   std::array<double, kMaxStages> newton_cost_{};  // evaluations of its last Newton solve; 0: none
   // The arrays in eigen coordinates, m_ entries each and stride_ apart in spectral_ (one
