@@ -81,7 +81,7 @@ class Stepper final : public StepperBase {
         g_first_hat_(slot(10), m_) {
     for (int age = 0; age <= kHistory; ++age) steps_[age] = slot(kSlots + age * s_);
     for (Eigen::VectorXd* x : {&Q_, &g_}) x->setZero(d);
-    if (rkn_) Mq_.setZero(d);
+    if (rkn_) Mq_.setZero(d), set_m_diagonal();
     k_.emplace(method, h, lambda);
     for (int i = 0; i < s_; ++i) {
       const auto ratio = [&](const auto& num) { return max_ratio(num, k_->abar(i, i)); };
@@ -666,10 +666,30 @@ class Stepper final : public StepperBase {
     add_MQ(Q);
   }
 
+  // g_ += M Q. With a fixed D and a scalar or diagonal M inline, g_k += m_k Q_k: the products
+  // MOperator::apply forms, without its call and the pass over Mq_ (P2, D = 1: 15-18 % less CPU
+  // per evaluation for RKN1s2(1), RKN2s4, RKN3s4(1); a driver stepping the Stepper alone).
   void add_MQ(const Eigen::VectorXd& Q) {
     if (!rkn_) return;
+    if constexpr (kFixed) {
+      if (m_diagonal_) {
+        Eigen::Map<Array>(g_.data()) += m_diag_ * Eigen::Map<const Array>(Q.data());
+        return;
+      }
+    }
     M_.apply(Q, Mq_);
     g_ += Mq_;
+  }
+
+  // m_diag_ for add_MQ: M's diagonal when it is scalar or diagonal (fixed D only).
+  void set_m_diagonal() {
+    using S = Stiffness::Structure;
+    const Stiffness& M = system_.M;
+    if constexpr (kFixed) {
+      if (M.structure() == S::scalar) m_diag_.setConstant(M.entries()[0]);
+      if (M.structure() == S::diagonal) m_diag_ = M.entries().array();
+      m_diagonal_ = M.structure() == S::scalar || M.structure() == S::diagonal;
+    }
   }
 
   void gradient(const Eigen::VectorXd& Q, Eigen::VectorXd& g, int i, Statistics& stats) {
@@ -762,6 +782,8 @@ class Stepper final : public StepperBase {
   SpectralMap r_hat_, Q_hat_, Q_hat_new_, guess_hat_, g_first_hat_;
   std::array<Scalar*, kHistory + 1> steps_{};
   Eigen::VectorXd Q_, g_, Mq_;  // (Q_, g_ go to the callbacks)
+  bool m_diagonal_ = false;     // RKN, fixed D, M scalar or diagonal: M = diag(m_diag_)
+  Eigen::Array<double, kFixed ? D : 1, 1> m_diag_;
   // Newton workspace, allocated at the first fallback.
   Eigen::MatrixXd J_, H_, M_dense_;
   Eigen::VectorXd r_, F_, gU_, col_, Q_new_;
