@@ -14,12 +14,11 @@
 #include <cstdio>
 #include <erkn/erkn.hpp>
 #include <erkn/problems.hpp>
+#include <erkn/problems/reference.hpp>
 #include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include "reference.hpp"
 
 namespace {
 
@@ -64,7 +63,7 @@ int main() {
     problems.push_back(erkn::problems::problem_by_key(key));
     const erkn::problems::Problem& p = problems.back();
     references.push_back(p.exact ? (*p.exact)(p.t_error)
-                                 : ex::reference_solution(p, p.t_error, 1e-12).q);
+                                 : erkn::problems::reference_solution(p, p.t_error, 1e-12).q);
   }
   std::printf("%-14s %-4s %6s %10s %9s %10s %12s %7s %10s %12s %10s\n", "method", "prob", "tol",
               "h", "steps", "error", "gradU/stage", "newton", "vs tol 0", "at 1e-2e/n", "vs tol 0");

@@ -9,9 +9,9 @@ build=${ERKN_BUILD_DIR:-build}
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release > /dev/null
 cmake --build "$build" --target regenerate
 cmake --build "$build" -j 2
-"$build"/runtime/cli/erkn list
-"$build"/runtime/cli/erkn run --out docs "$@"
-"$build"/runtime/cli/erkn stability all --out docs/charts
+"$build"/cli/erkn list
+"$build"/cli/erkn run --out docs "$@"
+"$build"/cli/erkn stability all --out docs/charts
 "$build"/experiments/erkn_stability_hmax docs/stability.md
 "$build"/experiments/erkn_advisor_sweep docs/advisor.md  # the advisor against 1e5-step runs
 "$build"/scaling/erkn-ensemble-speedup --out docs
@@ -33,12 +33,12 @@ fi
 if [ -x "$build"/bench/erkn_accuracy_benchmark ]; then
   "$build"/bench/erkn_accuracy_benchmark --markdown docs/accuracy.md 2> /dev/null
 fi
-if [ -x "$build"/runtime/mpi/erkn-mpi ]; then  # MPI scaling on 1, 2 and 4 ranks (erkn::mpi built)
+if [ -x "$build"/mpi/erkn-mpi ]; then  # MPI scaling on 1, 2 and 4 ranks (erkn::mpi built)
   [ "$(id -u)" -ne 0 ] || export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
   export OMPI_MCA_btl_vader_single_copy_mechanism=none  # (CMA fails in containers)
   rm -f docs/mpi_scaling.tsv
   for ranks in 1 2 4; do
-    mpirun -np "$ranks" --oversubscribe "$build"/runtime/mpi/erkn-mpi scaling --table docs/mpi_scaling.tsv
+    mpirun -np "$ranks" --oversubscribe "$build"/mpi/erkn-mpi scaling --table docs/mpi_scaling.tsv
   done
-  "$build"/runtime/mpi/erkn-mpi report --table docs/mpi_scaling.tsv --out docs/mpi.md
+  "$build"/mpi/erkn-mpi report --table docs/mpi_scaling.tsv --out docs/mpi.md
 fi

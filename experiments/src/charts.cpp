@@ -4,12 +4,12 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <erkn/process.hpp>
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <stdexcept>
 
-#include "process.hpp"
 #include "summary.hpp"
 
 namespace ex {

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "energy.hpp"
+#include "problem.hpp"
 #include "progress.hpp"
-#include "reference.hpp"
 #include "sweep.hpp"
 
 namespace ex {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "grid_scenes.hpp"
-#include "reference.hpp"
+#include "problem.hpp"
 
 namespace ex {
 

@@ -5,12 +5,11 @@
 
 #include <cmath>
 #include <erkn/method.hpp>
+#include <erkn/process.hpp>
 #include <filesystem>
 #include <random>
 #include <string>
 #include <vector>
-
-#include "process.hpp"
 
 namespace {
 

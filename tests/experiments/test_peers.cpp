@@ -9,7 +9,7 @@
 #include <unsupported/Eigen/KroneckerProduct>
 
 #include "block_solve.hpp"
-#include "reference.hpp"
+#include "problem.hpp"
 #include "solver.hpp"
 #include "splitting.hpp"
 

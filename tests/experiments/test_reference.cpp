@@ -1,7 +1,7 @@
 // The RKF7(8) long-double reference, checked where the exact solution is known (P2).
 #include <gtest/gtest.h>
 
-#include "reference.hpp"
+#include "problem.hpp"
 
 namespace ex {
 namespace {

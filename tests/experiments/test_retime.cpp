@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "reference.hpp"
+#include "problem.hpp"
 #include "retime.hpp"
 #include "splitting.hpp"
 

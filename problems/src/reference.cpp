@@ -1,4 +1,4 @@
-#include "reference.hpp"
+#include "erkn/problems/reference.hpp"
 
 #include <algorithm>
 #include <boost/numeric/odeint/stepper/runge_kutta_fehlberg78.hpp>
@@ -7,7 +7,7 @@
 #include <type_traits>
 #include <vector>
 
-namespace ex {
+namespace erkn::problems {
 namespace {
 
 // RKF7(8) with fixed steps on y = (q, p), y' = (p, -Mq - grad U(q)), in floating type T.
@@ -72,4 +72,4 @@ Reference reference_solution(const Problem& pr, double t_end, double tolerance,
                                              : reference_rkf78<double>(pr, t_end, tolerance);
 }
 
-}  // namespace ex
+}  // namespace erkn::problems

@@ -12,6 +12,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <erkn/process.hpp>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -23,7 +24,6 @@
 #include "erkn/method.hpp"
 #include "erkn/stability.hpp"
 #include "help.hpp"
-#include "process.hpp"
 
 namespace erkn::cli {
 namespace {

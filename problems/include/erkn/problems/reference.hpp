@@ -6,9 +6,9 @@
 
 #include <string>
 
-#include "problem.hpp"
+#include "erkn/problems.hpp"
 
-namespace ex {
+namespace erkn::problems {
 
 struct Reference {
   Vec q;
@@ -22,4 +22,4 @@ enum class Precision { long_double, double_ };
 Reference reference_solution(const Problem& problem, double t_end, double tolerance,
                              Precision precision = Precision::long_double);
 
-}  // namespace ex
+}  // namespace erkn::problems
