@@ -16,17 +16,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The experiments program that belongs to this erkn: the build tree's when this is the build
-// tree's erkn, else the one installed beside it (never a build tree's from an installed erkn,
-// never a search of PATH).
+// The experiments program that belongs to this erkn: the one beside it, in the build tree (bin/)
+// as where both are installed (never a search of PATH).
 fs::path experiments_program() {
   std::error_code ec;
   const fs::path self = fs::canonical("/proc/self/exe", ec);
   if (ec) throw Error("erkn run: cannot locate the erkn executable: " + ec.message());
-#if defined(ERKN_BUILD_TREE_ERKN) && defined(ERKN_BUILD_TREE_EXPERIMENTS)
-  if (fs::equivalent(self, ERKN_BUILD_TREE_ERKN, ec)) return ERKN_BUILD_TREE_EXPERIMENTS;
-#endif
-  return self.parent_path() / "erkn-experiments";
+  const fs::path program = self.parent_path() / "erkn-experiments";
+  if (!fs::exists(program, ec))
+    throw Error("erkn run needs the experiments program " + program.string() +
+                ", which is missing: it is built with -DERKN_BUILD_EXPERIMENTS=ON (cmake --build "
+                "BUILD --target erkn-experiments) and installed beside erkn");
+  return program;
 }
 
 }  // namespace

@@ -9,9 +9,9 @@ build=${ERKN_BUILD_DIR:-build}
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release > /dev/null
 cmake --build "$build" --target regenerate
 cmake --build "$build" -j 2
-"$build"/cli/erkn list
-"$build"/cli/erkn run --out docs "$@"
-"$build"/cli/erkn stability all --out docs/charts
+"$build"/bin/erkn list
+"$build"/bin/erkn run --out docs "$@"
+"$build"/bin/erkn stability all --out docs/charts
 "$build"/experiments/erkn_stability_hmax docs/stability.md
 "$build"/experiments/erkn_advisor_sweep docs/advisor.md  # the advisor against 1e5-step runs
 "$build"/scaling/erkn-ensemble-speedup --out docs

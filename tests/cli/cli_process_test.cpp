@@ -65,6 +65,28 @@ TEST(Cli, RefusesTheInputsOfIssue12) {
                  "not a finite number");
 }
 
+// erkn run starts the erkn-experiments beside erkn, found at run time: an erkn without one says
+// so (the path and how to build it); the build tree's erkn, beside its erkn-experiments, starts it.
+TEST(Cli, RunFindsErknExperimentsBesideItOrSaysItIsMissing) {
+  const fs::path alone = fresh_directory("alone") / "erkn";
+  fs::copy_file(ERKN_CLI, alone);
+  erkn::process::Request r;
+  r.argv = {alone.string(), "run", "--help"};
+  r.timeout_seconds = 30;
+  const erkn::process::Result missing = erkn::process::run(r);
+  EXPECT_NE(missing.exit_code, 0);
+  EXPECT_NE(
+      missing.err.find("erkn run needs the experiments program " +
+                       (alone.parent_path() / "erkn-experiments").string() + ", which is missing"),
+      std::string::npos)
+      << missing.err;
+  EXPECT_NE(missing.err.find("-DERKN_BUILD_EXPERIMENTS=ON"), std::string::npos) << missing.err;
+  const erkn::process::Result beside = erkn_cli({"run", "--help"});
+  EXPECT_EQ(beside.exit_code, 0) << beside.err;
+  EXPECT_NE(beside.out.find("usage: erkn-experiments"), std::string::npos) << beside.out;
+  fs::remove_all(alone.parent_path());
+}
+
 TEST(Cli, AdviseFlagsPolesAndResonancesAndAcceptsTheRest) {
   for (const erkn::Method& m : erkn::Method::all()) {
     const std::string name(m.name());
