@@ -16,6 +16,7 @@
 #include <erkn/accuracy.hpp>
 #include <erkn/error.hpp>
 #include <erkn/problems.hpp>
+#include <erkn/problems/reference.hpp>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -23,7 +24,6 @@
 #include <string>
 #include <vector>
 
-#include "reference.hpp"
 #include "thread_seconds.hpp"
 
 namespace {
@@ -45,12 +45,13 @@ struct Scene {
 };
 
 Scene scene(Problem p) {
-  ex::Reference r = p.force_ld
-                        ? ex::reference_solution(p, p.t_error, 1e-13)
-                        : ex::reference_solution(p, p.t_error, 1e-12, ex::Precision::double_);
-  return {std::move(p), r.q,
-          r.method + (r.accuracy > 0 ? ", last halving changed " + sci(r.accuracy, 1)
-                                     : std::string())};
+  namespace pr = erkn::problems;
+  pr::Reference r = p.force_ld
+                        ? pr::reference_solution(p, p.t_error, 1e-13)
+                        : pr::reference_solution(p, p.t_error, 1e-12, pr::Precision::double_);
+  return {
+      std::move(p), r.q,
+      r.method + (r.accuracy > 0 ? ", last halving changed " + sci(r.accuracy, 1) : std::string())};
 }
 
 struct Run {
