@@ -57,6 +57,7 @@ Scene scene(Problem p) {
 struct Run {
   std::string method;
   double h = 0, error = kInf, cpu = kInf;
+  double choice_cpu = 0;  // of auto: the choice (pilot, Hessian bounds, advisor) within cpu
 };
 
 // One fixed-step run as a user calls it: construction + integrate; error at t_end.
@@ -83,7 +84,7 @@ Run automatic(const Scene& s, double tol) {
   const erkn::Solution sol = erkn::solve(erkn::problems::system(s.problem), s.problem.q0,
                                          s.problem.p0, 0, s.problem.t_error, r);
   Run out{sol.method, sol.h, (sol.q - s.reference).lpNorm<Eigen::Infinity>(),
-          bench::thread_seconds() - t0};
+          bench::thread_seconds() - t0, sol.choice->pilot_cpu};
   return out;
 }
 
@@ -97,27 +98,34 @@ bool worth_finer(const Best& best, double error, double cpu) {
   return false;
 }
 
-void sweep_method(const Scene& s, const erkn::Method& m, Best& best, long& runs) {
+// The cheapest run with error <= tol per method (sweep_method fills it; pruned methods miss
+// tolerances they could not reach within twice the best cost known then).
+using PerMethod = std::map<std::string, Best>;
+
+void sweep_method(const Scene& s, const erkn::Method& m, Best& best, PerMethod& own, long& runs) {
+  Best& mine = own[std::string(m.name())];
   for (int k = 0;; ++k) {
     const double n = std::ceil(2 * std::pow(2.0, k / 4.0));
     if (n > 4e6) return;
     const Run r = fixed(s, m, s.problem.t_error / n);
     ++runs;
-    for (double tol : kTols)
+    for (double tol : kTols) {
       if (r.error <= tol && (!best.count(tol) || r.cpu < best.at(tol).cpu)) best[tol] = r;
+      if (r.error <= tol && (!mine.count(tol) || r.cpu < mine.at(tol).cpu)) mine[tol] = r;
+    }
     if (r.error <= kTols[3] || (std::isfinite(r.cpu) && r.cpu > 2.0)) return;
     if (std::isfinite(r.cpu) && !worth_finer(best, r.error, r.cpu)) return;
   }
 }
 
 // Every registry method, highest order first (they set the bounds that prune the others).
-Best sweep(const Scene& s, long& runs) {
+Best sweep(const Scene& s, PerMethod& own, long& runs) {
   std::vector<const erkn::Method*> methods;
   for (const erkn::Method& m : erkn::Method::all()) methods.push_back(&m);
   std::stable_sort(methods.begin(), methods.end(),
                    [](auto* a, auto* b) { return a->order() > b->order(); });
   Best best;
-  for (const erkn::Method* m : methods) sweep_method(s, *m, best, runs);
+  for (const erkn::Method* m : methods) sweep_method(s, *m, best, own, runs);
   return best;
 }
 
@@ -126,14 +134,17 @@ double median(std::vector<double> x) {
   return x[x.size() / 2];
 }
 
-// CPU of auto over CPU of the sweep's best, interleaved: median of 7 per-round ratios.
-double interleaved_ratio(const Scene& s, double tol, const Run& best, Run& last_auto) {
-  std::vector<double> ratios;
+// CPU of auto over CPU of the sweep's best, interleaved: median of 7 per-round ratios; the
+// choice's share of auto's CPU the same way.
+double interleaved_ratio(const Scene& s, double tol, const Run& best, Run& last_auto,
+                         double& choice_ratio) {
+  std::vector<double> ratios, choice;
   for (int round = 0; round < 7; ++round) {
     last_auto = automatic(s, tol);
     const Run b = fixed(s, erkn::Method::by_name(best.method), best.h);
-    ratios.push_back(last_auto.cpu / b.cpu);
+    ratios.push_back(last_auto.cpu / b.cpu), choice.push_back(last_auto.choice_cpu / b.cpu);
   }
+  choice_ratio = median(choice);
   return median(ratios);
 }
 
@@ -141,7 +152,7 @@ struct Row {
   std::string scene;
   double tol = 0;
   Run automatic, best;
-  double ratio = kInf;
+  double ratio = kInf, choice_ratio = kInf;
   bool window = false, cheap = false;
 };
 
@@ -155,8 +166,8 @@ std::string markdown_row(const Row& r) {
   return "| " + r.scene + " | " + sci(r.tol, 0) + " | " + r.automatic.method + " | " +
          sci(r.automatic.h) + " | " + sci(r.automatic.error) + " | " +
          (r.window ? "met" : "**NOT met**") + " | " + r.best.method + " | " + sci(r.best.h) +
-         " | " + sci(r.best.error) + " | " + fixed_digits(r.ratio) + " | " +
-         (r.cheap ? "met" : "**NOT met**") + " |\n";
+         " | " + sci(r.best.error) + " | " + fixed_digits(r.choice_ratio) + " | " +
+         fixed_digits(r.ratio) + " | " + (r.cheap ? "met" : "**NOT met**") + " |\n";
 }
 
 }  // namespace
@@ -173,10 +184,20 @@ std::vector<Problem> problems_of(const std::string& only) {
   return out;
 }
 
-std::vector<Row> rows_of(const Scene& s, std::string& notes) {
+// Per method, its cheapest run's CPU over the cell's cheapest, one entry per cell (inf where it
+// did not reach tol within the sweep's pruning bound).
+using Tally = std::map<std::string, std::vector<double>>;
+
+void tally_cell(const PerMethod& own, double tol, const Run& best, Tally& tally) {
+  for (const auto& [name, mine] : own)
+    tally[name].push_back(mine.count(tol) ? mine.at(tol).cpu / best.cpu : kInf);
+}
+
+std::vector<Row> rows_of(const Scene& s, std::string& notes, Tally& tally) {
   long runs = 0;
   const double t0 = bench::thread_seconds();
-  const Best best = sweep(s, runs);
+  PerMethod own;
+  const Best best = sweep(s, own, runs);
   notes += "- " + s.problem.key + " (" + s.problem.title +
            ", t_end = " + fixed_digits(s.problem.t_error, 0) +
            ", d = " + std::to_string(s.problem.dim()) + "): reference " + s.reference_note +
@@ -190,7 +211,8 @@ std::vector<Row> rows_of(const Scene& s, std::string& notes) {
       continue;
     }
     r.best = best.at(tol);
-    r.ratio = interleaved_ratio(s, tol, r.best, r.automatic);
+    tally_cell(own, tol, r.best, tally);
+    r.ratio = interleaved_ratio(s, tol, r.best, r.automatic, r.choice_ratio);
     r.window = r.automatic.error <= 3 * tol && r.automatic.error >= tol / 100;
     r.cheap = r.ratio <= 1.5;
     std::cerr << markdown_row(r);
@@ -199,7 +221,34 @@ std::vector<Row> rows_of(const Scene& s, std::string& notes) {
   return out;
 }
 
-std::string markdown(const std::vector<Row>& rows, const std::string& notes) {
+// Which single method comes closest to the cheapest over all cells (the default method's data):
+// cells within 1.25x and 2x of the cheapest, and the median ratio (inf counts as above it).
+std::string tally_table(const Tally& tally) {
+  std::vector<std::pair<double, std::string>> rows;
+  for (const auto& [name, ratios] : tally) {
+    const int near =
+        int(std::count_if(ratios.begin(), ratios.end(), [](double x) { return x <= 1.25; }));
+    const int within =
+        int(std::count_if(ratios.begin(), ratios.end(), [](double x) { return x <= 2; }));
+    const double med = median(ratios);
+    if (within == 0) continue;
+    rows.emplace_back(
+        med, "| " + name + " | " + std::to_string(near) + " | " + std::to_string(within) + " | " +
+                 (std::isfinite(med) ? fixed_digits(med) : std::string("> 2")) + " |\n");
+  }
+  std::sort(rows.begin(), rows.end());
+  std::string out =
+      "\n## One method for every problem: the sweep per method\n\nEach method's cheapest "
+      "swept run reaching tol, over the cheapest of all methods, per cell (" +
+      std::to_string(tally.empty() ? 0 : tally.begin()->second.size()) +
+      " cells; single sweep timings, not re-timed; a method pruned before reaching tol counts "
+      "as above 2x). Methods never within 2x are left out.\n\n| method | cells <= 1.25x | "
+      "cells <= 2x | median ratio |\n|---|---|---|---|\n";
+  for (const auto& row : rows) out += row.second;
+  return out;
+}
+
+std::string markdown(const std::vector<Row>& rows, const std::string& notes, const Tally& tally) {
   int window = 0, cheap = 0;
   for (const Row& r : rows) window += r.window, cheap += r.cheap;
   std::string out =
@@ -212,14 +261,15 @@ std::string markdown(const std::vector<Row>& rows, const std::string& notes) {
       "max norm of q at t_end against the reference. Targets: error in [tol/100, 3 tol]; CPU "
       "of the whole solve (choice + run) <= 1.5x the cheapest swept run with error <= tol "
       "(construction + integrate), re-timed interleaved, median of 7 per-round ratios; thread "
-      "CPU time on a shared machine.\n\n"
+      "CPU time on a shared machine. 'choice CPU / best': the choice alone (pilot, Hessian "
+      "bounds, advisor; a continued pilot's h run counts here) over the best run.\n\n"
       "Error window met in " +
       std::to_string(window) + " / " + std::to_string(rows.size()) + " cases, CPU <= 1.5x in " +
       std::to_string(cheap) + " / " + std::to_string(rows.size()) +
-      ".\n\n| scene | tol | auto | h | error | window | sweep's best | h | error | CPU "
-      "ratio | <= 1.5x |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+      ".\n\n| scene | tol | auto | h | error | window | sweep's best | h | error | choice "
+      "CPU / best | CPU ratio | <= 1.5x |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Row& r : rows) out += markdown_row(r);
-  return out + "\n" + notes;
+  return out + "\n" + notes + tally_table(tally);
 }
 
 }  // namespace
@@ -239,11 +289,12 @@ int main(int argc, char** argv) {
   }
   std::vector<Row> rows;
   std::string notes;
+  Tally tally;
   for (Problem& p : problems_of(only)) {
     const Scene s = scene(std::move(p));
-    for (Row& r : rows_of(s, notes)) rows.push_back(r);
+    for (Row& r : rows_of(s, notes, tally)) rows.push_back(r);
   }
-  const std::string md = markdown(rows, notes);
+  const std::string md = markdown(rows, notes, tally);
   if (markdown_file.empty()) {
     std::cout << md;
   } else {
