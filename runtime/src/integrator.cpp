@@ -186,26 +186,35 @@ void Integrator::step() {
 
 void Integrator::step(long n) {
   if (n < 0) throw Error("step(n): n must be >= 0; got " + std::to_string(n));
-  const Timer timer(*this);
+  const Timer timer(*this, n);
   for (long k = 0; k < n; ++k) step();
 }
 
 using detail::cpu_seconds;
 using detail::wall_seconds;
 
-Integrator::Timer::Timer(Integrator& run, bool read_cpu)
+Integrator::Timer::Timer(Integrator& run, long steps)
     : run_(run.timing_ ? nullptr : &run),
-      read_cpu_(read_cpu),
+      read_cpu_(double(steps) * double(run.q_.size()) >= kCpuClockWork),
       wall_0_(run_ ? wall_seconds() : 0),
-      cpu_0_(run_ && read_cpu ? cpu_seconds() : 0) {
+      cpu_0_(run_ && read_cpu_ ? cpu_seconds() : 0) {
   run.timing_ = true;
+}
+
+void Integrator::Timer::before_observer() {
+  if (!run_ || read_cpu_) return;
+  const double wall = wall_seconds() - wall_0_;
+  if (wall < kCpuClockDelay) return;
+  read_cpu_ = true;
+  wall_as_cpu_ = wall;
+  cpu_0_ = cpu_seconds();
 }
 
 Integrator::Timer::~Timer() {
   if (!run_) return;
   const double wall = wall_seconds() - wall_0_;
   run_->statistics_.wall_time += wall;
-  run_->statistics_.cpu_time += read_cpu_ ? cpu_seconds() - cpu_0_ : wall;
+  run_->statistics_.cpu_time += read_cpu_ ? wall_as_cpu_ + cpu_seconds() - cpu_0_ : wall;
   run_->timing_ = false;
 }
 

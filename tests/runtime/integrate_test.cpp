@@ -120,6 +120,34 @@ TEST(Integrate, IntegrateToAnEndTimeIsTimed) {
   EXPECT_NEAR(a.statistics().cpu_time - before.cpu_time, wall, 1e-12);
 }
 
+// A short call with output times or an observer reads no CPU clock while it lasts less than
+// kCpuClockDelay (its wall time is its CPU time), and a refused call adds no time at all.
+TEST(Integrate, ShortCallsWithObserversCountWallTimeUntilTheDelay) {
+  Integrator a(Method::by_name("SERKN2s4"), polynomial_system(), 0.01, Eigen::Vector3d(0.6, 0, 0),
+               Eigen::Vector3d(0, 0.5, 0));
+  const auto nothing = [](double, const Eigen::VectorXd&, const Eigen::VectorXd&) {};
+  int under_the_delay = 0;
+  for (int k = 0; k < 20; ++k) {  // (a preempted call may outlast the delay: it reads the clock)
+    const Statistics before = a.statistics();
+    const Eigen::VectorXd times = Eigen::VectorXd::Constant(1, a.t() + 0.025);
+    if (k % 2 == 0)
+      a.integrate(a.t() + 0.05, times, nothing);
+    else
+      a.integrate(a.t() + 0.05, nothing);
+    const double wall = a.statistics().wall_time - before.wall_time;
+    EXPECT_GT(wall, 0.0);
+    if (wall >= Integrator::kCpuClockDelay) continue;
+    ++under_the_delay;
+    EXPECT_EQ(a.statistics().cpu_time - before.cpu_time, wall);
+  }
+  EXPECT_GT(under_the_delay, 0);
+  const Statistics before = a.statistics();
+  EXPECT_THROW(a.integrate(a.t() - 1, nothing), Error);
+  EXPECT_THROW(a.integrate(a.t() - 1, Eigen::VectorXd::Zero(1), nothing), Error);
+  EXPECT_EQ(a.statistics().wall_time, before.wall_time);
+  EXPECT_EQ(a.statistics().cpu_time, before.cpu_time);
+}
+
 // CPU seconds of the calling thread, the clock Statistics::cpu_time reads.
 double thread_cpu_seconds() {
   timespec ts{};

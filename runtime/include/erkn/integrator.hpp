@@ -83,10 +83,11 @@ struct Statistics {
   long newton_iterations = 0;     ///< Newton iterations, over all fallbacks
   long state_loads = 0;  ///< transforms of the state back to physical coordinates after steps
   double wall_time = 0;  ///< seconds (steady clock) spent in integrate() and step(n) calls
-  /// CPU seconds of the calling thread there (callbacks included). A call of integrate(t_end)
-  /// without an observer and of less than Integrator::kCpuClockWork steps x dimension counts its
-  /// wall time instead: no user code runs in it, and a thread CPU clock read (a system call,
-  /// ~2 us on a virtual machine) would cost more than its steps.
+  /// CPU seconds of the calling thread there (callbacks included). A call of less than
+  /// Integrator::kCpuClockWork steps x dimension counts its wall time instead until it has lasted
+  /// Integrator::kCpuClockDelay (0.1 ms) at an observer call, and reads the thread CPU clock from
+  /// then on: a clock read (a system call, ~2 us on a virtual machine) would cost more than its
+  /// steps. So time an observer sleeps after the first 0.1 ms of a call is not counted.
   double cpu_time = 0;
 };
 
@@ -118,22 +119,23 @@ class Integrator {
   /// steps, the shorter step clear of the method's poles); a failed step keeps the steps before.
   template <class Observer>
   void integrate(double t_end, Observer&& observer, long every = 1) {
-    const Timer timer(*this);
     const EndPlan plan = prepare_end(t_end, every);
+    Timer timer(*this, plan.whole);
     for (long n = 1; n <= plan.whole; ++n) {
       step();
-      if (n % every == 0 || (n == plan.whole && !plan.shorter)) observer(t(), q(), p());
+      if (n % every == 0 || (n == plan.whole && !plan.shorter))
+        timer.before_observer(), observer(t(), q(), p());
     }
     if (plan.shorter) {
       step_to(t_end);
-      observer(t(), q(), p());
+      timer.before_observer(), observer(t(), q(), p());
     }
   }
   /// Steps to t_end as above without an observer: the state stays in M's eigen coordinates
   /// (no transform back) until q() or p() asks for it.
   void integrate(double t_end) {
     const EndPlan plan = prepare_end(t_end, 1);
-    const Timer timer(*this, double(plan.whole) * double(q_.size()) >= kCpuClockWork);
+    const Timer timer(*this, plan.whole);
     for (long n = 1; n <= plan.whole; ++n) step();
     if (plan.shorter) step_to(t_end);
   }
@@ -143,14 +145,13 @@ class Integrator {
   template <class Observer>
   void integrate(double t_end, const Eigen::Ref<const Eigen::VectorXd>& times,
                  Observer&& observer) {
-    const Timer timer(*this);
     require_output_times(t_end, times);
-    prepare_end(t_end, 1);
+    Timer timer(*this, prepare_end(t_end, 1).whole + long(times.size()));
     Eigen::VectorXd q(q_.size()), p(p_.size());
     for (double tau : times) {
       for (long n = steps_until(tau); n > 0; --n) step();
       state_at(tau, q, p);
-      observer(tau, q, p);
+      timer.before_observer(), observer(tau, q, p);
     }
     integrate(t_end);
   }
@@ -161,8 +162,11 @@ class Integrator {
   /// Counts its gradient evaluations and iterations in statistics(), not in steps.
   void state_at(double t, Eigen::VectorXd& q, Eigen::VectorXd& p);
 
-  /// Below this many steps x dimension, integrate(t_end) counts wall time as CPU time.
+  /// Below this many steps x dimension, a call counts its wall time as CPU time until it has
+  /// lasted kCpuClockDelay at an observer call (Statistics::cpu_time).
   static constexpr double kCpuClockWork = 16384;
+  /// Seconds of wall time after which a short call with an observer reads the CPU clock.
+  static constexpr double kCpuClockDelay = 1e-4;
   /// At most this many steps per integrate call: beyond 2^53 the grid t0 + n h is not exact.
   static constexpr double kMaxSteps = 9007199254740992.0;
 
@@ -212,19 +216,23 @@ class Integrator {
   double short_h_ = 0;
 
   // Adds the wall and CPU time of its lifetime to statistics_ unless an outer Timer (a nested
-  // integrate call) already does; a nested one reads no clock. Without `read_cpu` its wall time
-  // counts as CPU time (Statistics::cpu_time).
+  // integrate call) already does; a nested one reads no clock. A call of `steps` steps reads the
+  // thread CPU clock from its start if steps x dimension >= kCpuClockWork; a shorter one counts
+  // its wall time as CPU time until before_observer() finds it has lasted kCpuClockDelay (user
+  // code that may sleep comes next), and reads the CPU clock from then on.
   class Timer {
    public:
-    explicit Timer(Integrator& run, bool read_cpu = true);
+    Timer(Integrator& run, long steps);
     ~Timer();
     Timer(const Timer&) = delete;
     Timer& operator=(const Timer&) = delete;
+    void before_observer();
 
    private:
     Integrator* run_;  // null when nested
     bool read_cpu_;
     double wall_0_, cpu_0_;
+    double wall_as_cpu_ = 0;  // the wall time before the CPU clock was read
   };
   bool timing_ = false;
 
