@@ -1,6 +1,7 @@
 // erkn: the command-line face of the library.
 //   erkn list [--json]             every method: kind, stages, certified order, source
-//                                  (--methods-file F.json: with a user's methods)
+// Every command takes --methods-file F.json (erkn-generate --json): a user's methods join the
+// registry (erkn run hands it to erkn-experiments).
 //   erkn tableau NAME ...          coefficients at a v, Taylor series, or poles (JSON)
 //   erkn run ...                   the paper's problems against peers: charts, docs/results.md
 //   erkn stability NAME|all ...    stability regions of S(V, z) (CSV and charts)
@@ -19,13 +20,14 @@ namespace {
 
 int usage(bool help) {
   return erkn::cli::print_usage(
-      "usage: erkn list [--json] [--methods-file F.json]... | --version | --help\n"
+      "usage: erkn list [--json] | --version | --help\n"
       "       erkn tableau NAME (--v X | --series K | --poles VMAX)\n"
       "       erkn run [--quick | --full] [experiment options; erkn run --help]\n"
       "       erkn stability NAME|all [--vmax V --zmin Z --zmax Z --grid N --out DIR]\n"
       "       erkn advise NAME --h H (--spectrum L1,... | --problem P1|P2|P3|FPU)"
       " [--hessian LO,HI]\n"
-      "erkn COMMAND --help prints the command's usage.\n",
+      "Every command takes --methods-file F.json (repeatable): a user's methods, written by\n"
+      "erkn-generate --json, join erkn's own. erkn COMMAND --help prints the command's usage.\n",
       help);
 }
 
@@ -40,6 +42,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   try {
+    if (command != "run") argc = erkn::cli::load_methods_files(argc, argv);
     if (command == "list") return erkn::cli::list_command(argc - 1, argv + 1);
     if (command == "tableau") return erkn::cli::tableau_command(argc - 1, argv + 1);
     if (command == "run") return erkn::cli::run_command(argc - 1, argv + 1);

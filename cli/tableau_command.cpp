@@ -88,8 +88,6 @@ void list_json() {
   std::cout << "\n]\n";
 }
 
-// Loads the files of every `--methods-file F.json` pair (Method::load) and removes the pairs;
-// returns the new argc.
 int load_methods_files(int argc, char** argv) {
   int kept = 0;
   for (int i = 0; i < argc; ++i) {
@@ -113,7 +111,6 @@ int list_command(int argc, char** argv) {
         help);
   };
   if (asks_for_help(argc, argv)) return list_usage(true);
-  argc = load_methods_files(argc, argv);
   if (argc == 2 && std::string(argv[1]) == "--json") {
     list_json();
     return 0;

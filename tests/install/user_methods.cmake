@@ -65,6 +65,13 @@ run(${ERKN_CLI} list --methods-file ${json})
 if(NOT out MATCHES "\nSB3A +explicit +5 +4 " OR NOT out MATCHES "\nSB3A_M4 +explicit +4 +4 ")
   message(FATAL_ERROR "erkn list --methods-file does not list SB3A and SB3A_M4:\n${out}")
 endif()
+# tableau, advise and stability take them too.
+run(${ERKN_CLI} tableau SB3A --v 0.5 --methods-file ${json})
+if(NOT out MATCHES "\"method\": \"SB3A\"")
+  message(FATAL_ERROR "erkn tableau SB3A --methods-file: no SB3A tableau:\n${out}")
+endif()
+run(${ERKN_CLI} advise SB3A --h 0.1 --spectrum 1,4 --methods-file ${json})
+run(${ERKN_CLI} stability SB3A --grid 16 --out ${WORK}/stability --methods-file ${json})
 run(${ERKN_CLI} run --methods-file ${json} --problems P3 --methods SB3A,Strang --steps 1/8,1/16
     --out ${WORK}/run)
 file(READ ${WORK}/run/results.md results)
