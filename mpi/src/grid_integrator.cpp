@@ -6,13 +6,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
 
 #include "collective.hpp"
+#include "compensated_sum.hpp"  // (runtime/src)
 #include "erkn/mpi.hpp"
+#include "erkn/time_grid.hpp"
 #include "slab_transform.hpp"
 #include "step_coefficients.hpp"  // (runtime/src)
 #include "step_size_check.hpp"    // (runtime/src)
@@ -41,7 +42,7 @@ class GridStepper {
         method_(method),
         system_(std::move(system)),
         options_(options),
-        h_(h),
+        grid_(0, h),
         rkn_(method.kind() == Kind::rkn),
         s_(method.stages()),
         T_(comm_, system_.M),
@@ -58,7 +59,7 @@ class GridStepper {
       a->setZero(m);
     G_.assign(std::size_t(s_), Eigen::ArrayXd::Zero(m));
     G_old_ = G_;
-    for (Eigen::VectorXd* x : {&Q_, &g_, &dq_, &dp_, &sum_}) x->setZero(slab_.size);
+    for (Eigen::VectorXd* x : {&Q_, &g_, &dq_, &dp_}) x->setZero(slab_.size);
     const double* c = method.table().c;  // Lagrange weights from c_j to 1 + c_i, as Stepper
     for (int i = 0; i < s_; ++i)
       for (int j = 0; j < s_; ++j) {
@@ -93,7 +94,7 @@ class GridStepper {
     std::swap(G_, G_old_);
     have_history_ = !short_step;
     ++statistics_.steps;
-    ++steps_since_base_;
+    grid_.advance();
   }
 
   /// The coefficients of a shorter step (checked against the poles; the same on every rank).
@@ -104,8 +105,6 @@ class GridStepper {
     k_short_.emplace(method_, h_short, lambda_);
     short_h_ = h_short;
   }
-
-  double t() const { return t_base_ + double(steps_since_base_) * h_; }
 
   double energy() {
     if (!system_.potential) throw Error("energy() needs System::potential");
@@ -127,7 +126,7 @@ class GridStepper {
   Method method_;
   System system_;
   Options options_;
-  double h_;
+  TimeGrid grid_;  // (validates h)
   bool rkn_;
   int s_;
   detail::SlabTransform T_;
@@ -138,8 +137,6 @@ class GridStepper {
   const StepCoefficients<Eigen::ArrayXd>* k_ = &k_h_;  // of the step being taken
   Slab slab_;
   Statistics statistics_;
-  double t_base_ = 0;  // the time grid is t_base_ + n h
-  long steps_since_base_ = 0;
   Eigen::VectorXd q_, p_, q_error_, p_error_;
 
  private:
@@ -239,16 +236,12 @@ class GridStepper {
                 "unchanged");
   }
 
-  // x += dx, Kahan-compensated when enabled (Stepper::add).
+  // x += dx, Kahan-compensated when enabled (the library's update, compensated_sum.hpp).
   void add(Eigen::VectorXd& x, Eigen::VectorXd& error, Eigen::VectorXd& dx) {
-    if (!options_.compensated_summation) {
+    if (options_.compensated_summation)
+      erkn::detail::compensated_add(x, error, dx);
+    else
       x += dx;
-      return;
-    }
-    dx += error;
-    sum_ = x + dx;
-    error = (x - sum_) + dx;
-    x.swap(sum_);
   }
 
   std::array<std::array<double, kMaxStages>, kMaxStages> extrapolation_{};
@@ -256,16 +249,15 @@ class GridStepper {
   std::string local_gradient_error_;
   Eigen::ArrayXd q_hat_, p_hat_, r_hat_, Q_hat_, Q_new_hat_, guess_hat_, dq_hat_, dp_hat_;
   std::vector<Eigen::ArrayXd> G_, G_old_;  // this and the previous step's stage gradients
-  Eigen::VectorXd Q_, g_, dq_, dp_, sum_;
+  Eigen::VectorXd Q_, g_, dq_, dp_;
 };
 
 }  // namespace detail
 
 namespace {
 
-std::string check_input(const System& system, double h, const Eigen::VectorXd& q0,
-                        const Eigen::VectorXd& p0, Eigen::Index expected) {
-  if (!std::isfinite(h) || h <= 0) return "the step size h must be finite and > 0";
+std::string check_input(const System& system, const Eigen::VectorXd& q0, const Eigen::VectorXd& p0,
+                        Eigen::Index expected) {
   if (!system.gradient) return "System::gradient is not set";
   if (q0.size() != expected || p0.size() != expected)
     return "this rank's slab has " + std::to_string(expected) + " unknowns; q0 has " +
@@ -288,14 +280,14 @@ GridIntegrator::GridIntegrator(MPI_Comm comm, const Method& method, System syste
   detail::collectively(comm, [&] {
     if (system.M.structure() != Stiffness::Structure::grid)
       throw Error("the distributed integrator needs M = Stiffness::grid");
-    if (std::isfinite(h) && h > 0)
-      erkn::detail::check_step_size(method, h, system.M.eigenvalues(), options.pole_tolerance);
+    const TimeGrid grid(0, h);  // (validates h, the same on every rank)
+    erkn::detail::check_step_size(method, h, system.M.eigenvalues(), options.pole_tolerance);
   });
   std::unique_ptr<detail::GridStepper> stepper;
   detail::collectively(comm, [&] {
     stepper = std::make_unique<detail::GridStepper>(comm, method, system, h, q0, p0, options);
   });
-  detail::throw_if_any(comm, check_input(system, h, q0, p0, stepper->slab_.size));
+  detail::throw_if_any(comm, check_input(system, q0, p0, stepper->slab_.size));
   stepper_ = std::move(stepper);
 }
 
@@ -309,35 +301,24 @@ void GridIntegrator::step() {
 }
 
 void GridIntegrator::integrate(double t_end) {
-  // Integrator's time semantics: whole steps of h to the last grid point t_n before t_end (a time
-  // within 4 eps of a grid point is that point), then one shorter step t_end - t_n.
+  // Integrator's time grid (erkn/time_grid.hpp): whole steps of h to the last grid point t_n
+  // before t_end (a time within round-off of a grid point is that point), then one shorter step
+  // t_end - t_n. (The same decisions on every rank: every rank has the same times.)
   detail::GridStepper& s = *stepper_;
-  const double t0 = t(), h = s.h_;
-  if (!std::isfinite(t_end) || t_end < t0)
-    throw Error("t_end = " + std::to_string(t_end) +
-                " is not finite or lies before t = " + std::to_string(t0));
-  const double tolerance =
-      4 * std::numeric_limits<double>::epsilon() * std::max({std::abs(t0), std::abs(t_end), h});
-  const double whole = std::floor((t_end - t0) / h + 1e-9);
-  if (whole > Integrator::kMaxSteps)
-    throw Error("t_end = " + std::to_string(t_end) + " needs more than 2^53 steps");
-  const auto grid = [&](double n) { return s.t_base_ + (double(s.steps_since_base_) + n) * h; };
-  long n = long(whole);
-  if (n > 0 && grid(double(n)) > t_end + tolerance) --n;  // (the 1e-9 overshot)
-  const double rest = t_end - grid(double(n));
-  const bool shorter = rest > tolerance;
-  if (shorter) detail::collectively(s.comm_, [&] { s.prepare_short(rest); });
-  for (long k = 0; k < n; ++k) s.step();
-  if (shorter) {
+  const TimeGrid::Plan plan = s.grid_.plan_to(t_end);
+  if (plan.shorter)
+    detail::collectively(s.comm_, [&] { s.prepare_short(t_end - s.grid_.ahead(plan.whole)); });
+  for (long k = 0; k < plan.whole; ++k) s.step();
+  if (plan.shorter) {
     s.step(true);
-    s.t_base_ = t_end, s.steps_since_base_ = 0;  // (t() == t_end exactly)
+    s.grid_.restart(t_end);  // (t() == t_end exactly)
   }
 }
 
 const Eigen::VectorXd& GridIntegrator::q() const { return stepper_->q_; }
 const Eigen::VectorXd& GridIntegrator::p() const { return stepper_->p_; }
-double GridIntegrator::t() const { return stepper_->t(); }
-double GridIntegrator::h() const { return stepper_->h_; }
+double GridIntegrator::t() const { return stepper_->grid_.t(); }
+double GridIntegrator::h() const { return stepper_->grid_.h(); }
 const Slab& GridIntegrator::slab() const { return stepper_->slab_; }
 const Statistics& GridIntegrator::statistics() const { return stepper_->statistics_; }
 long GridIntegrator::transforms() const { return stepper_->T_.count(); }

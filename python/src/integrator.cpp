@@ -50,9 +50,7 @@ class PyIntegrator {
                const Eigen::VectorXd& q0, const Eigen::VectorXd& p0, double t0,
                const Options& options)
       : calls_python_(system.calls_python),
-        run_(Method::by_name(method), system.system, h, q0, p0, options) {
-    if (t0 != 0) run_.set_state(q0, p0, t0);
-  }
+        run_(Method::by_name(method), system.system, h, q0, p0, options, t0) {}
 
   void step(long n) {
     if (n < 0) throw Error("step(n): n must be >= 0; got " + std::to_string(n));

@@ -29,8 +29,8 @@ class BlowupGuard {
   /// The state a failed check returns to: the last one that passed.
   struct Checkpoint {
     Eigen::VectorXd q, p;
-    double t_base = 0;
-    long steps_since_base = 0, steps = 0;
+    TimeGrid grid{0.0, 1.0};  // (every start saves the integrator's)
+    long steps = 0;
   };
 
   /// Starts over at a new state (construction, set_state): `energy` true measures H with the

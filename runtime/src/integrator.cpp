@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -20,11 +19,6 @@
 namespace erkn {
 namespace {
 
-void require_step_size(double h) {
-  if (!std::isfinite(h) || h <= 0)
-    throw Error("the step size h must be finite and > 0; got h = " + format(h));
-}
-
 void require_state(const System& system, const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
   if (q.size() == 0) throw Error("q is empty");
   if (p.size() != q.size())
@@ -39,22 +33,6 @@ void require_state(const System& system, const Eigen::VectorXd& q, const Eigen::
     if (!std::isfinite(p[i]))
       throw Error("p[" + std::to_string(i) + "] = " + format(p[i]) + " is not finite");
   }
-}
-
-// Round-off in forming a time t0 + n h (and in the caller's t_end): a few ulps of the largest
-// magnitude involved. Never proportional to n h itself beyond that (issue 12, defect 2).
-double grid_tolerance(double t, double t_end, double h) {
-  return 4 * std::numeric_limits<double>::epsilon() * std::max({std::abs(t), std::abs(t_end), h});
-}
-
-// A step of h from t must move the time beyond its round-off (as integrate demands of its grid):
-// after set_state(q, p, 1e20) a step of 0.1 would leave t() at 1e20.
-bool resolved_step(double t, double h) { return h > 2 * grid_tolerance(t, t + h, h); }
-void require_resolved_step(double t, double h) {
-  if (!resolved_step(t, h))
-    throw Error("h = " + format(h) + " is below the round-off of t = " + format(t, 17) +
-                ": a step would not advance the time (set the state at a smaller t, or use a "
-                "larger h)");
 }
 
 // Circulant M: the explicit Fourier basis (folded matrix-vector products, O(N^2)) up to N =
@@ -145,10 +123,12 @@ void require_advised(const Method& method, const System& system, double h, const
 }  // namespace
 
 Integrator::Integrator(const Method& method, System system, double h, const Eigen::VectorXd& q0,
-                       const Eigen::VectorXd& p0, const Options& options)
-    : method_(method), options_(options), h_(h), guard_(std::make_unique<detail::BlowupGuard>()) {
+                       const Eigen::VectorXd& p0, const Options& options, double t0)
+    : method_(method),
+      options_(options),
+      grid_(t0, h),  // (validates h and t0)
+      guard_(std::make_unique<detail::BlowupGuard>()) {
   validate(options);
-  require_step_size(h);
   require_state(system, q0, p0);
   if (!system.gradient) throw Error("System::gradient is not set");
   if (options.energy_tolerance > 0 && !system.potential)
@@ -170,9 +150,9 @@ Integrator& Integrator::operator=(Integrator&&) noexcept = default;
 const System& Integrator::system() const { return stepper_->system(); }
 
 void Integrator::step() {
-  // (Known at every change of t_base or h and at every guard check: stepping alone needs ~1e14
+  // (Known at every restart of the grid and at every guard check: stepping alone needs ~1e14
   // steps to leave the resolved range.)
-  if (!time_resolved_) require_resolved_step(t(), h_);
+  if (!time_resolved_) grid_.require_resolved();
   try {
     checked_step(*stepper_);
   } catch (const Error& e) {  // (a blow-up often ends in a failed stage: say so)
@@ -180,7 +160,7 @@ void Integrator::step() {
     throw;
   }
   stale_ = true;
-  ++steps_since_base_;
+  grid_.advance();
   if (guard_->due()) check_guard();
 }
 
@@ -272,64 +252,35 @@ void Integrator::set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p, d
   if (q.size() != q_.size())  // (a scalar M fits any dimension, the integrator only its own)
     throw Error("dimension mismatch: the integrator was built for dimension " +
                 std::to_string(q_.size()) + ", the new q has size " + std::to_string(q.size()));
-  if (!std::isfinite(t)) throw Error("t = " + format(t) + " is not finite");
+  const TimeGrid grid = grid_.with_start(t);  // (validates t)
   energy_0_ = monitored_energy(q, p);
   start_guard(q, p);
   stepper_->set_state(q, p);
   q_ = q;
   p_ = p;
   stale_ = false;
-  t_base_ = t;
-  steps_since_base_ = 0;
+  grid_ = grid;
   save_checkpoint();
 }
 
 void Integrator::set_step_size(double h) {
-  require_step_size(h);
+  const TimeGrid grid = grid_.with_step(h);  // (validates h)
   if (options_.check_stability) require_advised(method_, system(), h, q(), p());
   auto fresh = make_stepper(method_, system(), h, options_, q_.size());
   fresh->set_state(q(), p());  // (the summation errors are dropped)
-  t_base_ = t();
-  steps_since_base_ = 0;
-  h_ = h;
+  grid_ = grid;
   stepper_ = std::move(fresh);
   save_checkpoint();  // (a checkpoint's time is on the grid of its h)
 }
 
-Integrator::EndPlan Integrator::plan_to(double t_end) const {
-  const double t0 = t(), span = t_end - t0;
-  const double tol = grid_tolerance(t0, t_end, h_);
-  if (!std::isfinite(span) || span < -tol)
-    throw Error("t_end = " + format(t_end, 17) +
-                " is not finite or lies before t = " + format(t0, 17));
-  if (span <= tol) return {0, false};
-  const double steps = span / h_;
-  if (!(steps <= kMaxSteps))  // (before any conversion to an integer: no overflow)
-    throw Error("t_end - t = " + format(span) + " needs " + format(steps) + " steps of h = " +
-                format(h_) + ", more than the step-count limit 2^53 = " + format(kMaxSteps, 17) +
-                " (beyond it t0 + n h is not exact); integrate in shorter spans or with a "
-                "larger h");
-  // The grid points around t_end; t_end within round-off of one of them is it.
-  const auto grid = [&](double n) { return t_base_ + (double(steps_since_base_) + n) * h_; };
-  if (h_ <= 2 * tol)
-    throw Error("h = " + format(h_) + " is below the round-off of t = " + format(t0) +
-                " and t_end = " + format(t_end) + ": the time grid cannot be resolved");
-  double n = std::floor(steps);  // (a rounded quotient: may be one off, fixed below)
-  while (n > 0 && grid(n) > t_end + tol) --n;
-  while (grid(n + 1) <= t_end + tol) ++n;
-  return {long(n), std::abs(grid(n) - t_end) > tol};
-}
+long Integrator::steps_until(double t_end) const { return grid_.plan_to(t_end).whole; }
 
-long Integrator::steps_until(double t_end) const { return plan_to(t_end).whole; }
-
-Integrator::EndPlan Integrator::prepare_end(double t_end, long every) {
+TimeGrid::Plan Integrator::prepare_end(double t_end, long every) {
   if (every < 1)
     throw Error("the observer interval must be >= 1 step; got " + std::to_string(every));
-  const EndPlan plan = plan_to(t_end);
-  if (plan.shorter) {
-    const double t_n = t_base_ + double(steps_since_base_ + plan.whole) * h_;
-    stepper_of_size(t_end - t_n);  // validates the shorter step (poles) before any step
-  }
+  const TimeGrid::Plan plan = grid_.plan_to(t_end);
+  // (validates the shorter step, poles, before any step)
+  if (plan.shorter) stepper_of_size(t_end - grid_.ahead(plan.whole));
   return plan;
 }
 
@@ -340,7 +291,7 @@ detail::StepperBase& Integrator::stepper_of_size(double h) {
     } catch (const Error& e) {
       short_stepper_.reset();
       throw Error("a step of size " + format(h, 17) + " (to a time off the grid of h = " +
-                  format(h_, 17) + ") is refused: " + e.what());
+                  format(grid_.h(), 17) + ") is refused: " + e.what());
     }
     short_h_ = h;
   }
@@ -353,18 +304,17 @@ void Integrator::step_to(double t_end) {
   checked_step(s);
   s.get_state(q_, p_);
   stepper_->set_state(q_, p_);  // (the next step of h does not follow a step of h)
-  t_base_ = t_end;
-  steps_since_base_ = 0;
-  time_resolved_ = resolved_step(t(), h_);
+  grid_.restart(t_end);
+  time_resolved_ = grid_.resolved();
   if (guard_->due()) check_guard();
 }
 
 void Integrator::state_at(double t_out, Eigen::VectorXd& q, Eigen::VectorXd& p) {
   if (!std::isfinite(t_out)) throw Error("state_at(" + format(t_out) + "): t is not finite");
-  const double t0 = t(), tol = grid_tolerance(t0, t_out, h_);
-  if (!(t_out >= t0 - tol && t_out <= t0 + h_ + tol))
+  const double t0 = t(), tol = grid_.tolerance(t_out);
+  if (!(t_out >= t0 - tol && t_out <= t0 + h() + tol))
     throw Error("state_at(" + format(t_out, 17) + "): the time must lie within one step of t = " +
-                format(t0, 17) + " (in [t, t + h], h = " + format(h_, 17) + ")");
+                format(t0, 17) + " (in [t, t + h], h = " + format(h(), 17) + ")");
   q = this->q();
   p = this->p();
   if (std::abs(t_out - t0) <= tol) return;
@@ -377,30 +327,21 @@ void Integrator::state_at(double t_out, Eigen::VectorXd& q, Eigen::VectorXd& p) 
 
 void Integrator::require_output_times(double t_end,
                                       const Eigen::Ref<const Eigen::VectorXd>& times) const {
-  // (Compared with the round-off window of integrate and state_at: 0.1 + 0.2 is 0.3.)
-  const double t0 = t();
-  for (Eigen::Index k = 0; k < times.size(); ++k) {
-    const double tau = times[k];
-    if (!std::isfinite(tau) || (k > 0 && tau < times[k - 1]) ||
-        tau < t0 - grid_tolerance(t0, tau, h_) || tau > t_end + grid_tolerance(t_end, tau, h_))
-      throw Error("output time " + std::to_string(k) + " = " + format(tau, 17) +
-                  " is not finite, not ascending, or outside [t, t_end] = [" + format(t0, 17) +
-                  ", " + format(t_end, 17) + "]");
-    require_reachable(tau);
-  }
+  grid_.require_output_times(t_end, times);
+  for (double tau : times) require_reachable(tau);
 }
 
 // The step of size t_out - t_n from the last grid point t_n before t_out clears the poles (an
 // output time's or t_end's shorter step, validated before any step is taken).
 void Integrator::require_reachable(double t_out) const {
-  const EndPlan plan = plan_to(t_out);
+  const TimeGrid::Plan plan = grid_.plan_to(t_out);
   if (!plan.shorter) return;
-  const double size = t_out - (t_base_ + double(steps_since_base_ + plan.whole) * h_);
+  const double size = t_out - grid_.ahead(plan.whole);
   try {
     detail::check_step_size(method_, size, system().M.eigenvalues(), options_.pole_tolerance);
   } catch (const Error& e) {
     throw Error("a step of size " + format(size, 17) + " (to t = " + format(t_out, 17) +
-                ", off the grid of h = " + format(h_, 17) + ") is refused: " + e.what());
+                ", off the grid of h = " + format(h(), 17) + ") is refused: " + e.what());
   }
 }
 
@@ -441,10 +382,10 @@ void Integrator::start_guard(const Eigen::VectorXd& q, const Eigen::VectorXd& p)
 }
 
 void Integrator::save_checkpoint() {
-  time_resolved_ = resolved_step(t(), h_);
+  time_resolved_ = grid_.resolved();
   detail::BlowupGuard::Checkpoint& c = guard_->checkpoint();
   c.q = q(), c.p = p();
-  c.t_base = t_base_, c.steps_since_base = steps_since_base_, c.steps = statistics_.steps;
+  c.grid = grid_, c.steps = statistics_.steps;
 }
 
 // A check of the guard: passed, the state becomes the checkpoint; failed, the checkpoint becomes
@@ -458,7 +399,7 @@ void Integrator::check_guard(const char* failure) {
   const detail::BlowupGuard::Checkpoint& c = guard_->checkpoint();
   stepper_->set_state(c.q, c.p);
   q_ = c.q, p_ = c.p, stale_ = false;
-  t_base_ = c.t_base, steps_since_base_ = c.steps_since_base, statistics_.steps = c.steps;
+  grid_ = c.grid, statistics_.steps = c.steps;
   std::string message = guard_->message(measure, t_now, step_now, t(), likely_cause());
   if (failure) message += ". The next step then failed: " + std::string(failure);
   throw Error(message);
@@ -467,7 +408,7 @@ void Integrator::check_guard(const char* failure) {
 // The step-size advisor's verdict at h from the current state (erkn/advisor.hpp).
 std::string Integrator::likely_cause() const {
   try {
-    const StepSizeAdvice advice = advise_step_size(method_, system(), h_, q(), p());
+    const StepSizeAdvice advice = advise_step_size(method_, system(), h(), q(), p());
     if (advice.safe() && !advice.equation.empty())
       return "the differential equation's own growth, not the step size, by the step-size "
              "advisor: " +
@@ -475,7 +416,7 @@ std::string Integrator::likely_cause() const {
     if (advice.safe())
       return "not the step size by the step-size advisor (no eigenvalue of M in an unstable "
              "band, at a resonance of an excited mode or near a pole at h = " +
-             format(h_) +
+             format(h()) +
              " with the Hessian of U at the kept state): a Hessian range or a mode's energy the "
              "kept state does not show";
     return "the step size, by the step-size advisor: " + advice.report(method_);

@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "compensated_sum.hpp"
 #include "erkn/error.hpp"
 #include "erkn/integrator.hpp"
 #include "format.hpp"
@@ -60,7 +61,6 @@ class Stepper final : public StepperBase {
         system_(std::move(system)),
         options_(options),
         rkn_(method.kind() == Kind::rkn),
-        h_(h),
         d_(d),
         s_(method.stages()),
         transform_(std::move(transform)),
@@ -696,17 +696,12 @@ class Stepper final : public StepperBase {
     checked_gradient<D>(system_, Q, g, d_, i, place(), stats.gradient_evaluations);
   }
 
-  // x += dx in eigen coordinates, Kahan-compensated when enabled (error carries the lost
-  // low-order bits of x; dx is clobbered).
+  // x += dx in eigen coordinates, Kahan-compensated when enabled (compensated_sum.hpp).
   void add(SpectralMap& x, SpectralMap& error, SpectralMap& dx) {
-    if (!options_.compensated_summation) {
+    if (options_.compensated_summation)
+      compensated_add(x, error, dx);
+    else
       x += dx;
-      return;
-    }
-    dx += error;
-    error = x;
-    x += dx;
-    error = (error - x) + dx;
   }
 
   // max_k |num_k| / |den_k| over the eigen coordinates (numbers or arrays; no allocation).
@@ -739,7 +734,6 @@ class Stepper final : public StepperBase {
   System system_;
   Options options_;
   bool rkn_;
-  double h_;
   Eigen::Index d_;
   int s_;
   std::optional<StepCoefficients<Coef>> k_;

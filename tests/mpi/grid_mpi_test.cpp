@@ -136,6 +136,16 @@ TEST(GridMpi, AnOffGridEndTakesTheSameShorterLastStepAsTheSingleProcessIntegrato
     EXPECT_LE(max_difference(distributed.gather(distributed.q()), serial.q()), 1e-13) << t_end;
   }
   EXPECT_EQ(distributed.statistics().steps, serial.statistics().steps);
+  // The one time grid (erkn/time_grid.hpp): within round-off of t() or of a grid point is on it
+  // (1 ulp before t(): no step; 1.0 + 0.1 + 0.2: three whole steps, no shorter one).
+  for (auto [t_end, steps] : {std::pair{std::nextafter(1.0, 0.0), 0L}, {1.0 + 0.1 + 0.2, 3L}}) {
+    const long before = serial.statistics().steps;
+    distributed.integrate(t_end);
+    serial.integrate(t_end);
+    EXPECT_EQ(distributed.t(), serial.t()) << t_end;
+    EXPECT_EQ(serial.statistics().steps - before, steps) << t_end;
+    EXPECT_EQ(distributed.statistics().steps, serial.statistics().steps) << t_end;
+  }
   EXPECT_THROW(distributed.integrate(0.5), Error);  // before t()
 }
 

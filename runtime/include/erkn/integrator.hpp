@@ -31,6 +31,7 @@
 
 #include "erkn/method.hpp"
 #include "erkn/system.hpp"
+#include "erkn/time_grid.hpp"
 
 namespace erkn {
 
@@ -94,9 +95,9 @@ struct Statistics {
 class Integrator {
  public:
   /// Validates everything (sizes, finiteness, h > 0, poles) and precomputes the coefficients
-  /// for (h, M). The time starts at t = 0.
+  /// for (h, M). The time starts at t0.
   Integrator(const Method& method, System system, double h, const Eigen::VectorXd& q0,
-             const Eigen::VectorXd& p0, const Options& options = {});
+             const Eigen::VectorXd& p0, const Options& options = {}, double t0 = 0);
   ~Integrator();
   Integrator(Integrator&&) noexcept;
   Integrator& operator=(Integrator&&) noexcept;
@@ -106,9 +107,10 @@ class Integrator {
   /// n >= 0 steps of size h, timed in statistics() (erkn::Error for n < 0, before any step).
   void step(long n);
 
-  // Time semantics. The integrator's grid is t0 + n h (t0: the start, or the last set_state,
-  // set_step_size or off-grid integrate). A time within round-off of a grid point (relative
-  // 4 eps of max(|t|, |t_end|, h): the error of forming t0 + n h) counts as that grid point.
+  // Time semantics (erkn/time_grid.hpp). The integrator's grid is t0 + n h (t0: the start, or
+  // the last set_state, set_step_size or off-grid integrate). A time within round-off of a grid
+  // point (relative 4 eps of max(|t|, |t_end|, h): the error of forming t0 + n h) counts as that
+  // grid point.
 
   /// Steps from t() to t_end and calls observer(t, q, p) after every `every`-th step of this call
   /// and after the last one. On the grid, t_end is reached by whole steps of h. Off the grid, the
@@ -119,7 +121,7 @@ class Integrator {
   /// steps, the shorter step clear of the method's poles); a failed step keeps the steps before.
   template <class Observer>
   void integrate(double t_end, Observer&& observer, long every = 1) {
-    const EndPlan plan = prepare_end(t_end, every);
+    const TimeGrid::Plan plan = prepare_end(t_end, every);
     Timer timer(*this, plan.whole);
     for (long n = 1; n <= plan.whole; ++n) {
       step();
@@ -134,7 +136,7 @@ class Integrator {
   /// Steps to t_end as above without an observer: the state stays in M's eigen coordinates
   /// (no transform back) until q() or p() asks for it.
   void integrate(double t_end) {
-    const EndPlan plan = prepare_end(t_end, 1);
+    const TimeGrid::Plan plan = prepare_end(t_end, 1);
     const Timer timer(*this, plan.whole);
     for (long n = 1; n <= plan.whole; ++n) step();
     if (plan.shorter) step_to(t_end);
@@ -168,7 +170,7 @@ class Integrator {
   /// Seconds of wall time after which a short call with an observer reads the CPU clock.
   static constexpr double kCpuClockDelay = 1e-4;
   /// At most this many steps per integrate call: beyond 2^53 the grid t0 + n h is not exact.
-  static constexpr double kMaxSteps = 9007199254740992.0;
+  static constexpr double kMaxSteps = TimeGrid::kMaxSteps;
 
   /// Replaces the state (validated first; forgets the stage history used for starting guesses).
   void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p, double t);
@@ -185,8 +187,8 @@ class Integrator {
     if (stale_) load_state();
     return p_;
   }
-  double t() const { return t_base_ + double(steps_since_base_) * h_; }
-  double h() const { return h_; }
+  double t() const { return grid_.t(); }
+  double h() const { return grid_.h(); }
   const Method& method() const { return method_; }
   const System& system() const;
   const Options& options() const { return options_; }
@@ -203,11 +205,9 @@ class Integrator {
  private:
   Method method_;
   Options options_;
-  double h_;
+  TimeGrid grid_;
   mutable Eigen::VectorXd q_, p_;  // the state in physical coordinates, current unless stale_
   mutable bool stale_ = false;
-  double t_base_ = 0;
-  long steps_since_base_ = 0;
   mutable Statistics statistics_;  // (mutable: load_state counts state_loads)
   std::unique_ptr<detail::StepperBase> stepper_;
   // The stepper of the last step size other than h (a shorter last step, state_at), reused
@@ -236,13 +236,8 @@ class Integrator {
   };
   bool timing_ = false;
 
-  struct EndPlan {
-    long whole = 0;        // steps of size h
-    bool shorter = false;  // then one shorter step to t_end
-  };
-  EndPlan plan_to(double t_end) const;
   void load_state() const;
-  EndPlan prepare_end(double t_end, long every);
+  TimeGrid::Plan prepare_end(double t_end, long every);
   void require_output_times(double t_end, const Eigen::Ref<const Eigen::VectorXd>& times) const;
   void require_reachable(double t_out) const;
   detail::StepperBase& stepper_of_size(double h);
@@ -255,7 +250,7 @@ class Integrator {
   void check_energy(detail::StepperBase& stepper);
   // Blow-up guard (Options::blowup_guard).
   std::unique_ptr<detail::BlowupGuard> guard_;
-  bool time_resolved_ = true;  // a step of h moves t() (see step())
+  bool time_resolved_ = true;  // a step of h moves t() (TimeGrid::resolved; see step())
   double guard_measure(const Eigen::VectorXd& q, const Eigen::VectorXd& p, double* scale) const;
   void start_guard(const Eigen::VectorXd& q, const Eigen::VectorXd& p);
   void save_checkpoint();

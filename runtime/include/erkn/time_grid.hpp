@@ -1,0 +1,68 @@
+// The time grid of a fixed-step run, t_n = t0 + n h: one definition for erkn::Integrator, the MPI
+// GridIntegrator and (through Integrator) Python. t0 is the start, or the time of the last
+// set_state, change of h or shorter step; t_n is formed from t0 and the integer n, never summed
+// step by step, so no round-off accumulates over the steps.
+//
+// Round-off window: a time within tolerance(t_end) = 4 eps max(|t|, |t_end|, h) of a grid point
+// (the error of forming t0 + n h and of the caller's own sum, e.g. 0.1 + 0.2) counts as that grid
+// point. A time off the grid is reached by whole steps to the last grid point before it and one
+// shorter step (plan_to); the caller restarts the grid there.
+#pragma once
+
+#include <Eigen/Core>
+
+namespace erkn {
+
+class TimeGrid {
+ public:
+  /// At most this many steps per plan: beyond 2^53 the grid t0 + n h is not exact.
+  static constexpr double kMaxSteps = 9007199254740992.0;
+
+  /// The grid t0 + n h from n = 0; erkn::Error unless t0 is finite and h finite and > 0 (the one
+  /// place a step size is validated).
+  TimeGrid(double t0, double h);
+
+  double t() const { return t0_ + double(n_) * h_; }
+  double h() const { return h_; }
+  /// The grid point `steps` whole steps after t().
+  double ahead(long steps) const { return t0_ + double(n_ + steps) * h_; }
+  /// One step of h taken.
+  void advance() { ++n_; }
+  /// The grid starts over at t (after a shorter step to t, or a new state at t).
+  void restart(double t) { t0_ = t, n_ = 0; }
+  /// The grid of step size h from t() on (validated as the constructor does).
+  TimeGrid with_step(double h) const { return TimeGrid(t(), h); }
+  /// The grid of this step size from t0 on (validated as the constructor does).
+  TimeGrid with_start(double t0) const { return TimeGrid(t0, h_); }
+
+  /// The round-off window of times near t() and t_end.
+  double tolerance(double t_end) const { return window(t(), t_end, h_); }
+  /// False when a step of h would not move t() beyond its round-off (e.g. h = 0.1 at t = 1e20).
+  bool resolved() const;
+  /// erkn::Error unless resolved().
+  void require_resolved() const;
+
+  struct Plan {
+    long whole = 0;        ///< steps of size h
+    bool shorter = false;  ///< then one shorter step, of size t_end - ahead(whole)
+  };
+  /// The way from t() to t_end: t_end on the grid (up to round-off) is reached by whole steps,
+  /// else the whole steps stop at the last grid point before it. erkn::Error if t_end is not
+  /// finite, lies before t(), needs more than kMaxSteps steps or h is below the round-off.
+  Plan plan_to(double t_end) const;
+  /// erkn::Error naming the first of `times` that is not finite, not ascending, or outside
+  /// [t(), t_end] beyond the round-off window.
+  void require_output_times(double t_end, const Eigen::Ref<const Eigen::VectorXd>& times) const;
+
+ private:
+  double t0_, h_;
+  long n_ = 0;
+
+  // Round-off in forming a time a = t0 + n h near b: a few ulps of the largest magnitude
+  // involved, never proportional to n h itself beyond that (issue 12, defect 2).
+  static double window(double a, double b, double h);
+  // The grid point n (a double: a plan's quotient) steps after t().
+  double point(double n) const { return t0_ + (double(n_) + n) * h_; }
+};
+
+}  // namespace erkn

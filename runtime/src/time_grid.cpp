@@ -1,0 +1,71 @@
+#include "erkn/time_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "erkn/error.hpp"
+#include "format.hpp"
+
+namespace erkn {
+
+TimeGrid::TimeGrid(double t0, double h) : t0_(t0), h_(h) {
+  if (!std::isfinite(h) || h <= 0)
+    throw Error("the step size h must be finite and > 0; got h = " + format(h));
+  if (!std::isfinite(t0)) throw Error("t = " + format(t0) + " is not finite");
+}
+
+double TimeGrid::window(double a, double b, double h) {
+  return 4 * std::numeric_limits<double>::epsilon() * std::max({std::abs(a), std::abs(b), h});
+}
+
+bool TimeGrid::resolved() const {
+  const double t0 = t();
+  return h_ > 2 * window(t0, t0 + h_, h_);
+}
+
+void TimeGrid::require_resolved() const {
+  if (!resolved())
+    throw Error("h = " + format(h_) + " is below the round-off of t = " + format(t(), 17) +
+                ": a step would not advance the time (set the state at a smaller t, or use a "
+                "larger h)");
+}
+
+TimeGrid::Plan TimeGrid::plan_to(double t_end) const {
+  const double t0 = t(), span = t_end - t0, tol = tolerance(t_end);
+  if (!std::isfinite(span) || span < -tol)
+    throw Error("t_end = " + format(t_end, 17) +
+                " is not finite or lies before t = " + format(t0, 17));
+  if (span <= tol) return {0, false};
+  const double steps = span / h_;
+  if (!(steps <= kMaxSteps))  // (before any conversion to an integer: no overflow)
+    throw Error("t_end - t = " + format(span) + " needs " + format(steps) + " steps of h = " +
+                format(h_) + ", more than the step-count limit 2^53 = " + format(kMaxSteps, 17) +
+                " (beyond it t0 + n h is not exact); integrate in shorter spans or with a "
+                "larger h");
+  if (h_ <= 2 * tol)
+    throw Error("h = " + format(h_) + " is below the round-off of t = " + format(t0) +
+                " and t_end = " + format(t_end) + ": the time grid cannot be resolved");
+  // The grid points around t_end; t_end within round-off of one of them is it.
+  double n = std::floor(steps);  // (a rounded quotient: may be one off, fixed below)
+  while (n > 0 && point(n) > t_end + tol) --n;
+  while (point(n + 1) <= t_end + tol) ++n;
+  return {long(n), std::abs(point(n) - t_end) > tol};
+}
+
+void TimeGrid::require_output_times(double t_end,
+                                    const Eigen::Ref<const Eigen::VectorXd>& times) const {
+  // (Compared with the round-off window of plan_to: 0.1 + 0.2 is 0.3.)
+  const double t0 = t();
+  for (Eigen::Index k = 0; k < times.size(); ++k) {
+    const double tau = times[k];
+    if (!std::isfinite(tau) || (k > 0 && tau < times[k - 1]) || tau < t0 - window(t0, tau, h_) ||
+        tau > t_end + window(t_end, tau, h_))
+      throw Error("output time " + std::to_string(k) + " = " + format(tau, 17) +
+                  " is not finite, not ascending, or outside [t, t_end] = [" + format(t0, 17) +
+                  ", " + format(t_end, 17) + "]");
+  }
+}
+
+}  // namespace erkn

@@ -1,0 +1,130 @@
+// The time grid t0 + n h (erkn/time_grid.hpp), the one definition Integrator, the MPI
+// GridIntegrator and Python use: times within its round-off window are grid points, times off it
+// take whole steps to the last grid point before them and one shorter step, and every refusal
+// leaves the grid as it was. Random t0 and h over many magnitudes (fixed seed).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <erkn/erkn.hpp>
+#include <erkn/problems.hpp>
+#include <erkn/time_grid.hpp>
+#include <limits>
+#include <random>
+
+#include "refusals.hpp"
+
+namespace erkn::test {
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+// (t0, h) pairs: t0 from -1e6 to 1e6 (and 0), h from 1e-4 to 1.
+std::vector<TimeGrid> grids() {
+  std::mt19937 random(19);
+  std::uniform_real_distribution<double> exponent(-4, 6), h_exponent(-4, 0), sign(-1, 1);
+  std::vector<TimeGrid> out{TimeGrid(0, 0.1)};
+  for (int k = 0; k < 200; ++k)
+    out.emplace_back(sign(random) * std::pow(10.0, exponent(random)),
+                     std::pow(10.0, h_exponent(random)));
+  return out;
+}
+
+TEST(TimeGrid, TimesWithinTheRoundOffWindowAreGridPoints) {
+  const TimeGrid tenth(0, 0.1);
+  EXPECT_EQ(tenth.plan_to(0.1 + 0.2).whole, 3);  // (0.1 + 0.2 = 0.30000000000000004)
+  EXPECT_FALSE(tenth.plan_to(0.1 + 0.2).shorter);
+  for (const TimeGrid& g : grids())
+    for (long k : {0L, 1L, 7L, 1000L}) {
+      const double t_k = g.ahead(k), ulp = std::abs(t_k) * kEps;
+      for (double t_end : {t_k, std::nextafter(t_k, t_k + 1), t_k + ulp, t_k - ulp}) {
+        const TimeGrid::Plan plan = g.plan_to(t_end);
+        EXPECT_EQ(plan.whole, k) << g.t() << " + " << k << " * " << g.h();
+        EXPECT_FALSE(plan.shorter) << g.t() << " + " << k << " * " << g.h();
+      }
+      // Negative control: beyond the window t_end is off the grid.
+      const double beyond = t_k + 16 * kEps * std::max({std::abs(g.t()), std::abs(t_k), g.h()});
+      EXPECT_TRUE(g.plan_to(beyond).shorter) << g.t() << " + " << k << " * " << g.h();
+      EXPECT_EQ(g.plan_to(beyond).whole, k);
+    }
+}
+
+TEST(TimeGrid, AnOffGridTimeTakesWholeStepsToTheLastGridPointBeforeIt) {
+  for (const TimeGrid& g : grids())
+    for (long k : {0L, 3L, 250L})
+      for (double f : {0.01, 0.5, 0.99}) {
+        const double t_end = g.ahead(k) + f * g.h();
+        const TimeGrid::Plan plan = g.plan_to(t_end);
+        ASSERT_TRUE(plan.shorter) << g.t() << " + " << k << " * " << g.h() << ", f " << f;
+        EXPECT_EQ(plan.whole, k);
+        EXPECT_LT(g.ahead(plan.whole), t_end);
+        EXPECT_GT(g.ahead(plan.whole + 1), t_end);
+      }
+}
+
+TEST(TimeGrid, StepsAdvanceFromTheStartWithoutAccumulatingRoundOff) {
+  TimeGrid g(1.0 / 3, 0.1);
+  for (int n = 0; n < 100000; ++n) g.advance();
+  EXPECT_EQ(g.t(), 1.0 / 3 + 100000 * 0.1);  // t0 + n h, not a running sum
+  g.restart(2.5);
+  EXPECT_EQ(g.t(), 2.5);
+  EXPECT_EQ(g.ahead(2), 2.5 + 2 * 0.1);
+}
+
+// Every refusal names the problem and changes nothing.
+TEST(TimeGrid, RefusalsNameTheProblemAndLeaveTheGridUnchanged) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (double h : {0.0, -0.1, nan, inf})
+    EXPECT_CONTAINS(error_of([&] { TimeGrid(0, h); }), "step size h must be finite and > 0");
+  EXPECT_CONTAINS(error_of([&] { TimeGrid(nan, 0.1); }), "is not finite");
+  for (TimeGrid g : grids()) {
+    const double t = g.t(), h = g.h();
+    EXPECT_CONTAINS(error_of([&] { g.plan_to(t - h); }), "lies before t");
+    EXPECT_CONTAINS(error_of([&] { g.plan_to(nan); }), "is not finite");
+    EXPECT_CONTAINS(error_of([&] { g.plan_to(inf); }), "is not finite");
+    EXPECT_CONTAINS(error_of([&] { g.plan_to(t + 1e17 * h); }), "step-count limit 2^53");
+    EXPECT_CONTAINS(error_of([&] { g = g.with_step(-h); }), "step size h must be finite");
+    EXPECT_CONTAINS(error_of([&] { g = g.with_start(inf); }), "is not finite");
+    const Eigen::Vector3d descending(t + 2 * h, t + h, t + 3 * h);
+    EXPECT_CONTAINS(error_of([&] { g.require_output_times(t + 3 * h, descending); }),
+                    "output time 1");
+    const Eigen::Vector2d outside(t + h, t + 5 * h);
+    EXPECT_CONTAINS(error_of([&] { g.require_output_times(t + 3 * h, outside); }),
+                    "outside [t, t_end]");
+    EXPECT_EQ(g.t(), t);
+    EXPECT_EQ(g.h(), h);
+    const Eigen::Vector3d fine(t, t + 0.5 * h, t + 3 * h);  // negative control: accepted
+    EXPECT_NO_THROW(g.require_output_times(t + 3 * h, fine));
+  }
+  TimeGrid far(1e20, 0.1);
+  EXPECT_FALSE(far.resolved());
+  EXPECT_CONTAINS(error_of([&] { far.require_resolved(); }), "below the round-off of t");
+  EXPECT_TRUE(TimeGrid(1e20, 1e6).resolved());
+}
+
+// Integrator(..., options, t0) starts on the grid t0 + n h: bit-identical to a start at 0 and
+// set_state at t0, for every method.
+TEST(TimeGrid, AnIntegratorStartedAtT0IsTheOneMovedThereBySetState) {
+  const problems::Problem p = problems::stellar_orbits();
+  for (const Method& m : Method::all()) {
+    SCOPED_TRACE(std::string(m.name()));
+    Integrator started(m, problems::system(p), 0.05, p.q0, p.p0, {}, 2.5);
+    Integrator moved(m, problems::system(p), 0.05, p.q0, p.p0);
+    moved.set_state(p.q0, p.p0, 2.5);
+    EXPECT_EQ(started.t(), 2.5);
+    started.integrate(3.33);
+    moved.integrate(3.33);
+    EXPECT_EQ(started.t(), 3.33);
+    EXPECT_EQ(started.q(), moved.q());
+    EXPECT_EQ(started.p(), moved.p());
+    EXPECT_EQ(started.statistics().steps, moved.statistics().steps);
+  }
+  EXPECT_CONTAINS(error_of([&] {
+                    Integrator(Method::all()[0], problems::system(p), 0.05, p.q0, p.p0, {},
+                               std::numeric_limits<double>::infinity());
+                  }),
+                  "is not finite");
+}
+
+}  // namespace
+}  // namespace erkn::test
