@@ -64,6 +64,50 @@ std::string identifier(const std::string& name) {
   return id;
 }
 
+namespace {
+
+// Sets one `key value` line's field of m; false for an unknown key.
+bool set_field(MethodSpec& m, const std::string& key, const std::string& value) {
+  if (key == "rkn") {
+    m.rkn = value;
+  } else if (key == "source" || key == "section") {
+    m.source = value;
+    m.paper = key == "section";
+  } else if (key == "stages") {
+    m.stages = std::stoi(value);
+  } else if (key == "order") {
+    m.order = std::stoi(value);
+  } else if (key == "generalized") {
+    for (const std::string& g : split(value, ',')) m.generalized.push_back(std::stoi(g));
+  } else if (key == "c") {
+    m.c = split(value, ',');
+  } else if (key == "drift") {
+    m.drift = split(value, ',');
+  } else if (key == "d" || key == "kick") {
+    m.d = split(value, ',');
+  } else if (key == "modified") {
+    m.e = split(value, ',');
+  } else if (key == "diagonal") {
+    m.diagonal = split(value, ';');
+  } else {
+    return false;
+  }
+  return true;
+}
+
+// Nodes from drifts (the last drift closes the step), then the spec's consistency checks.
+void finish(MethodSpec& m) {
+  if (!m.drift.empty() && !m.c.empty()) throw std::runtime_error(m.name + ": c or drift, not both");
+  if (!m.drift.empty()) m.c = nodes_from_drifts(m.drift);
+  if (!m.drift.empty() && int(m.c.size()) == m.stages + 1) {
+    m.drift_sum = m.c.back();
+    m.c.pop_back();
+  }
+  check(m);
+}
+
+}  // namespace
+
 std::vector<MethodSpec> read_specs(std::istream& in) {
   std::vector<MethodSpec> specs;
   int lineno = 0;
@@ -88,41 +132,11 @@ std::vector<MethodSpec> read_specs(std::istream& in) {
     if (key == "kind") {
       if (value != "erkn" && value != "explicit") fail("kind is erkn or explicit, not " + value);
       m.kind = value == "erkn" ? SpecKind::erkn : SpecKind::explicit_erkn;
-    } else if (key == "rkn") {
-      m.rkn = value;
-    } else if (key == "source" || key == "section") {
-      m.source = value;
-      m.paper = key == "section";
-    } else if (key == "stages") {
-      m.stages = std::stoi(value);
-    } else if (key == "order") {
-      m.order = std::stoi(value);
-    } else if (key == "generalized") {
-      for (const std::string& g : split(value, ',')) m.generalized.push_back(std::stoi(g));
-    } else if (key == "c") {
-      m.c = split(value, ',');
-    } else if (key == "drift") {
-      m.drift = split(value, ',');
-    } else if (key == "d" || key == "kick") {
-      m.d = split(value, ',');
-    } else if (key == "modified") {
-      m.e = split(value, ',');
-    } else if (key == "diagonal") {
-      m.diagonal = split(value, ';');
-    } else {
+    } else if (!set_field(m, key, value)) {
       fail("unknown key '" + key + "'");
     }
   }
-  for (MethodSpec& m : specs) {
-    if (!m.drift.empty() && !m.c.empty())
-      throw std::runtime_error(m.name + ": c or drift, not both");
-    if (!m.drift.empty()) m.c = nodes_from_drifts(m.drift);
-    if (!m.drift.empty() && int(m.c.size()) == m.stages + 1) {  // the last drift closes the step
-      m.drift_sum = m.c.back();
-      m.c.pop_back();
-    }
-    check(m);
-  }
+  for (MethodSpec& m : specs) finish(m);
   return specs;
 }
 

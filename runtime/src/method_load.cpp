@@ -97,6 +97,48 @@ void fill_coefficients(OwnedTable& t) {
     }
 }
 
+// The order check of eq. (f) in long double: erkn::Error naming the first failing condition.
+detail::OrderReport check_claim(const OwnedTable& t, int order, const std::string& where) {
+  const detail::OrderReport r =
+      detail::check_order(t.c_long, t.d_long, order, t.generalized, 64 * LDBL_EPSILON);
+  if (r.failure.empty()) return r;
+  std::string g;
+  for (int x : t.generalized) g += (g.empty() ? "" : ",") + std::to_string(x);
+  throw Error(where + ": claims order " + std::to_string(order) + " (generalized " + g + "), but " +
+              r.failure);
+}
+
+// Points t.table's fields at t's own storage (the table a compiled method would carry).
+void link_table(OwnedTable& t, int s, int order, const detail::OrderReport& r) {
+  t.generalized_error_constant = r.generalized_error_constant;
+  t.generalized_error_constant.resize(t.generalized.size(),
+                                      std::numeric_limits<double>::quiet_NaN());
+  for (auto& x : t.c_text) t.c_exact.push_back(x.c_str());
+  for (auto& x : t.d_text) t.d_exact.push_back(x.c_str());
+  for (auto& x : t.forms) t.form_ptrs.push_back(x.c_str());
+  t.table = {t.name.c_str(),
+             t.id.c_str(),
+             s,
+             order,
+             r.error_constant,
+             false,
+             true,
+             false,
+             t.reference.c_str(),
+             t.generalized.data(),
+             t.generalized_error_constant.data(),
+             int(t.generalized.size()),
+             t.c.data(),
+             t.d.data(),
+             t.c_exact.data(),
+             t.d_exact.data(),
+             nullptr,
+             t.series.data(),
+             t.form_ptrs.data(),
+             nullptr,
+             0};
+}
+
 std::unique_ptr<OwnedTable> read_method(const JsonValue& m, const std::string& path) {
   auto t = std::make_unique<OwnedTable>();
   t->name = m.at("name", path).text;
@@ -121,44 +163,9 @@ std::unique_ptr<OwnedTable> read_method(const JsonValue& m, const std::string& p
     for (int i = 0; i < s; ++i)
       t->c_text.push_back(number_text(t->c[i])), t->d_text.push_back(number_text(t->d[i]));
   t->c_text.resize(size_t(s)), t->d_text.resize(size_t(s));
-  const detail::OrderReport r =
-      detail::check_order(t->c_long, t->d_long, order, t->generalized, 64 * LDBL_EPSILON);
-  if (!r.failure.empty())
-    throw Error(where + ": claims order " + std::to_string(order) + " (generalized " +
-                [&] {
-                  std::string g;
-                  for (int x : t->generalized) g += (g.empty() ? "" : ",") + std::to_string(x);
-                  return g;
-                }() +
-                "), but " + r.failure);
+  const detail::OrderReport r = check_claim(*t, order, where);
   fill_coefficients(*t);
-  t->generalized_error_constant = r.generalized_error_constant;
-  t->generalized_error_constant.resize(t->generalized.size(),
-                                       std::numeric_limits<double>::quiet_NaN());
-  for (auto& x : t->c_text) t->c_exact.push_back(x.c_str());
-  for (auto& x : t->d_text) t->d_exact.push_back(x.c_str());
-  for (auto& x : t->forms) t->form_ptrs.push_back(x.c_str());
-  t->table = {t->name.c_str(),
-              t->id.c_str(),
-              s,
-              order,
-              r.error_constant,
-              false,
-              true,
-              false,
-              t->reference.c_str(),
-              t->generalized.data(),
-              t->generalized_error_constant.data(),
-              int(t->generalized.size()),
-              t->c.data(),
-              t->d.data(),
-              t->c_exact.data(),
-              t->d_exact.data(),
-              nullptr,
-              t->series.data(),
-              t->form_ptrs.data(),
-              nullptr,
-              0};
+  link_table(*t, s, order, r);
   return t;
 }
 

@@ -531,26 +531,31 @@ class Stepper final : public StepperBase {
         "); the state is unchanged");
   }
 
-  // Newton on the same F for d > kDenseNewtonMaxD without any d x d matrix: each linear system
-  // J dQ = F is solved by (flexible) GMRES with J v = v + h^2 abar_ii(V) K v, K v a directional
-  // difference of grad U (+ M v), right-preconditioned in M's eigenbasis by
-  // 1 + h^2 abar_ii(v_k) sigma, sigma = w^T K w / w^T w the Hessian's Rayleigh quotient along the
-  // first residual w (measured by GMRES's first product, which is left unpreconditioned).
-  void newton_krylov(int i, Statistics& stats) {
+  // Newton-Krylov's storage (on first use), r_ and its first iterate Q_: the fixed point's last
+  // iterate (Q_hat_) when it stayed within kKeepIterate of the starting guess (it failed on a
+  // few slow modes near poles of abar_ii after reducing the others' error), else the guess (it
+  // diverged).
+  void start_newton_krylov(int i) {
     if (!gmres_) {
       for (Eigen::VectorXd* x : {&r_, &F_, &gU_, &col_, &Q_new_, &Qe_, &ge_}) x->resize(d_);
       col_hat_.resize(Q_hat_.size());
       gmres_.emplace(d_, kKrylovRestart);
     }
     transform_.inverse(r_hat_, r_);
-    // From the fixed point's last iterate (Q_hat_) when it stayed within kKeepIterate of the
-    // starting guess (it failed on a few slow modes near poles of abar_ii after reducing the
-    // others' error), else from the guess (it diverged).
     const double guess2 = squared_norm(r_hat_ - k_->abar(i, i) * guess_hat_);
     if (!(squared_norm(Q_hat_ - (r_hat_ - k_->abar(i, i) * guess_hat_)) <=
           kKeepIterate * kKeepIterate * guess2))
       Q_hat_ = r_hat_ - k_->abar(i, i) * guess_hat_;
     transform_.inverse(Q_hat_, Q_);
+  }
+
+  // Newton on the same F for d > kDenseNewtonMaxD without any d x d matrix: each linear system
+  // J dQ = F is solved by (flexible) GMRES with J v = v + h^2 abar_ii(V) K v, K v a directional
+  // difference of grad U (+ M v), right-preconditioned in M's eigenbasis by
+  // 1 + h^2 abar_ii(v_k) sigma, sigma = w^T K w / w^T w the Hessian's Rayleigh quotient along the
+  // first residual w (measured by GMRES's first product, which is left unpreconditioned).
+  void newton_krylov(int i, Statistics& stats) {
+    start_newton_krylov(i);
     double delta_old = 0, residual = 0;
     int it = 1, stalls = 0;
     bool sigma_pending = true;
