@@ -61,24 +61,34 @@ std::string command_line(int argc, char** argv) {
   return s;
 }
 
+// The --problems list: the paper's problem keys, and the scenes named by a word of their own.
+struct Scenes {
+  std::vector<std::string> keys;
+  bool scaling = false, stiff = false, grids = false;
+};
+
+Scenes scenes_of(const std::vector<std::string>& problems) {
+  Scenes s;
+  for (const std::string& p : problems) {
+    if (p == "scaling")
+      s.scaling = true;
+    else if (p == "stiff")
+      s.stiff = true;
+    else if (p == "grids")
+      s.grids = true;
+    else
+      s.keys.push_back(p);
+  }
+  return s;
+}
+
 int run(const Options& o, const std::string& command) {
   const auto start = std::chrono::steady_clock::now();
   const SolverList solvers = select(o.methods);
   SolverList scaling_solvers;  // the RKN limits must resolve the fastest mode: left out there
   for (auto& s : select(o.methods))
     if (s->family() != Family::rkn) scaling_solvers.push_back(std::move(s));
-  std::vector<std::string> keys;
-  bool scaling = false, stiff = false, grids = false;
-  for (const std::string& p : o.problems) {
-    if (p == "scaling")
-      scaling = true;
-    else if (p == "stiff")
-      stiff = true;
-    else if (p == "grids")
-      grids = true;
-    else
-      keys.push_back(p);
-  }
+  const auto [keys, scaling, stiff, grids] = scenes_of(o.problems);
   const StiffConfig stiff_config;
 
   Progress progress(long(keys.size() * solvers.size() +
