@@ -24,57 +24,17 @@
 #include <string>
 #include <vector>
 
-#include "thread_seconds.hpp"
+#include "tolerance_scenes.hpp"
 
 namespace {
 
+using bench::fixed_run;
+using bench::kInf;
+using bench::Run;
+using bench::sci;
 using erkn::problems::Problem;
+using Scene = bench::ToleranceScene;
 constexpr double kTols[] = {1e-4, 1e-6, 1e-8, 1e-10};
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-std::string sci(double x, int digits = 2) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.*e", digits, x);
-  return buf;
-}
-
-struct Scene {
-  Problem problem;
-  Eigen::VectorXd reference;
-  std::string reference_note;
-};
-
-Scene scene(Problem p) {
-  namespace pr = erkn::problems;
-  pr::Reference r = p.force_ld
-                        ? pr::reference_solution(p, p.t_error, 1e-13)
-                        : pr::reference_solution(p, p.t_error, 1e-12, pr::Precision::double_);
-  return {
-      std::move(p), r.q,
-      r.method + (r.accuracy > 0 ? ", last halving changed " + sci(r.accuracy, 1) : std::string())};
-}
-
-struct Run {
-  std::string method;
-  double h = 0, error = kInf, cpu = kInf;
-  double choice_cpu = 0;  // of auto: the choice (pilot, Hessian bounds, advisor) within cpu
-};
-
-// One fixed-step run as a user calls it: construction + integrate; error at t_end.
-Run fixed(const Scene& s, const erkn::Method& m, double h) {
-  Run out{std::string(m.name()), h};
-  const double t0 = bench::thread_seconds();
-  try {
-    erkn::Integrator it(m, erkn::problems::system(s.problem), h, s.problem.q0, s.problem.p0);
-    it.integrate(s.problem.t_error);
-    out.error = (it.q() - s.reference).lpNorm<Eigen::Infinity>();
-    if (!std::isfinite(out.error)) out.error = kInf;
-  } catch (const erkn::Error&) {  // a pole, a failed stage: no result at this h
-    return out;
-  }
-  out.cpu = bench::thread_seconds() - t0;
-  return out;
-}
 
 // The whole accuracy-driven solve: choice (pilots, advisor) + run.
 Run automatic(const Scene& s, double tol) {
@@ -107,7 +67,7 @@ void sweep_method(const Scene& s, const erkn::Method& m, Best& best, PerMethod& 
   for (int k = 0;; ++k) {
     const double n = std::ceil(2 * std::pow(2.0, k / 4.0));
     if (n > 4e6) return;
-    const Run r = fixed(s, m, s.problem.t_error / n);
+    const Run r = fixed_run(s, m, s.problem.t_error / n);
     ++runs;
     for (double tol : kTols) {
       if (r.error <= tol && (!best.count(tol) || r.cpu < best.at(tol).cpu)) best[tol] = r;
@@ -141,7 +101,7 @@ double interleaved_ratio(const Scene& s, double tol, const Run& best, Run& last_
   std::vector<double> ratios, choice;
   for (int round = 0; round < 7; ++round) {
     last_auto = automatic(s, tol);
-    const Run b = fixed(s, erkn::Method::by_name(best.method), best.h);
+    const Run b = fixed_run(s, erkn::Method::by_name(best.method), best.h);
     ratios.push_back(last_auto.cpu / b.cpu), choice.push_back(last_auto.choice_cpu / b.cpu);
   }
   choice_ratio = median(choice);
@@ -173,16 +133,6 @@ std::string markdown_row(const Row& r) {
 }  // namespace
 
 namespace {
-
-std::vector<Problem> problems_of(const std::string& only) {
-  std::vector<Problem> all = {erkn::problems::sine_gordon(32),  erkn::problems::duffing(),
-                              erkn::problems::stellar_orbits(), erkn::problems::fpu(),
-                              erkn::problems::henon_heiles(),   erkn::problems::sine_gordon_2d(32)};
-  std::vector<Problem> out;
-  for (Problem& p : all)
-    if (only.empty() || p.key == only) out.push_back(std::move(p));
-  return out;
-}
 
 // Per method, its cheapest run's CPU over the cell's cheapest, one entry per cell (inf where it
 // did not reach tol within the sweep's pruning bound).
@@ -290,8 +240,8 @@ int main(int argc, char** argv) {
   std::vector<Row> rows;
   std::string notes;
   Tally tally;
-  for (Problem& p : problems_of(only)) {
-    const Scene s = scene(std::move(p));
+  for (Problem& p : bench::tolerance_problems(only)) {
+    const Scene s = bench::tolerance_scene(std::move(p));
     for (Row& r : rows_of(s, notes, tally)) rows.push_back(r);
   }
   const std::string md = markdown(rows, notes, tally);

@@ -4,7 +4,8 @@ set -euo pipefail
 packages=(g++ cmake make pkg-config git libginac-dev libcln-dev libeigen3-dev googletest
           libgtest-dev libbenchmark-dev libboost-dev gnuplot-nox
           libfftw3-dev libfftw3-mpi-dev libopenmpi-dev openmpi-bin
-          pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
+          pybind11-dev python3-dev python3-numpy python3-scipy python3-mpmath python3-pytest
+          python3-matplotlib
           python3-venv python3-pip)
 missing=()
 for p in "${packages[@]}"; do

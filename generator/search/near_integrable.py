@@ -1,0 +1,128 @@
+#!/usr/bin/python3
+"""Designs symmetric plain-kick splitting methods for H = A + eps B: the free parameters of a
+family (splitting_family.py) left after its imposed order conditions minimize the predicted
+work to a tolerance (gradients per unit time at the step where sum_K eps^K C_K h^(g_K) = tol,
+C_K the generator's generalized error constants). Deterministic: random starts from a fixed
+seed, feasibility by Gauss-Newton (scipy least_squares), then SLSQP on log(work) with the
+independent imposed conditions as equalities; the best feasible optimum is printed as a
+methods.spec block (17 significant digits: erkn-generate polishes them onto the conditions).
+
+  /usr/bin/python3 generator/search/near_integrable.py DESIGN [--starts N]
+
+DESIGN is one of DESIGNS below. Needs Debian's python3-numpy, python3-scipy.
+"""
+import argparse
+import math
+import os
+import sys
+
+import numpy as np
+from scipy.optimize import least_squares, minimize
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import sen_conditions as sc  # noqa: E402
+from splitting_family import Family, work  # noqa: E402
+
+# name: (stages, layout, order, generalized, eps, tol)
+DESIGNS = {
+}
+
+
+def residuals(fam, x):
+    """The residuals the objective and the conditions read (trees with more than 3 f-vertices
+    skipped unless the objective is the classical error constant, eps = 0)."""
+    c, d = fam.method(list(x))
+    return sc.residuals(c, d, fam.max_power, kmax=fam.kmax)
+
+
+def imposed(fam, x):
+    return np.array(fam.imposed(residuals(fam, x)))
+
+
+def objective(fam, x, eps, tol):
+    """log of the predicted work; eps = 0: the general case, gradients * C^(1/order) with C the
+    generator's error constant (all trees at power order + 1), the standard effective error."""
+    res = residuals(fam, x)
+    if eps == 0:
+        return math.log(fam.gradients) + math.log(fam.error_constant(res)) / fam.order
+    return math.log(work(fam.constants(res), fam.gradients, eps, tol))
+
+
+def independent_rows(fam, x):
+    """Indices of a maximal independent set of imposed conditions at x (pivoted QR of J^T)."""
+    from scipy.linalg import qr
+    r0, h = imposed(fam, x), 1e-7
+    J = np.array([(imposed(fam, x + h * e) - r0) / h for e in np.eye(len(x))]).T
+    _, R, piv = qr(J.T, pivoting=True)
+    rank = int(np.sum(np.abs(np.diag(R)) > 1e-6 * abs(R[0, 0])))
+    return sorted(piv[:rank])
+
+
+def feasible(fam, rng):
+    x0 = np.concatenate([rng.uniform(-0.2, 0.6, fam.n_nodes),
+                         rng.uniform(-0.2, 0.5, fam.n_weights)])
+    sol = least_squares(lambda x: imposed(fam, x), x0, xtol=1e-15, ftol=1e-15, gtol=1e-15,
+                        max_nfev=400)
+    return sol.x if np.max(np.abs(imposed(fam, sol.x))) < 1e-12 else None
+
+
+def optimize(fam, x, eps, tol):
+    rows = independent_rows(fam, x)
+    cons = {"type": "eq", "fun": lambda y: imposed(fam, y)[rows]}
+    out = minimize(lambda y: objective(fam, y, eps, tol), x, method="SLSQP", constraints=[cons],
+                   options={"ftol": 1e-14, "maxiter": 300})
+    y = least_squares(lambda y: imposed(fam, y), out.x, xtol=1e-15, ftol=1e-15,
+                      gtol=1e-15).x  # back onto the conditions to round-off
+    return y if np.max(np.abs(imposed(fam, y))) < 1e-13 else None
+
+
+def search(fam, eps, tol, starts, seed=1):
+    rng = np.random.default_rng(seed)
+    best = None
+    for _ in range(starts):
+        x = feasible(fam, rng)
+        if x is None:
+            continue
+        if fam.free() > len(independent_rows(fam, x)):
+            x = optimize(fam, x, eps, tol)
+            if x is None:
+                continue
+        f = objective(fam, x, eps, tol)
+        if best is None or f < best[0] - 1e-12:
+            best = (f, x)
+    return best
+
+
+def spec_block(name, fam, x, design, command):
+    c, d = fam.method(list(x))
+    drifts = [c[0]] + [c[i + 1] - c[i] for i in range(fam.s - 1)] + [1 - c[-1]]
+    g = ", ".join(str(v) for v in fam.generalized)
+    fmt = lambda v: ", ".join("%.17g" % t for t in v)
+    consts = fam.constants(residuals(fam, x))
+    return "\n".join([
+        "# %s: work %.4g gradients per unit time at eps = %g, tol = %g; C_K = %s" % (
+            name, math.exp(objective(fam, x, design[4], design[5])), design[4], design[5],
+            ", ".join("%.3g" % C for _, C, _ in consts)),
+        "method    " + name, "kind      explicit",
+        "source    this project: " + command, "stages    %d" % fam.s,
+        "order     %d" % fam.order, "generalized " + g, "c         " + fmt(c),
+        "kick      " + fmt(d)])
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("design", choices=sorted(DESIGNS))
+    ap.add_argument("--starts", type=int, default=40)
+    a = ap.parse_args()
+    s, layout, order, gen, eps, tol = DESIGNS[a.design]
+    fam = Family(s, layout, order, gen, kmax=None if eps == 0 else max(3, len(gen)))
+    best = search(fam, eps, tol, a.starts)
+    if best is None:
+        sys.exit("no feasible method from %d starts" % a.starts)
+    command = "generator/search/near_integrable.py %s --starts %d (eps = %g, tol = %g)" % (
+        a.design, a.starts, eps, tol)
+    print(spec_block(a.design, fam, best[1], DESIGNS[a.design], command))
+
+
+if __name__ == "__main__":
+    main()
