@@ -1,8 +1,9 @@
-// GridIntegrator: the step of eq. (d), as erkn::Integrator takes it, on a slab-distributed grid.
-// The stages are solved by fixed-point iteration from the previous step's stages extrapolated,
-// stopping when theta/(1-theta)|dQ| <= tolerance; its norms are one MPI_Allreduce per iteration,
-// which also carries the check that every rank's gradient was finite, so all ranks take every
-// decision together.
+// GridIntegrator: the step of eq. (d), as erkn::Integrator takes it, on a slab-distributed grid:
+// the library's stage solver (runtime/src/stage_solver.hpp: predictor, fixed point with the
+// first-iteration stop, Newton-Krylov fallback) over the slab space (slab_space.hpp), whose
+// reduce is one MPI_Allreduce that also carries the check that every rank's gradient was good, so
+// all ranks take every decision together. The state stays in physical coordinates between steps
+// (q() and p() are this rank's slab without a collective call).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -14,7 +15,9 @@
 #include "compensated_sum.hpp"  // (runtime/src)
 #include "erkn/mpi.hpp"
 #include "erkn/time_grid.hpp"
+#include "slab_space.hpp"
 #include "slab_transform.hpp"
+#include "stage_solver.hpp"       // (runtime/src)
 #include "step_coefficients.hpp"  // (runtime/src)
 #include "step_size_check.hpp"    // (runtime/src)
 
@@ -22,6 +25,7 @@ namespace erkn::mpi {
 namespace detail {
 
 using erkn::detail::StepCoefficients;
+using Solver = erkn::detail::StageSolver<SlabSpace, Eigen::ArrayXd>;
 
 /// A duplicate of the user's communicator (our collectives never meet the user's messages),
 /// freed last, after the transforms planned on it.
@@ -31,6 +35,26 @@ struct Communicator {
   Communicator(const Communicator&) = delete;
   Communicator& operator=(const Communicator&) = delete;
   MPI_Comm handle;
+};
+
+/// The coefficients of one step size and the stage solver over them.
+struct Stages {
+  Stages(const Method& method, const System& system, const Options& options, SlabSpace& space,
+         double h, const Eigen::VectorXd& lambda)
+      : h(h), k(method, h, lambda), solver(method, system, options, space, k) {}
+  double h;
+  StepCoefficients<Eigen::ArrayXd> k;
+  Solver solver;
+};
+
+/// This rank's slab of the state and of a step's increments, physical and in eigen coordinates.
+struct SlabState {
+  explicit SlabState(Eigen::Index n, Eigen::Index m) {
+    for (Eigen::VectorXd* x : {&q_error, &p_error, &dq, &dp}) x->setZero(n);
+    for (Eigen::ArrayXd* a : {&q_hat, &p_hat, &dq_hat, &dp_hat}) a->setZero(m);
+  }
+  Eigen::VectorXd q, p, q_error, p_error, dq, dp;
+  Eigen::ArrayXd q_hat, p_hat, dq_hat, dp_hat;
 };
 
 class GridStepper {
@@ -43,75 +67,51 @@ class GridStepper {
         system_(std::move(system)),
         options_(options),
         grid_(0, h),
-        rkn_(method.kind() == Kind::rkn),
-        s_(method.stages()),
         T_(comm_, system_.M),
+        space_(comm_, T_, method.kind() == Kind::rkn),
         // (RKN methods: V = 0, their force includes M Q)
-        lambda_(rkn_ ? Eigen::VectorXd::Zero(T_.spectral_size()).eval()
-                     : Eigen::VectorXd(T_.eigenvalues().matrix())),
-        k_h_(method, h, lambda_) {
+        lambda_(method.kind() == Kind::rkn ? Eigen::VectorXd::Zero(T_.spectral_size()).eval()
+                                           : Eigen::VectorXd(T_.eigenvalues().matrix())),
+        stages_(method_, system_, options_, space_, h, lambda_),
+        x_(T_.physical_size(), T_.spectral_size()) {
     slab_ = {T_.first_row(), T_.rows(), T_.physical_size()};
-    q_ = q0, p_ = p0;
-    q_error_.setZero(slab_.size), p_error_.setZero(slab_.size);
-    const Eigen::Index m = T_.spectral_size();
-    for (Eigen::ArrayXd* a :
-         {&q_hat_, &p_hat_, &r_hat_, &Q_hat_, &Q_new_hat_, &guess_hat_, &dq_hat_, &dp_hat_})
-      a->setZero(m);
-    G_.assign(std::size_t(s_), Eigen::ArrayXd::Zero(m));
-    G_old_ = G_;
-    for (Eigen::VectorXd* x : {&Q_, &g_, &dq_, &dp_}) x->setZero(slab_.size);
-    const double* c = method.table().c;  // Lagrange weights from c_j to 1 + c_i, as Stepper
-    for (int i = 0; i < s_; ++i)
-      for (int j = 0; j < s_; ++j) {
-        double w = 1;
-        for (int l = 0; l < s_; ++l)
-          if (l != j) w *= (1 + c[i] - c[l]) / (c[j] - c[l]);
-        extrapolation_[i][j] = w;
-      }
+    x_.q = q0, x_.p = p0;
   }
 
   /// One step of size h, or with short_step = true of the size given to prepare_short (the
   /// caller then restarts the time grid at its end; the stage history is not used across it).
   void step(bool short_step = false) {
-    k_ = short_step ? &*k_short_ : &k_h_;
-    if (short_step) have_history_ = false;
-    T_.forward(q_, q_hat_);
-    T_.forward(p_, p_hat_);
-    for (int i = 0; i < s_; ++i) {
-      start_stage(i);
-      fixed_point(i);
-    }
-    dq_hat_ = k_->phi0m1() * q_hat_ + k_->hphi1() * p_hat_;
-    dp_hat_ = k_->mhMphi1() * q_hat_ + k_->phi0m1() * p_hat_;
-    for (int i = 0; i < s_; ++i) {
-      dq_hat_ -= k_->h2bbar(i) * G_[i];
-      dp_hat_ -= k_->hb(i) * G_[i];
-    }
-    T_.inverse(dq_hat_, dq_);
-    T_.inverse(dp_hat_, dp_);
-    add(q_, q_error_, dq_);
-    add(p_, p_error_, dp_);
-    std::swap(G_, G_old_);
-    have_history_ = !short_step;
+    Stages& st = short_step ? *short_ : stages_;
+    if (short_step) st.solver.reset();
+    space_.forward(x_.q, x_.q_hat);
+    space_.forward(x_.p, x_.p_hat);
+    Statistics counts;  // (added once the step has succeeded)
+    st.solver.solve(x_.q_hat, x_.p_hat, {&method_, statistics_.steps + 1, grid_.t()}, counts);
+    update(st);
+    statistics_.gradient_evaluations += counts.gradient_evaluations;
+    statistics_.stage_iterations += counts.stage_iterations;
+    statistics_.newton_fallbacks += counts.newton_fallbacks;
+    statistics_.newton_iterations += counts.newton_iterations;
+    st.solver.advance();
+    if (short_step) stages_.solver.reset();  // (its history is of the grid before)
     ++statistics_.steps;
     grid_.advance();
   }
 
   /// The coefficients of a shorter step (checked against the poles; the same on every rank).
   void prepare_short(double h_short) {
-    if (k_short_ && short_h_ == h_short) return;
+    if (short_ && short_->h == h_short) return;
     erkn::detail::check_step_size(method_, h_short, system_.M.eigenvalues(),
                                   options_.pole_tolerance);
-    k_short_.emplace(method_, h_short, lambda_);
-    short_h_ = h_short;
+    short_.emplace(method_, system_, options_, space_, h_short, lambda_);
   }
 
   double energy() {
     if (!system_.potential) throw Error("energy() needs System::potential");
-    T_.forward(q_, q_hat_);
-    double local =
-        0.5 * p_.squaredNorm() + 0.5 * (T_.weights() * T_.eigenvalues() * q_hat_.square()).sum();
-    collectively(comm_, [&] { local += system_.potential(q_); });
+    T_.forward(x_.q, x_.q_hat);
+    double local = 0.5 * x_.p.squaredNorm() +
+                   0.5 * (T_.weights() * T_.eigenvalues() * x_.q_hat.square()).sum();
+    collectively(comm_, [&] { local += system_.potential(x_.q); });
     MPI_Allreduce(MPI_IN_PLACE, &local, 1, MPI_DOUBLE, MPI_SUM, comm_);
     return local;
   }
@@ -127,113 +127,29 @@ class GridStepper {
   System system_;
   Options options_;
   TimeGrid grid_;  // (validates h)
-  bool rkn_;
-  int s_;
-  detail::SlabTransform T_;
+  SlabTransform T_;
+  SlabSpace space_;
   Eigen::VectorXd lambda_;  // where the coefficients are evaluated
-  StepCoefficients<Eigen::ArrayXd> k_h_;
-  std::optional<StepCoefficients<Eigen::ArrayXd>> k_short_;  // of the last shorter step
-  double short_h_ = 0;
-  const StepCoefficients<Eigen::ArrayXd>* k_ = &k_h_;  // of the step being taken
+  Stages stages_;
+  std::optional<Stages> short_;  // of the last shorter step
   Slab slab_;
   Statistics statistics_;
-  Eigen::VectorXd q_, p_, q_error_, p_error_;
+  SlabState x_;
 
  private:
-  void start_stage(int i) {
-    r_hat_ = k_->phi0c(i) * q_hat_ + k_->hcphi1c(i) * p_hat_;
-    for (int j = 0; j < i; ++j) r_hat_ -= k_->abar(i, j) * G_[j];
-    if (have_history_) {
-      guess_hat_ = extrapolation_[i][0] * G_old_[0];
-      for (int j = 1; j < s_; ++j) guess_hat_ += extrapolation_[i][j] * G_old_[j];
-    } else if (i > 0) {
-      guess_hat_ = G_[i - 1];
-    } else {
-      guess_hat_.setZero();
+  // Eq. (d)'s update from the solved stages, added to the state (physical) at the end.
+  void update(Stages& st) {
+    const StepCoefficients<Eigen::ArrayXd>& k = st.k;
+    x_.dq_hat = k.phi0m1() * x_.q_hat + k.hphi1() * x_.p_hat;
+    x_.dp_hat = k.mhMphi1() * x_.q_hat + k.phi0m1() * x_.p_hat;
+    for (int i = 0; i < method_.stages(); ++i) {
+      x_.dq_hat -= k.h2bbar(i) * st.solver.G(i);
+      x_.dp_hat -= k.hb(i) * st.solver.G(i);
     }
-    Q_hat_ = r_hat_ - k_->abar(i, i) * guess_hat_;
-  }
-
-  // Q <- r_i - h^2 abar_ii(V) g(Q) until theta/(1-theta)|dQ| <= tolerance (Stepper::fixed_point;
-  // the same decisions, from norms summed over the ranks).
-  void fixed_point(int i) {
-    double delta = 0, delta_old = 0, norm_Q = 0;
-    for (int it = 1; it <= options_.max_fixed_point_iterations; ++it) {
-      T_.inverse(Q_hat_, Q_);
-      const double bad = gradient();
-      T_.forward(g_, G_[i]);
-      if (rkn_) G_[i] += T_.eigenvalues() * Q_hat_;  // the RKN force includes M Q
-      Q_new_hat_ = r_hat_ - k_->abar(i, i) * G_[i];
-      ++statistics_.stage_iterations;
-      // One allreduce: |dQ|^2, |Q_new|^2, |Q|^2 (first iteration) and the gradient check.
-      std::array<double, 4> sums{T_.local_squared_norm(Q_new_hat_ - Q_hat_),
-                                 T_.local_squared_norm(Q_new_hat_),
-                                 it == 1 ? T_.local_squared_norm(Q_hat_) : 0.0, bad};
-      MPI_Allreduce(MPI_IN_PLACE, sums.data(), 4, MPI_DOUBLE, MPI_SUM, comm_);
-      if (sums[3] > 0) gradient_failed(i);
-      const double change = std::sqrt(sums[0]), norm_new = std::sqrt(sums[1]);
-      if (it == 1) norm_Q = std::sqrt(sums[2]);
-      const double scale = std::max({norm_new, norm_Q, 1e-300});
-      delta = change == 0 ? 0.0 : change / scale;
-      norm_Q = norm_new;
-      Q_hat_.swap(Q_new_hat_);
-      if (delta == 0) return;
-      if (it > 1) {
-        const double theta = delta / delta_old;
-        if (theta < 1 && theta / (1 - theta) * delta <= options_.tolerance) return;
-        if (theta >= options_.max_theta) {
-          if (delta <= options_.roundoff_level) return;
-          not_converged(i, delta);
-        }
-        const double needed =
-            std::log(options_.tolerance * (1 - theta) / (theta * delta)) / std::log(theta);
-        if (it + needed > options_.max_fixed_point_iterations && delta > options_.roundoff_level)
-          not_converged(i, delta);
-      }
-      delta_old = delta;
-    }
-    if (delta > options_.roundoff_level) not_converged(i, delta);
-  }
-
-  // g_ = grad U(Q_) on this slab; returns 1 if it is not finite or has the wrong size (then g_
-  // is zeroed so the transform stays defined), else 0.
-  // (A callback that throws on one rank must not leave the others in the next collective call:
-  // its exception becomes this rank's error, reported on every rank by gradient_failed.)
-  double gradient() {
-    ++statistics_.gradient_evaluations;
-    try {
-      system_.gradient(Q_, g_);
-      if (g_.size() == slab_.size && g_.allFinite()) return 0;
-      local_gradient_error_ = g_.size() != slab_.size
-                                  ? "the gradient callback returned a vector of size " +
-                                        std::to_string(g_.size()) + " for a slab of size " +
-                                        std::to_string(slab_.size)
-                                  : "the gradient callback returned a non-finite value";
-    } catch (const std::exception& e) {
-      local_gradient_error_ = std::string("the gradient callback threw: ") + e.what();
-    } catch (...) {
-      local_gradient_error_ = "the gradient callback threw an exception of unknown type";
-    }
-    g_.setZero(slab_.size);
-    return 1;
-  }
-
-  [[noreturn]] void gradient_failed(int i) {
-    const std::string where = " at step " + std::to_string(statistics_.steps + 1) + ", stage " +
-                              std::to_string(i + 1) + "; the state is unchanged";
-    std::string mine = local_gradient_error_.empty() ? "" : local_gradient_error_ + where;
-    local_gradient_error_.clear();
-    throw_if_any(comm_, mine);
-    throw Error("internal: gradient check disagreement");  // (unreachable: some rank failed)
-  }
-
-  [[noreturn]] void not_converged(int i, double delta) {
-    throw Error("step " + std::to_string(statistics_.steps + 1) + ": stage " +
-                std::to_string(i + 1) + " of " + std::string(method_.name()) +
-                " did not converge by fixed-point iteration (last relative change " +
-                std::to_string(delta) +
-                "); the distributed integrator has no Newton fallback: reduce h. The state is "
-                "unchanged");
+    space_.inverse(x_.dq_hat, x_.dq);
+    space_.inverse(x_.dp_hat, x_.dp);
+    add(x_.q, x_.q_error, x_.dq);
+    add(x_.p, x_.p_error, x_.dp);
   }
 
   // x += dx, Kahan-compensated when enabled (the library's update, compensated_sum.hpp).
@@ -243,13 +159,6 @@ class GridStepper {
     else
       x += dx;
   }
-
-  std::array<std::array<double, kMaxStages>, kMaxStages> extrapolation_{};
-  bool have_history_ = false;
-  std::string local_gradient_error_;
-  Eigen::ArrayXd q_hat_, p_hat_, r_hat_, Q_hat_, Q_new_hat_, guess_hat_, dq_hat_, dp_hat_;
-  std::vector<Eigen::ArrayXd> G_, G_old_;  // this and the previous step's stage gradients
-  Eigen::VectorXd Q_, g_, dq_, dp_;
 };
 
 }  // namespace detail
@@ -315,8 +224,8 @@ void GridIntegrator::integrate(double t_end) {
   }
 }
 
-const Eigen::VectorXd& GridIntegrator::q() const { return stepper_->q_; }
-const Eigen::VectorXd& GridIntegrator::p() const { return stepper_->p_; }
+const Eigen::VectorXd& GridIntegrator::q() const { return stepper_->x_.q; }
+const Eigen::VectorXd& GridIntegrator::p() const { return stepper_->x_.p; }
 double GridIntegrator::t() const { return stepper_->grid_.t(); }
 double GridIntegrator::h() const { return stepper_->grid_.h(); }
 const Slab& GridIntegrator::slab() const { return stepper_->slab_; }

@@ -1,9 +1,12 @@
 // Restarted GMRES(m), matrix-free and right-preconditioned (Saad, Iterative Methods for Sparse
 // Linear Systems, alg. 9.5): solves J x = b from x = 0 with J applied as apply(v, Jv) and the
 // preconditioner as precondition(v, P^{-1} v); the residual |b - J x| is that of J itself.
+// Dot products and norms are the space's (serial_space.hpp): each sums this process's part and
+// reduces it over all processes, so the vectors may be the local parts of a distributed one.
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cmath>
 
 namespace erkn::detail {
@@ -24,17 +27,23 @@ class Gmres {
 
   /// Iterates until |b - J x| <= rtol |b| or max_iterations applications of J; returns the
   /// relative residual reached.
-  template <class Apply, class Precondition>
-  double solve(Apply&& apply, Precondition&& precondition, const Eigen::VectorXd& b,
-               Eigen::VectorXd& x, double rtol, int max_iterations) {
+  template <class Apply, class Precondition, class Space>
+  double solve(Apply&& apply, Precondition&& precondition, const Space& space,
+               const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol, int max_iterations) {
+    const auto dot = [&](const auto& u, const auto& v) {
+      return space.reduce(std::array{space.dot(u, v)})[0];
+    };
+    const auto norm = [&](const auto& u) {
+      return std::sqrt(space.reduce(std::array{space.squared_physical_norm(u)})[0]);
+    };
     x.setZero(b.size());
-    const double norm_b = b.norm();
+    const double norm_b = norm(b);
     if (norm_b == 0) return 0;
     double residual = 1;
     int used = 0;
     w_ = b;  // the residual of x = 0
     while (used < max_iterations) {
-      double beta = w_.norm();
+      double beta = norm(w_);
       residual = beta / norm_b;
       if (residual <= rtol) break;
       V_.col(0) = w_ / beta;
@@ -45,10 +54,10 @@ class Gmres {
         precondition(V_.col(k), Z_.col(k));
         apply(Z_.col(k), w_);
         for (int j = 0; j <= k; ++j) {  // modified Gram-Schmidt
-          H_(j, k) = V_.col(j).dot(w_);
+          H_(j, k) = dot(V_.col(j), w_);
           w_ -= H_(j, k) * V_.col(j);
         }
-        H_(k + 1, k) = w_.norm();
+        H_(k + 1, k) = norm(w_);
         if (H_(k + 1, k) > 0) V_.col(k + 1) = w_ / H_(k + 1, k);
         for (int j = 0; j < k; ++j) rotate(j, H_(j, k), H_(j + 1, k));
         const double r = std::hypot(H_(k, k), H_(k + 1, k));

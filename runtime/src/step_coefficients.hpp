@@ -95,7 +95,7 @@ class StepCoefficients {
   /// v_k = h^2 lambda_k; lambda must have one entry when Coef is double. The caller has checked
   /// every v against the method's poles (check_step_size), so the table is evaluated directly.
   StepCoefficients(const Method& method, double h, const Eigen::VectorXd& lambda)
-      : s_(method.stages()), slots_(slot_count(s_), lambda.size()) {
+      : s_(method.stages()), h_(h), slots_(slot_count(s_), lambda.size()) {
     const generated::Table& table = method.table();
     // (Below kShareFrom entries the sort and its allocations would cost more than they save.)
     const std::vector<Eigen::Index> first =
@@ -123,6 +123,7 @@ class StepCoefficients {
     }
   }
 
+  double h() const { return h_; }                                 ///< the step size
   Value phi0c(int i) const { return at(i); }                      ///< phi0(c_i^2 V)
   Value hcphi1c(int i) const { return at(s_ + i); }               ///< h c_i phi1(c_i^2 V)
   Value abar(int i, int j) const { return at(abar_slot(i, j)); }  ///< h^2 abar_ij(V)
@@ -138,6 +139,7 @@ class StepCoefficients {
   Value at(int slot) const { return slots_.at(slot); }
 
   int s_;
+  double h_;
   Slots slots_;
 };
 

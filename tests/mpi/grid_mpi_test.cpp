@@ -71,25 +71,42 @@ double max_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
 struct Runs {
   Eigen::VectorXd q_mpi, p_mpi, q_serial, p_serial;
   double H_mpi, H_serial;
+  Statistics mpi, serial;
 };
 
-Runs run_both(const Method& method, const Grid& g, double h, int steps) {
+// grad U = kappa q + sin q with h^2 abar_ii kappa >> 1: the stages' fixed-point iteration
+// diverges, and only Newton(-Krylov) solves them.
+System stiff_sine_gordon(const Stiffness& M) {
+  System s = sine_gordon(M);
+  s.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) {
+    g = 5000 * q.array() + q.array().sin();
+  };
+  s.potential = [](const Eigen::VectorXd& q) {
+    return (2500 * q.array().square() + 1 - q.array().cos()).sum();
+  };
+  return s;
+}
+
+Runs run_both(const Method& method, const Grid& g, double h, int steps,
+              System (*system)(const Stiffness&) = sine_gordon) {
   const Stiffness M = Stiffness::grid(g.axes, g.shift);
   Eigen::VectorXd q0, p0;
   initial(M.dim(), q0, p0);
   const mpi::Slab slab = mpi::slab(MPI_COMM_WORLD, M);
   const Eigen::Index offset = slab.size == 0 ? 0 : slab.first * (M.dim() / g.axes[0].n);
-  mpi::GridIntegrator distributed(MPI_COMM_WORLD, method, sine_gordon(M), h,
+  mpi::GridIntegrator distributed(MPI_COMM_WORLD, method, system(M), h,
                                   q0.segment(offset, slab.size), p0.segment(offset, slab.size),
                                   converged());
-  Integrator serial(method, sine_gordon(M), h, q0, p0, converged());
+  Integrator serial(method, system(M), h, q0, p0, converged());
   for (int k = 0; k < steps; ++k) distributed.step(), serial.step();
   return {distributed.gather(distributed.q()),
           distributed.gather(distributed.p()),
           serial.q(),
           serial.p(),
           distributed.energy(),
-          serial.energy()};
+          serial.energy(),
+          distributed.statistics(),
+          serial.statistics()};
 }
 
 TEST(GridMpi, SlabsPartitionTheGrid) {
@@ -147,6 +164,45 @@ TEST(GridMpi, AnOffGridEndTakesTheSameShorterLastStepAsTheSingleProcessIntegrato
     EXPECT_EQ(distributed.statistics().steps, serial.statistics().steps) << t_end;
   }
   EXPECT_THROW(distributed.integrate(0.5), Error);  // before t()
+}
+
+// d = 288 > 256: one process solves the stages by Newton-Krylov too (the same solver,
+// stage_solver.hpp, over one process's space); every rank count agrees with it to round-off.
+TEST(GridMpi, NewtonKrylovSolvesStagesTheFixedPointCannotAsOneProcessDoes) {
+  const Grid g{{{18, 0.55, B::periodic}, {16, 0.55, B::dirichlet}}, 0.0};
+  for (const Method& method : Method::all()) {
+    if (method.is_explicit()) continue;  // abar_ii = 0: no stage equation
+    SCOPED_TRACE(std::string(method.name()) + ", " + std::to_string(ranks()) + " ranks");
+    const Runs r = run_both(method, g, 0.1, 3, stiff_sine_gordon);
+    EXPECT_GT(r.mpi.newton_fallbacks, 0);  // (the fixed point alone failed)
+    EXPECT_GT(r.serial.newton_fallbacks, 0);
+    EXPECT_LE(max_difference(r.q_mpi, r.q_serial), 1e-12);
+    EXPECT_LE(max_difference(r.p_mpi, r.p_serial), 1e-12);
+    EXPECT_GT(r.q_serial.lpNorm<Eigen::Infinity>(), 0.01);  // (a non-trivial state)
+  }
+}
+
+// Negative control: without Newton's iterations the same stages fail, on every rank, naming the
+// stage, with the state unchanged.
+TEST(GridMpi, TheStiffStagesFailWithoutNewtonOnEveryRank) {
+  const Grid g{{{18, 0.55, B::periodic}, {16, 0.55, B::dirichlet}}, 0.0};
+  const Stiffness M = Stiffness::grid(g.axes, g.shift);
+  const mpi::Slab slab = mpi::slab(MPI_COMM_WORLD, M);
+  Options o;
+  o.max_newton_iterations = 1;
+  mpi::GridIntegrator run(MPI_COMM_WORLD, Method::by_name("SERKN2s4"), stiff_sine_gordon(M), 0.1,
+                          Eigen::VectorXd::Constant(slab.size, 0.3),
+                          Eigen::VectorXd::Constant(slab.size, 0.1), o);
+  const Eigen::VectorXd before = run.q();
+  std::string message;
+  try {
+    run.step();
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("stage 1 of SERKN2s4 did not converge"), std::string::npos) << message;
+  EXPECT_EQ(run.q(), before);
+  EXPECT_EQ(run.statistics().steps, 0);
 }
 
 TEST(GridMpi, TheComparisonDetectsADifferentStepSize) {  // negative control

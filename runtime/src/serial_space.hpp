@@ -1,0 +1,200 @@
+// The space of one process (the stage solver's concept, stage_solver.hpp): M's eigenbasis
+// (Transform), the arrays of eigen coordinates, the physical vectors the callbacks see, and the
+// reductions a step needs, which are the local sums themselves (nothing to combine). D: the
+// dimension when it is a compile-time constant (tiny systems with M's identity eigenbasis: the
+// arrays then live inside the stepper and every pass over them unrolls).
+//
+// A space provides: Scalar, Array, Map (a view of one array of eigen coordinates), Block (storage
+// for a number of arrays) and block/map to carve it; co(coefficient); forward/inverse (to_eigen,
+// to_physical on the stage path); squared_norm(y) (this process's part of |inverse(y)|^2),
+// dot/squared_norm of physical vectors, reduce({sums...}) and reduce_max(x) over every process;
+// gradient (the user's callback with its checks) and add_MQ (g += M Q); settle() after a stage's
+// last evaluation; kDenseNewton (whether a d x d Jacobian may be formed).
+#pragma once
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <type_traits>
+
+#include "erkn/system.hpp"
+#include "m_operator.hpp"
+#include "stage_checks.hpp"
+#include "step_coefficients.hpp"
+#include "transforms.hpp"
+
+namespace erkn::detail {
+
+template <class Transform, int D = Eigen::Dynamic>
+class SerialSpace {
+ public:
+  using Spectral = typename Transform::Spectral;
+  using Scalar = typename Spectral::Scalar;
+  static constexpr bool kFixed = D != Eigen::Dynamic;
+  static_assert(!kFixed || std::is_same_v<Transform, IdentityTransform>,
+                "a fixed dimension needs the identity basis");
+  static constexpr bool kDenseNewton = true;
+  static constexpr int kDimension = D;
+  // One array in eigen coordinates (aligned when stride keeps it so: in the dynamic storage).
+  using Array = std::conditional_t<kFixed, Eigen::Array<Scalar, D, 1>, Spectral>;
+  using Map = Eigen::Map<Array, kFixed ? Eigen::Unaligned : Eigen::AlignedMax>;
+  // Storage for up to `slots` arrays: one allocation, or (fixed dimension) inside its owner.
+  template <int slots>
+  using Block = std::conditional_t<kFixed, std::array<Scalar, slots * std::max(D, 1)>, Spectral>;
+
+  /// M: the stiffness applied by add_MQ (RKN methods), d the dimension.
+  SerialSpace(Transform transform, const Stiffness& M, Eigen::Index d, bool rkn)
+      : transform_(std::move(transform)),
+        M_(M, d),
+        d_(d),
+        m_(transform_.spectral_size(d)),
+        stride_(kFixed ? D : aligned_stride<Scalar>(m_)),
+        rkn_(rkn) {
+    if (rkn_) Mq_.setZero(d), set_m_diagonal(M);
+  }
+
+  Eigen::Index dimension() const { return d_; }  ///< physical entries (of this process)
+  Eigen::Index size() const { return m_; }       ///< eigen coordinates (of this process)
+
+  template <int slots>
+  Block<slots> block(int count) const {
+    if constexpr (kFixed)
+      return Block<slots>{};
+    else
+      return Spectral::Zero(count * stride_);
+  }
+  /// The k-th array of a block, or of the arrays from first on.
+  template <class B>
+  Map map(B& block, int k) const {
+    return map(block.data(), k);
+  }
+  Map map(Scalar* first, int k) const { return Map(first + k * stride_, m_); }
+
+  // A coefficient as the arrays see it: a number, or an array map (of fixed size when D is, so
+  // that expressions mixing it with the stage arrays keep the fixed size).
+  template <class V>
+  static auto co(const V& value) {
+    if constexpr (kFixed && !std::is_same_v<V, double>)
+      return Eigen::Map<const Eigen::Array<double, D, 1>>(value.data());
+    else
+      return value;
+  }
+
+  template <class X, class Y>
+  void forward(const X& x, Y&& y) {
+    transform_.forward(x, y);
+  }
+  template <class Y, class X>
+  void inverse(const Y& y, X&& x) {
+    transform_.inverse(y, x);
+  }
+  // x = inverse(y) and y = forward(x) of the stage path; with a fixed D, fixed-size copies.
+  template <class Y>
+  void to_physical(const Y& y, Eigen::VectorXd& x) {
+    if constexpr (kFixed)
+      Eigen::Map<Array>(x.data()) = y;
+    else
+      transform_.inverse(y, x);
+  }
+  template <class Y>
+  void to_eigen(const Eigen::VectorXd& x, Y&& y);
+
+  // |inverse(y)|^2 (orthonormal eigenbases: the eigen coordinates' own, without a square root).
+  template <class Y>
+  double squared_norm(const Y& y) const {
+    if constexpr (std::is_same_v<Transform, IdentityTransform> ||
+                  std::is_same_v<Transform, OrthogonalTransform> ||
+                  std::is_same_v<Transform, FourierBasisTransform>) {
+      return y.matrix().squaredNorm();
+    } else {
+      const double norm = transform_.norm(y);
+      return norm * norm;
+    }
+  }
+  // Physical vectors.
+  template <class A, class B>
+  static double dot(const A& a, const B& b) {
+    return a.dot(b);
+  }
+  template <class A>
+  static double squared_physical_norm(const A& a) {
+    return a.squaredNorm();
+  }
+  /// The sums over every process: here, the sums themselves.
+  template <size_t n>
+  static std::array<double, n> reduce(const std::array<double, n>& sums) {
+    return sums;
+  }
+  static double reduce_max(double x) { return x; }
+
+  /// g = grad U(Q) with the checks of stage_checks.hpp (errors thrown here, at once).
+  void gradient(const System& system, const Eigen::VectorXd& Q, Eigen::VectorXd& g, int i,
+                const StepPlace& at, long& evaluations) const {
+    checked_gradient<D>(system, Q, g, d_, i, at, evaluations);
+  }
+  void settle() const {}  // (nothing deferred)
+  void add_MQ(const Eigen::VectorXd& Q, Eigen::VectorXd& g);
+  void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) { M_.apply(x, y); }
+
+ private:
+  void set_m_diagonal(const Stiffness& M);
+
+  Transform transform_;
+  MOperator M_;
+  Eigen::Index d_, m_, stride_;
+  bool rkn_;
+  Eigen::VectorXd Mq_;
+  bool m_diagonal_ = false;  // RKN, fixed D, M scalar or diagonal: M = diag(m_diag_)
+  Eigen::Array<double, kFixed ? D : 1, 1> m_diag_;
+};
+
+// With a fixed D, x (the callback's g) is read entry by entry into registers: the callback
+// writes it with scalar stores, and one vector load spanning two of them is not forwarded from
+// the store buffer but waits until they retire. (The empty asm keeps GCC from merging the
+// loads again.) P3 (d = 2), a stand-alone driver, old and new alternated: ~93 -> ~71 ns per
+// stage.
+template <class Transform, int D>
+template <class Y>
+void SerialSpace<Transform, D>::to_eigen(const Eigen::VectorXd& x, Y&& y) {
+  if constexpr (kFixed) {
+    Array v;
+    for (int k = 0; k < D; ++k) {
+      double entry = x[k];
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+      asm("" : "+x"(entry));
+#endif
+      v[k] = entry;
+    }
+    y = v;
+  } else
+    transform_.forward(x, y);
+}
+
+// g += M Q (RKN methods only). With a fixed D and a scalar or diagonal M inline, g_k += m_k Q_k:
+// the products MOperator::apply forms, without its call and the pass over Mq_ (P2, D = 1: 15-18 %
+// less CPU per evaluation for RKN1s2(1), RKN2s4, RKN3s4(1); a driver stepping the Stepper alone).
+template <class Transform, int D>
+void SerialSpace<Transform, D>::add_MQ(const Eigen::VectorXd& Q, Eigen::VectorXd& g) {
+  if (!rkn_) return;
+  if constexpr (kFixed) {
+    if (m_diagonal_) {
+      Eigen::Map<Array>(g.data()) += m_diag_ * Eigen::Map<const Array>(Q.data());
+      return;
+    }
+  }
+  M_.apply(Q, Mq_);
+  g += Mq_;
+}
+
+// m_diag_ for add_MQ: M's diagonal when it is scalar or diagonal (fixed D only).
+template <class Transform, int D>
+void SerialSpace<Transform, D>::set_m_diagonal(const Stiffness& M) {
+  using S = Stiffness::Structure;
+  if constexpr (kFixed) {
+    if (M.structure() == S::scalar) m_diag_.setConstant(M.entries()[0]);
+    if (M.structure() == S::diagonal) m_diag_ = M.entries().array();
+    m_diagonal_ = M.structure() == S::scalar || M.structure() == S::diagonal;
+  }
+}
+
+}  // namespace erkn::detail

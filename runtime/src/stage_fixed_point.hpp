@@ -1,0 +1,147 @@
+// StageSolver's fixed-point iteration and its contraction bookkeeping (included by
+// stage_solver.hpp).
+#pragma once
+
+namespace erkn::detail {
+
+// Fixed point Q <- r_i - h^2 abar_ii(V) g(Q). True when converged, or when the updates stall
+// below Options::roundoff_level (a tolerance under the round-off noise); G(i) then holds the
+// gradient of the last iterate but one (no confirming evaluation).
+// The tests on theta = delta / delta_old are multiplied out (theta/(1-theta) delta <= tol as
+// delta^2 <= tol (delta_old - delta)), and the too-slow test needs no logarithm (too_slow).
+template <class Space, class Coef>
+bool StageSolver<Space, Coef>::fixed_point(int i, Statistics& stats) {
+  double delta = 0, delta_old = 0, norm2_Q = 0, change_first = 0;
+  int extra = 0;  // iterations after convergence from a cold start (reset_tightening)
+  const auto abar_ii = Space::co(k_.abar(i, i));
+  for (int it = 1; it <= options_.max_fixed_point_iterations; ++it) {
+    if (it > 1) space_.to_physical(x_.Q_hat, x_.Q);  // (start_stage did it for the guess)
+    force(x_.Q, i, stats);
+    space_.to_eigen(x_.g, G(i));
+    x_.Q_hat_new = x_.r_hat - abar_ii * G(i);
+    ++stats.stage_iterations;
+    // |dQ| / max(|Q_new|, |Q_old|) in eigen coordinates, so a converged stage needs no inverse
+    // transform. Both iterates: an iterate at 0 (a 2-cycle r -> 0 -> r) must not make delta
+    // huge and the next theta ~ 0, which would pass the stopping test without converging.
+    // (One reduce: |dQ|^2, |Q_new|^2 and at the first iteration |Q|^2; later |Q|^2 is the
+    // previous iterate's |Q_new|^2.)
+    const auto sums = space_.reduce(std::array{space_.squared_norm(x_.Q_hat_new - x_.Q_hat),
+                                               space_.squared_norm(x_.Q_hat_new),
+                                               it == 1 ? space_.squared_norm(x_.Q_hat) : 0.0});
+    const double change2 = sums[0], norm2_new = sums[1];
+    if (it == 1) norm2_Q = sums[2];
+    delta = relative_change(change2, std::max(norm2_new, norm2_Q));
+    norm2_Q = norm2_new;
+    swap_views(x_.Q_hat, x_.Q_hat_new);
+    if (it == 2 && change_first > 0) record_contraction(i, change_first, delta, delta_old);
+    // A first update below round-off (delta = 0) proves nothing: the guess then holds the
+    // extrapolation's error below round-off, and stopping there let RKN3s4(2) drift in energy
+    // over 1e6 steps of P3 (h = 1e-3).
+    if (delta == 0 && it > 1) return true;
+    if (it == 1 && delta > 0 && contraction_proves(i, delta)) return true;
+    if (it == 1) change_first = std::sqrt(change2), x_.g_first_hat = G(i);
+    if (it > 1) {
+      if (delta < delta_old && delta * delta <= options_.tolerance * (delta_old - delta)) {
+        if (!reset_tightening(delta, delta_old, extra)) return true;
+        delta_old = delta;  // (converged: the next iteration only tightens, and cannot fail)
+        continue;
+      }
+      if (extra > 0) return true;  // (converged before; this iteration did not contract)
+      if (delta >= options_.max_theta * delta_old)
+        return delta <= options_.roundoff_level;  // stagnation at round-off, else diverging
+      if (too_slow(i, it, delta, delta_old) && delta > options_.roundoff_level) return false;
+    }
+    delta_old = delta;
+  }
+  // Out of iterations: accept only round-off noise, or a converged stage's extra iterations.
+  return extra > 0 || delta <= options_.roundoff_level;
+}
+
+// After a reset of the starting-guess history (construction, set_state, a shorter step, a
+// monitor rollback) the guess is poor, and theta/(1-theta) |dQ| can pass the tolerance while
+// the stage is still off by ~1e-11 (FPU, omega = 50, h omega = 1: SERKN3s4(1) 1.0e-11 relative
+// after one step, SERKN4s6 6.7e-12, against stages iterated to round-off). There the fixed
+// point iterates on after converging, up to kResetExtra times, until the estimate is within
+// kResetShare of the tolerance. Its stopping test stays the tolerance: a tighter one made
+// steps at half the predicted fixed-point limit fall back to Newton (ff85219, reverted).
+// True when one more iteration is due; counts it in `extra`. (The estimate theta/(1-theta)
+// delta with theta = delta / delta_old is delta^2 / (delta_old - delta).)
+template <class Space, class Coef>
+bool StageSolver<Space, Coef>::reset_tightening(double delta, double delta_old, int& extra) const {
+  if (predictor_.has_history() || extra >= kResetExtra ||
+      delta * delta / (delta_old - delta) <= kResetShare * options_.tolerance)
+    return false;
+  ++extra;
+  return true;
+}
+
+// sqrt(change2 / norm2), norm2 the larger squared norm of the two iterates (floored: an
+// iterate of norm below 1e-300 counts as 1e-300).
+template <class Space, class Coef>
+double StageSolver<Space, Coef>::relative_change(double change2, double norm2) {
+  if (change2 == 0) return 0;
+  if (norm2 >= std::numeric_limits<double>::min()) return std::sqrt(change2 / norm2);
+  return std::sqrt(change2) / std::max(std::sqrt(norm2), 1e-300);
+}
+
+// Whether reaching the tolerance at theta = delta / delta_old (< max_theta) would take more
+// iterations than are left, or more than Newton's last solve of this stage cost: K more
+// iterations leave theta^(K+1)/(1-theta) delta.
+template <class Space, class Coef>
+bool StageSolver<Space, Coef>::too_slow(int i, int it, double delta, double delta_old) const {
+  const double theta = delta / delta_old;
+  int left = options_.max_fixed_point_iterations - it;
+  if (record_[i].newton_cost > 0) left = std::min(left, int(record_[i].newton_cost));
+  double power = theta;  // theta^(left + 1) by squaring
+  for (double base = theta; left > 0; left >>= 1, base *= base)
+    if (left & 1) power *= base;
+  return power * delta > options_.tolerance * (1 - theta);
+}
+
+// The contraction theta of stage i's iteration is a property of h, M and U near the solution:
+// measured at a second iteration (record_contraction), it lets a later first iteration stop
+// once theta/(1-theta) |dQ| weight_i <= kFirstShare * tolerance with theta = kThetaSafety times
+// the measurement (no second evaluation to measure it again). Measured afresh at every second
+// iteration, and forced by one every kThetaRefresh solves of that stage. The step then uses
+// g(Q_0), whose error reaches (q, p) through bbar_i and b_i rather than abar_ii: weight_i =
+// max(1, |bbar_i| / |abar_ii|, |b_i| / (h |abar_ii|)). kFirstShare: that error is the
+// extrapolation's, systematic, so it adds up over the steps (a converged second iteration leaves
+// round-off): at the full tolerance P1's error at 1e-9 changed by up to 25% against stages
+// iterated to round-off (erkn_stage_evaluations, "vs tol 0"), at a hundredth of it by < 2e-11.
+// theta/(1-theta) delta weight_i <= kFirstShare * tolerance, as delta <= first_limit.
+template <class Space, class Coef>
+bool StageSolver<Space, Coef>::contraction_proves(int i, double delta) {
+  StageRecord& r = record_[i];
+  if (r.theta < 0 || ++r.theta_age >= kThetaRefresh) return false;
+  return delta <= r.first_limit;
+}
+
+// theta along the first update, |h^2 abar_ii (g(Q_1) - g(Q_0))| / |Q_1 - Q_0|, with g(Q_0) in
+// g_first_hat and g(Q_1) in G(i). Not the ratio of the updates |Q_2 - Q_1| / |Q_1 - Q_0|: Q_2 =
+// r_i - h^2 abar_ii g(Q_1) cancels against r_i, so once the guess is good that ratio measures
+// the round-off of Q, not theta (P3, SERKN3s4(1), h = 1/4: |Q_1 - Q_0| ~ 1e-11 |Q|, the ratio
+// 1e-5..1e-4 against theta ~ 1e-6), and the first-iteration stop seldom passed. Below ~1e3
+// round-offs the first update is not measured: the old measurement is only renewed when the
+// ratio does not exceed what it allowed. First-iteration stops on guesses that good keep their
+// error systematic over millions of steps (RKN3s4(2) on P3 at h = 1e-3, 1e6 steps: the energy
+// error grew 10-fold, 1.4e-12 -> 1.4e-11, when they were allowed; energy_test).
+template <class Space, class Coef>
+void StageSolver<Space, Coef>::record_contraction(int i, double change_first, double delta,
+                                                  double delta_first) {
+  StageRecord& r = record_[i];
+  if (delta_first < 1e3 * kEps) {
+    const double ratio = (delta == 0 ? kEps : delta) / delta_first;
+    if (r.theta >= 0 && ratio <= kThetaSafety * r.theta) r.theta_age = 0;
+    return;
+  }
+  x_.g_first_hat = Space::co(k_.abar(i, i)) * (G(i) - x_.g_first_hat);
+  r.theta =
+      std::sqrt(space_.reduce(std::array{space_.squared_norm(x_.g_first_hat)})[0]) / change_first;
+  r.theta_age = 0;
+  const double theta = kThetaSafety * r.theta;
+  r.first_limit = !(theta < 0.5) ? -1.0
+                  : theta > 0 ? kFirstShare * options_.tolerance * (1 - theta) / (theta * r.weight)
+                              : std::numeric_limits<double>::max();
+}
+
+}  // namespace erkn::detail

@@ -1,0 +1,169 @@
+// The starting values of the stage solver (stage_solver.hpp): stage i's gradient extrapolated
+// through its order(i) most recent known stage gradients (nodes: this step's stages j < i, then
+// those of the kHistory steps before), with the order adapted to what predicts best. It also
+// keeps the stage gradients themselves: G(i) of this step, and of the steps before it.
+#pragma once
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <vector>
+
+#include "erkn/method.hpp"
+
+namespace erkn::detail {
+
+template <class Space>
+class StagePredictor {
+ public:
+  using Map = typename Space::Map;
+  using Scalar = typename Space::Scalar;
+  // Steps back whose stage gradients the starting values extrapolate from. One: three predicted
+  // better at fine h on P1-P3, but their higher degrees let the modes with large abar_ii of P1 at
+  // N = 2048 diverge (SERKN3s4(1), h = 1/32: 9.4 evaluations per stage and 23 Newton fallbacks
+  // instead of 3.8, 7).
+  static constexpr int kHistory = 1;
+  static constexpr int kMaxNodes = (kHistory + 1) * kMaxStages;
+
+  StagePredictor(const Method& method, const Space& space)
+      : space_(space),
+        s_(method.stages()),
+        c_(method.table().c),
+        n_((kHistory + 1) * s_),
+        weights_(size_t(s_) * n_ * n_, 0.0),
+        block_(space.template block<kMaxNodes>(n_)) {
+    for (int age = 0; age <= kHistory; ++age) steps_[age] = space.map(block_, age * s_).data();
+    for (int i = 0; i < s_; ++i) set_nodes(i);
+  }
+  StagePredictor(const StagePredictor&) = delete;  // (steps_ points into block_)
+  StagePredictor& operator=(const StagePredictor&) = delete;
+
+  /// Stage i's gradient of this step.
+  Map G(int i) { return gradient_at(0, i); }
+  /// Forgets the steps before (set_state, a new start).
+  void reset() {
+    history_ = 0;
+    adapt_wait_.fill(1);
+    adapt_interval_.fill(1);
+  }
+  /// After a step: this step's gradients become the previous step's.
+  void advance() {
+    Scalar* const oldest = steps_[kHistory];  // (rotated by hand: std::rotate was a call)
+    for (int age = kHistory; age > 0; --age) steps_[age] = steps_[age - 1];
+    steps_[0] = oldest;
+    history_ = std::min(history_ + 1, kHistory);
+  }
+  /// Whether the steps before are known (after a reset the first guesses are poor).
+  bool has_history() const { return history_ > 0; }
+
+  /// out = stage i's predicted gradient (0 when no node is known yet).
+  void predict(int i, Map& out) {
+    const int n = std::min(order_[i], available_nodes(i));
+    if (n > 0)
+      predict(i, n, out);
+    else
+      out.setZero();
+  }
+  template <class Abar>
+  void adapt(int i, const Abar& abar_ii, Map& prediction, Map& scratch);
+
+ private:
+  void set_nodes(int i);
+  // Nodes of stage i whose gradients are known (the steps since set_state).
+  int available_nodes(int i) const {
+    if (history_ == kHistory) return node_count_[i];  // (every node: the usual case)
+    int n = 0;
+    while (n < node_count_[i] && nodes_[i][n].age <= history_) ++n;
+    return n;
+  }
+  // out = the polynomial through the first n nodes of stage i, at c_i.
+  void predict(int i, int n, Map& out) {
+    const auto at = [&](const Node& node) { return gradient_at(node.age, node.stage); };
+    out = weight(i, n - 1, 0) * at(nodes_[i][0]);
+    for (int l = 1; l < n; ++l) out += weight(i, n - 1, l) * at(nodes_[i][l]);
+  }
+  Map gradient_at(int age, int stage) {
+    return space_.map(steps_[age], stage);  // (steps_[age]: the first of s arrays)
+  }
+  // weight(i, m - 1, l): node l's Lagrange weight at c_i on the first m nodes; sized by s, not
+  // by kMaxStages (that would be kMaxStages (2 kMaxStages)^2 doubles to clear at every setup).
+  double& weight(int i, int m, int l) { return weights_[(size_t(i) * n_ + m) * n_ + l]; }
+
+  struct Node {
+    int age, stage;  // age 0: this step
+  };
+  static constexpr int kMaxAdaptInterval = 8;
+  const Space& space_;
+  int s_;
+  const double* c_;
+  int n_;  // nodes at most: (kHistory + 1) s
+  std::array<std::array<Node, kMaxNodes>, kMaxStages> nodes_{};
+  std::array<int, kMaxStages> node_count_{}, order_{};
+  std::vector<double> weights_;
+  int history_ = 0;  // steps before this one with stage gradients (since set_state)
+  std::array<int, kMaxStages> adapt_wait_{}, adapt_interval_{};  // steps to adapt's check
+  alignas(EIGEN_MAX_ALIGN_BYTES) typename Space::template Block<kMaxNodes> block_;  // s per step
+  std::array<Scalar*, kHistory + 1> steps_{};
+};
+
+// Stage i's nodes, most recent first: this step's stages j < i (at c_j), then those of the
+// previous steps (at c_j - age); a node at the time of a more recent one is left out.
+template <class Space>
+void StagePredictor<Space>::set_nodes(int i) {
+  const auto time = [&](const Node& node) { return c_[node.stage] - node.age; };
+  int& n = node_count_[i];
+  for (int age = 0; age <= kHistory; ++age)
+    for (int j = (age == 0 ? i : s_) - 1; j >= 0; --j) {
+      const Node node{age, j};
+      bool repeated = false;
+      for (int l = 0; l < n; ++l) repeated |= time(nodes_[i][l]) == time(node);
+      if (!repeated && n < kMaxNodes) nodes_[i][n++] = node;
+    }
+  // Lagrange weights at c_i on the first m nodes, for every m.
+  for (int m = 1; m <= n; ++m)
+    for (int l = 0; l < m; ++l) {
+      double w = 1;
+      for (int k = 0; k < m; ++k)
+        if (k != l) w *= (c_[i] - time(nodes_[i][k])) / (time(nodes_[i][l]) - time(nodes_[i][k]));
+      weight(i, m - 1, l) = w;
+    }
+  order_[i] = n;
+  adapt_wait_[i] = adapt_interval_[i] = 1;
+}
+
+// Called after stage i is solved (G(i) known) with predict(i)'s result in `prediction`; every
+// adapt_interval steps, moves stage i's order n to whichever of n - 1, n, n + 1 nodes would have
+// given the solved stage the best guess, |h^2 abar_ii(V) (g_pred - g_i)|: high degrees where the
+// stage gradients are smooth on the scale of h, low ones where they oscillate (the extrapolation
+// then amplifies more than it predicts, most harmfully in the modes with large abar_ii).
+// Checked every step while the order moves; each check that keeps it doubles the interval to
+// the next, up to kMaxAdaptInterval steps: checked at every step, its two more predictions and
+// norms per stage cost P2/P3 15-20% of the CPU per grad U (erkn_implicit_benchmark) and saved
+// no evaluation there; with the interval, evaluations per stage (erkn_stage_evaluations) moved
+// by <= 0.05 on P1-P3, and P1's savings (SERKN3s4(1) at 1e-9: 1.13 against 1.42) stay.
+// prediction and scratch are overwritten.
+template <class Space>
+template <class Abar>
+void StagePredictor<Space>::adapt(int i, const Abar& abar_ii, Map& prediction, Map& scratch) {
+  if (--adapt_wait_[i] > 0) return;
+  const int available = available_nodes(i), n = std::min(order_[i], available);
+  if (available < 2) return;              // (adapt_wait_ <= 0: checked at the next step)
+  const auto guess_error = [&](Map& p) {  // (squared: only compared)
+    p = abar_ii * (p - G(i));
+    return space_.reduce(std::array{space_.squared_norm(p)})[0];
+  };
+  double best = guess_error(prediction);  // (the stage's prediction, n nodes)
+  int best_n = n;
+  for (int m : {n - 1, n + 1}) {
+    if (m < 1 || m > available) continue;
+    predict(i, m, scratch);
+    const double error = guess_error(scratch);
+    if (error < best) best = error, best_n = m;
+  }
+  adapt_interval_[i] =
+      best_n == order_[i] ? std::min(2 * adapt_interval_[i], kMaxAdaptInterval) : 1;
+  adapt_wait_[i] = adapt_interval_[i];
+  order_[i] = best_n;
+}
+
+}  // namespace erkn::detail

@@ -1,0 +1,241 @@
+// The stages of eq. (d), Q_i = r_i - h^2 abar_ii(V) g(Q_i), solved one by one, written once over
+// a space (serial_space.hpp: one process; mpi/src/slab_space.hpp: a grid distributed over MPI
+// ranks): fixed-point iteration from predicted starting values (stage_predictor.hpp), stopped by
+// the contraction theta (also at the first iteration once theta is known), and Newton when it
+// fails: a dense LU for small d, matrix-free Newton-Krylov (GMRES) beyond (stage_newton.hpp).
+// Stages run in eigen coordinates; gradients are evaluated in physical coordinates. Every norm
+// and decision comes from the space's reduce, so all processes of a space decide alike.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <new>
+#include <optional>
+#include <string>
+
+#include "erkn/error.hpp"
+#include "erkn/integrator.hpp"
+#include "format.hpp"
+#include "gmres.hpp"
+#include "stage_checks.hpp"
+#include "stage_predictor.hpp"
+#include "step_coefficients.hpp"
+
+namespace erkn::detail {
+
+template <class Space, class Coef>
+class StageSolver {
+ public:
+  using Map = typename Space::Map;
+
+  /// The solver refers to method, system, options, space and k (owned by the stepper).
+  StageSolver(const Method& method, const System& system, const Options& options, Space& space,
+              const StepCoefficients<Coef>& k);
+  StageSolver(const StageSolver&) = delete;  // (the maps view its own buffers)
+  StageSolver& operator=(const StageSolver&) = delete;
+
+  /// Solves the stages of the step from (q_hat, p_hat) (eigen coordinates); G(i) then holds stage
+  /// i's gradient in eigen coordinates. Counts into stats; throws erkn::Error naming the stage.
+  template <class State>
+  void solve(const State& q_hat, const State& p_hat, const StepPlace& at, Statistics& stats);
+  Map G(int i) { return predictor_.G(i); }
+  /// After a successful step (its gradients start the next step's guesses).
+  void advance() { predictor_.advance(); }
+  /// Forgets the steps before (set_state).
+  void reset() { predictor_.reset(); }
+
+ private:
+  // The arrays of one stage: r_i, the iterate Q (eigen coordinates and physical), the next one,
+  // the starting guess's gradient, g(Q_0) of the first iteration, g at the iterate.
+  struct Arrays {
+    alignas(EIGEN_MAX_ALIGN_BYTES) typename Space::template Block<5> block;
+    Map r_hat, Q_hat, Q_hat_new, guess_hat, g_first_hat;
+    Eigen::VectorXd Q, g;  // (go to the callbacks)
+  };
+  // What the solver knows of stage i between steps.
+  struct StageRecord {
+    double theta = -1;       // the contraction measured; < 0: none
+    int theta_age = 0;       // stage solves since the measurement
+    double first_limit = 0;  // the largest delta a first iteration may stop at
+    double weight = 0;       // max(1, |bbar_i| / |abar_ii|, |b_i| / (h |abar_ii|))
+    double newton_cost = 0;  // evaluations of its last Newton solve; 0: none
+  };
+  // Newton's workspace (allocated at the first fallback): dense (d <= kDenseNewtonMaxD) or
+  // Newton-Krylov.
+  struct NewtonWork {
+    Eigen::VectorXd r, F, gU, col, Q_new;
+    typename Space::Spectral col_hat;
+    Eigen::MatrixXd J, H, M_dense;
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+  };
+  struct KrylovWork {
+    Eigen::VectorXd Qe, ge;
+    Eigen::ArrayXd precond;
+    std::optional<Gmres> gmres;
+  };
+
+  void solve_stage(int i, Statistics& stats);
+  template <class State>
+  void start_stage(int i, const State& q_hat, const State& p_hat);
+  bool fixed_point(int i, Statistics& stats);
+  bool reset_tightening(double delta, double delta_old, int& extra) const;
+  static double relative_change(double change2, double norm2);
+  bool too_slow(int i, int it, double delta, double delta_old) const;
+  bool contraction_proves(int i, double delta);
+  void record_contraction(int i, double change_first, double delta, double delta_first);
+
+  // stage_newton.hpp
+  void newton(int i, Statistics& stats);
+  void start_newton(int i);
+  bool newton_converged(double delta, double delta_old, int it) const;
+  void check_contraction(int i, const char* solver, double delta, double delta_old, int it,
+                         int& stalls, double residual) const;
+  [[noreturn]] void not_converged(int i, double residual, int iterations,
+                                  const std::string& why = "") const;
+  void start_newton_krylov(int i);
+  void newton_krylov(int i, Statistics& stats);
+  int krylov_iteration(int i, int it, double& delta_old, int& stalls, double& residual,
+                       bool& sigma_pending, Statistics& stats);
+  void apply_abar(int i, const Eigen::VectorXd& x, Eigen::VectorXd& out);
+  template <class V>
+  void jacobian_times(int i, const V& v, Eigen::VectorXd& Jv, Statistics& stats);
+  void set_preconditioner(int i, double sigma);
+  void jacobian(int i, Statistics& stats);
+
+  // g = grad U(Q) (+ M Q for RKN methods).
+  void force(const Eigen::VectorXd& Q, int i, Statistics& stats) {
+    gradient(Q, x_.g, i, stats);
+    space_.add_MQ(Q, x_.g);
+  }
+  void gradient(const Eigen::VectorXd& Q, Eigen::VectorXd& g, int i, Statistics& stats) {
+    space_.gradient(system_, Q, g, i, at_, stats.gradient_evaluations);
+  }
+  // The square roots of sums over the space (a norm of each vector).
+  template <class... V>
+  auto norms(const V&... v) const {
+    std::array<double, sizeof...(V)> sums =
+        space_.reduce(std::array{space_.squared_physical_norm(v)...});
+    for (double& x : sums) x = std::sqrt(x);
+    return sums;
+  }
+
+  // Exchanges the arrays two maps view (Map::swap would exchange their contents).
+  static void swap_views(Map& a, Map& b) {
+    auto* const data = a.data();
+    new (&a) Map(b.data(), b.size());
+    new (&b) Map(data, a.size());
+  }
+
+  // Tuning (the comments at their uses say why).
+  static constexpr double kThetaSafety = 4, kFirstShare = 0.01;
+  static constexpr Eigen::Index kDenseNewtonMaxD = 256;
+  static constexpr int kKrylovRestart = 30, kKrylovMaxIterations = 200;
+  static constexpr double kKrylovTolerance = 1e-6, kMaxForcing = 0.1, kLinearShare = 0.1;
+  static constexpr int kMaxStalls = 2;
+  static constexpr double kKeepIterate = 1e-3;
+  static constexpr int kThetaRefresh = 8;
+  static constexpr double kResetShare = 0.01;
+  static constexpr int kResetExtra = 4;
+  static constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+  const Method& method_;
+  const System& system_;
+  const Options& options_;
+  Space& space_;
+  const StepCoefficients<Coef>& k_;
+  StagePredictor<Space> predictor_;
+  std::array<StageRecord, kMaxStages> record_{};
+  Arrays x_;
+  StepPlace at_;  // the step being taken (for messages)
+  std::optional<NewtonWork> newton_;
+  std::optional<KrylovWork> krylov_;
+};
+
+// max_k |num_k| / |den_k| over the eigen coordinates (numbers or arrays; no allocation; 0 over
+// none: a process of a distributed space may hold no coordinates).
+template <class A, class B>
+double max_ratio(const A& num, const B& den) {
+  if constexpr (std::is_same_v<B, double>)
+    return std::abs(num) / std::abs(den);
+  else
+    return num.size() == 0 ? 0.0 : (num.abs() / den.abs()).maxCoeff();
+}
+
+template <class Space, class Coef>
+StageSolver<Space, Coef>::StageSolver(const Method& method, const System& system,
+                                      const Options& options, Space& space,
+                                      const StepCoefficients<Coef>& k)
+    : method_(method),
+      system_(system),
+      options_(options),
+      space_(space),
+      k_(k),
+      predictor_(method, space),
+      x_{space.template block<5>(5),
+         space.map(x_.block, 0),
+         space.map(x_.block, 1),
+         space.map(x_.block, 2),
+         space.map(x_.block, 3),
+         space.map(x_.block, 4),
+         Eigen::VectorXd::Zero(space.dimension()),
+         Eigen::VectorXd::Zero(space.dimension())} {
+  const int s = method.stages();
+  for (int i = 0; i < s; ++i) {
+    const auto ratio = [&](const auto& num) {
+      return space.reduce_max(max_ratio(num, k.abar(i, i)));
+    };
+    record_[i].weight = std::max({1.0, ratio(k.h2bbar(i)), ratio(k.hb(i) * k.h())});
+  }
+}
+
+// Eq. (d)'s stages one by one.
+template <class Space, class Coef>
+template <class State>
+void StageSolver<Space, Coef>::solve(const State& q_hat, const State& p_hat, const StepPlace& at,
+                                     Statistics& stats) {
+  at_ = at;
+  for (int i = 0; i < method_.stages(); ++i) {
+    start_stage(i, q_hat, p_hat);
+    solve_stage(i, stats);
+    predictor_.adapt(i, Space::co(k_.abar(i, i)), x_.guess_hat, x_.Q_hat_new);
+  }
+}
+
+template <class Space, class Coef>
+void StageSolver<Space, Coef>::solve_stage(int i, Statistics& stats) {
+  if (fixed_point(i, stats)) return;
+  ++stats.newton_fallbacks;
+  const long before = stats.gradient_evaluations;
+  if constexpr (Space::kDenseNewton) {
+    if (space_.dimension() <= kDenseNewtonMaxD)
+      newton(i, stats);
+    else
+      newton_krylov(i, stats);
+  } else {
+    newton_krylov(i, stats);
+  }
+  space_.settle();  // (the last evaluation's checks)
+  record_[i].newton_cost = double(stats.gradient_evaluations - before);
+}
+
+// r_i = phi0(c_i^2 V) q + h c_i phi1(c_i^2 V) p - h^2 sum_{j<i} abar_ij g_j, and the starting
+// guess Q = r_i - h^2 abar_ii g_pred with g_pred extrapolated from the known stage gradients.
+template <class Space, class Coef>
+template <class State>
+void StageSolver<Space, Coef>::start_stage(int i, const State& q_hat, const State& p_hat) {
+  const auto co = [](const auto& value) { return Space::co(value); };
+  x_.r_hat = co(k_.phi0c(i)) * q_hat + co(k_.hcphi1c(i)) * p_hat;
+  for (int j = 0; j < i; ++j) x_.r_hat -= co(k_.abar(i, j)) * G(j);
+  predictor_.predict(i, x_.guess_hat);
+  x_.Q_hat = x_.r_hat - co(k_.abar(i, i)) * x_.guess_hat;
+  space_.to_physical(x_.Q_hat, x_.Q);
+}
+
+}  // namespace erkn::detail
+
+#include "stage_fixed_point.hpp"
+#include "stage_newton.hpp"
