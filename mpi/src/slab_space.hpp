@@ -71,6 +71,13 @@ class SlabSpace {
   void to_eigen(const Eigen::VectorXd& x, Y&& y) {
     forward(x, y);
   }
+  /// G = forward(g) + Lambda Q_hat for RKN methods (M is diagonal in eigen coordinates: no more
+  /// transforms).
+  template <class Y, class G>
+  void to_eigen_force(const Eigen::VectorXd& /*Q*/, const Y& Q_hat, Eigen::VectorXd& g, G&& G_hat) {
+    forward(g, G_hat);
+    if (rkn_) G_hat += T_.eigenvalues() * Q_hat;
+  }
 
   // This rank's parts of the sums (Parseval's weights in eigen coordinates).
   template <class Y>

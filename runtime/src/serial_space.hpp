@@ -8,7 +8,8 @@
 // for a number of arrays) and block/map to carve it; co(coefficient); forward/inverse (to_eigen,
 // to_physical on the stage path); squared_norm(y) (this process's part of |inverse(y)|^2),
 // dot/squared_norm of physical vectors, reduce({sums...}) and reduce_max(x) over every process;
-// gradient (the user's callback with its checks) and add_MQ (g += M Q); settle() after a stage's
+// gradient (the user's callback with its checks), add_MQ (g += M Q) and to_eigen_force (the
+// stage's force in eigen coordinates, M Q added where it is cheapest); settle() after a stage's
 // last evaluation; kDenseNewton (whether a d x d Jacobian may be formed).
 #pragma once
 
@@ -98,6 +99,13 @@ class SerialSpace {
   }
   template <class Y>
   void to_eigen(const Eigen::VectorXd& x, Y&& y);
+  /// G = forward(g + M Q) of the stage path (g += M Q for RKN methods: in physical coordinates,
+  /// where it is a stencil or an inline product).
+  template <class Y, class G>
+  void to_eigen_force(const Eigen::VectorXd& Q, const Y& /*Q_hat*/, Eigen::VectorXd& g, G&& G_hat) {
+    add_MQ(Q, g);
+    to_eigen(g, G_hat);
+  }
 
   // |inverse(y)|^2 (orthonormal eigenbases: the eigen coordinates' own, without a square root).
   template <class Y>

@@ -16,24 +16,27 @@ bool StageSolver<Space, Coef>::fixed_point(int i, Statistics& stats) {
   const auto abar_ii = Space::co(k_.abar(i, i));
   for (int it = 1; it <= options_.max_fixed_point_iterations; ++it) {
     if (it > 1) space_.to_physical(x_.Q_hat, x_.Q);  // (start_stage did it for the guess)
-    force(x_.Q, i, stats);
-    space_.to_eigen(x_.g, G(i));
+    stage_force(i, stats);
     x_.Q_hat_new = x_.r_hat - abar_ii * G(i);
     ++stats.stage_iterations;
     // |dQ| / max(|Q_new|, |Q_old|) in eigen coordinates, so a converged stage needs no inverse
     // transform. Both iterates: an iterate at 0 (a 2-cycle r -> 0 -> r) must not make delta
     // huge and the next theta ~ 0, which would pass the stopping test without converging.
-    // (One reduce: |dQ|^2, |Q_new|^2 and at the first iteration |Q|^2; later |Q|^2 is the
-    // previous iterate's |Q_new|^2.)
-    const auto sums = space_.reduce(std::array{space_.squared_norm(x_.Q_hat_new - x_.Q_hat),
-                                               space_.squared_norm(x_.Q_hat_new),
-                                               it == 1 ? space_.squared_norm(x_.Q_hat) : 0.0});
+    // One reduce: |dQ|^2, |Q_new|^2, at the first iteration |Q|^2 (later the previous iterate's
+    // |Q_new|^2), at the second the contraction's (record_contraction).
+    const bool measure = it == 2 && change_first > 0 && measures_contraction(delta_old);
+    if (measure) x_.g_first_hat = abar_ii * (G(i) - x_.g_first_hat);
+    const auto sums = space_.reduce(
+        std::array{space_.squared_norm(x_.Q_hat_new - x_.Q_hat), space_.squared_norm(x_.Q_hat_new),
+                   it == 1 ? space_.squared_norm(x_.Q_hat) : 0.0,
+                   measure ? space_.squared_norm(x_.g_first_hat) : 0.0});
     const double change2 = sums[0], norm2_new = sums[1];
     if (it == 1) norm2_Q = sums[2];
     delta = relative_change(change2, std::max(norm2_new, norm2_Q));
     norm2_Q = norm2_new;
     swap_views(x_.Q_hat, x_.Q_hat_new);
-    if (it == 2 && change_first > 0) record_contraction(i, change_first, delta, delta_old);
+    if (it == 2 && change_first > 0)
+      record_contraction(i, change_first, delta, delta_old, std::sqrt(sums[3]));
     // A first update below round-off (delta = 0) proves nothing: the guess then holds the
     // extrapolation's error below round-off, and stopping there let RKN3s4(2) drift in energy
     // over 1e6 steps of P3 (h = 1e-3).
@@ -126,17 +129,21 @@ bool StageSolver<Space, Coef>::contraction_proves(int i, double delta) {
 // error systematic over millions of steps (RKN3s4(2) on P3 at h = 1e-3, 1e6 steps: the energy
 // error grew 10-fold, 1.4e-12 -> 1.4e-11, when they were allowed; energy_test).
 template <class Space, class Coef>
+bool StageSolver<Space, Coef>::measures_contraction(double delta_first) {
+  return delta_first >= 1e3 * kEps;
+}
+
+// (measure: |h^2 abar_ii (g(Q_1) - g(Q_0))| when measures_contraction(delta_first).)
+template <class Space, class Coef>
 void StageSolver<Space, Coef>::record_contraction(int i, double change_first, double delta,
-                                                  double delta_first) {
+                                                  double delta_first, double measure) {
   StageRecord& r = record_[i];
-  if (delta_first < 1e3 * kEps) {
+  if (!measures_contraction(delta_first)) {
     const double ratio = (delta == 0 ? kEps : delta) / delta_first;
     if (r.theta >= 0 && ratio <= kThetaSafety * r.theta) r.theta_age = 0;
     return;
   }
-  x_.g_first_hat = Space::co(k_.abar(i, i)) * (G(i) - x_.g_first_hat);
-  r.theta =
-      std::sqrt(space_.reduce(std::array{space_.squared_norm(x_.g_first_hat)})[0]) / change_first;
+  r.theta = measure / change_first;
   r.theta_age = 0;
   const double theta = kThetaSafety * r.theta;
   r.first_limit = !(theta < 0.5) ? -1.0

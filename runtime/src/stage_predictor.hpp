@@ -65,7 +65,7 @@ class StagePredictor {
       out.setZero();
   }
   template <class Abar>
-  void adapt(int i, const Abar& abar_ii, Map& prediction, Map& scratch);
+  void adapt(int i, const Abar& abar_ii, Map& prediction, Map& below, Map& above);
 
  private:
   void set_nodes(int i);
@@ -141,25 +141,30 @@ void StagePredictor<Space>::set_nodes(int i) {
 // norms per stage cost P2/P3 15-20% of the CPU per grad U (erkn_implicit_benchmark) and saved
 // no evaluation there; with the interval, evaluations per stage (erkn_stage_evaluations) moved
 // by <= 0.05 on P1-P3, and P1's savings (SERKN3s4(1) at 1e-9: 1.13 against 1.42) stay.
-// prediction and scratch are overwritten.
+// prediction, below and above are overwritten (the guess errors of n, n - 1 and n + 1 nodes, in
+// one reduce).
 template <class Space>
 template <class Abar>
-void StagePredictor<Space>::adapt(int i, const Abar& abar_ii, Map& prediction, Map& scratch) {
+void StagePredictor<Space>::adapt(int i, const Abar& abar_ii, Map& prediction, Map& below,
+                                  Map& above) {
   if (--adapt_wait_[i] > 0) return;
   const int available = available_nodes(i), n = std::min(order_[i], available);
-  if (available < 2) return;              // (adapt_wait_ <= 0: checked at the next step)
-  const auto guess_error = [&](Map& p) {  // (squared: only compared)
-    p = abar_ii * (p - G(i));
-    return space_.reduce(std::array{space_.squared_norm(p)})[0];
-  };
-  double best = guess_error(prediction);  // (the stage's prediction, n nodes)
-  int best_n = n;
-  for (int m : {n - 1, n + 1}) {
-    if (m < 1 || m > available) continue;
-    predict(i, m, scratch);
-    const double error = guess_error(scratch);
-    if (error < best) best = error, best_n = m;
+  if (available < 2) return;  // (adapt_wait_ <= 0: checked at the next step)
+  const std::array<int, 3> orders{n, n - 1, n + 1};
+  std::array<Map*, 3> guesses{&prediction, &below, &above};  // (n nodes: the stage's prediction)
+  std::array<double, 3> errors{};  // |h^2 abar_ii (g_pred - g_i)|^2 (squared: only compared)
+  for (int k = 0; k < 3; ++k) {
+    if (orders[k] < 1 || orders[k] > available) continue;
+    if (k > 0) predict(i, orders[k], *guesses[k]);
+    *guesses[k] = abar_ii * (*guesses[k] - G(i));
+    errors[k] = space_.squared_norm(*guesses[k]);
   }
+  errors = space_.reduce(errors);
+  double best = errors[0];
+  int best_n = n;
+  for (int k = 1; k < 3; ++k)
+    if (orders[k] >= 1 && orders[k] <= available && errors[k] < best)
+      best = errors[k], best_n = orders[k];
   adapt_interval_[i] =
       best_n == order_[i] ? std::min(2 * adapt_interval_[i], kMaxAdaptInterval) : 1;
   adapt_wait_[i] = adapt_interval_[i];

@@ -24,6 +24,7 @@
 #include "stage_checks.hpp"
 #include "stage_predictor.hpp"
 #include "step_coefficients.hpp"
+#include "stepper_base.hpp"
 
 namespace erkn::detail {
 
@@ -58,11 +59,12 @@ class StageSolver {
   };
   // What the solver knows of stage i between steps.
   struct StageRecord {
-    double theta = -1;       // the contraction measured; < 0: none
-    int theta_age = 0;       // stage solves since the measurement
-    double first_limit = 0;  // the largest delta a first iteration may stop at
-    double weight = 0;       // max(1, |bbar_i| / |abar_ii|, |b_i| / (h |abar_ii|))
-    double newton_cost = 0;  // evaluations of its last Newton solve; 0: none
+    double theta = -1;            // the contraction measured; < 0: none
+    int theta_age = 0;            // stage solves since the measurement
+    double first_limit = 0;       // the largest delta a first iteration may stop at
+    double weight = 0;            // max(1, |bbar_i| / |abar_ii|, |b_i| / (h |abar_ii|))
+    double newton_cost = 0;       // evaluations of its last Newton solve; 0: none
+    bool explicit_stage = false;  // abar_ii = 0: Q_i = r_i, one evaluation
   };
   // Newton's workspace (allocated at the first fallback): dense (d <= kDenseNewtonMaxD) or
   // Newton-Krylov.
@@ -86,7 +88,9 @@ class StageSolver {
   static double relative_change(double change2, double norm2);
   bool too_slow(int i, int it, double delta, double delta_old) const;
   bool contraction_proves(int i, double delta);
-  void record_contraction(int i, double change_first, double delta, double delta_first);
+  static bool measures_contraction(double delta_first);
+  void record_contraction(int i, double change_first, double delta, double delta_first,
+                          double measure);
 
   // stage_newton.hpp
   void newton(int i, Statistics& stats);
@@ -106,6 +110,11 @@ class StageSolver {
   void set_preconditioner(int i, double sigma);
   void jacobian(int i, Statistics& stats);
 
+  // G(i) = the force at the iterate (Q, Q_hat) in eigen coordinates.
+  void stage_force(int i, Statistics& stats) {
+    gradient(x_.Q, x_.g, i, stats);
+    space_.to_eigen_force(x_.Q, x_.Q_hat, x_.g, G(i));
+  }
   // g = grad U(Q) (+ M Q for RKN methods).
   void force(const Eigen::VectorXd& Q, int i, Statistics& stats) {
     gradient(Q, x_.g, i, stats);
@@ -188,7 +197,9 @@ StageSolver<Space, Coef>::StageSolver(const Method& method, const System& system
     const auto ratio = [&](const auto& num) {
       return space.reduce_max(max_ratio(num, k.abar(i, i)));
     };
-    record_[i].weight = std::max({1.0, ratio(k.h2bbar(i)), ratio(k.hb(i) * k.h())});
+    record_[i].explicit_stage = explicit_stage(method, i);
+    if (!record_[i].explicit_stage)
+      record_[i].weight = std::max({1.0, ratio(k.h2bbar(i)), ratio(k.hb(i) * k.h())});
   }
 }
 
@@ -201,12 +212,18 @@ void StageSolver<Space, Coef>::solve(const State& q_hat, const State& p_hat, con
   for (int i = 0; i < method_.stages(); ++i) {
     start_stage(i, q_hat, p_hat);
     solve_stage(i, stats);
-    predictor_.adapt(i, Space::co(k_.abar(i, i)), x_.guess_hat, x_.Q_hat_new);
+    predictor_.adapt(i, Space::co(k_.abar(i, i)), x_.guess_hat, x_.Q_hat_new, x_.g_first_hat);
   }
 }
 
 template <class Space, class Coef>
 void StageSolver<Space, Coef>::solve_stage(int i, Statistics& stats) {
+  if (record_[i].explicit_stage) {  // (Q = r exactly: its gradient is the stage's)
+    stage_force(i, stats);
+    ++stats.stage_iterations;
+    space_.settle();
+    return;
+  }
   if (fixed_point(i, stats)) return;
   ++stats.newton_fallbacks;
   const long before = stats.gradient_evaluations;

@@ -8,15 +8,19 @@
 
 namespace erkn::detail {
 
-/// True when every diagonal coefficient abar_ii is identically zero (the generator's closed form
-/// is "0"): the stages are explicit and the method is a splitting of the exact linear flow and
+/// True when stage i's diagonal coefficient abar_ii is identically zero (the generator's closed
+/// form is "0"): the stage is explicit, Q_i = r_i.
+inline bool explicit_stage(const Method& method, int i) {
+  const int s = method.stages();
+  const char* form = method.table().closed_forms[2 * s + i * (i + 1) / 2 + i];
+  return form[0] == '0' && form[1] == '\0';
+}
+
+/// True when every stage is explicit: the method is a splitting of the exact linear flow and
 /// kicks (DESIGN.md section 1).
 inline bool explicit_stages(const Method& method) {
-  const int s = method.stages();
-  for (int i = 0; i < s; ++i) {
-    const char* form = method.table().closed_forms[2 * s + i * (i + 1) / 2 + i];
-    if (form[0] != '0' || form[1] != '\0') return false;
-  }
+  for (int i = 0; i < method.stages(); ++i)
+    if (!explicit_stage(method, i)) return false;
   return true;
 }
 
