@@ -47,15 +47,8 @@ Problem sine_gordon(int n, double kappa) {
     p.p0[i - 1] = std::sqrt(double(n)) * (0.01 + std::sin(2 * std::numbers::pi * i / n));
   p.h_energy = 1.0 / 40;
   p.paper_steps = {400, 800, 1600, 3200, 2000, 4000, 8000, 16000};
-  if (kappa == 1) {  // the paper's problem: no multiplication in grad U
-    p.grad_u = [](const Vec& q, Vec& g) { g = q.array().sin(); };
-  } else {
-    p.grad_u = [kappa](const Vec& q, Vec& g) { g = kappa * q.array().sin(); };
-  }
-  p.potential = [kappa](const Vec& q) { return -kappa * q.array().cos().sum(); };
-  p.hessian_u = [kappa](const Vec& q) {
-    return Eigen::MatrixXd((kappa * q.array().cos()).matrix().asDiagonal());
-  };
+  const Potential u = sine_potential(kappa);
+  p.grad_u = u.grad_u, p.potential = u.potential, p.hessian_u = u.hessian_u;
   p.force_ld = [n, dx, kappa](const VecLD& q, VecLD& f) {
     const long double s = 1.0L / ((long double)dx * dx);
     for (int i = 0; i < n; ++i) {
@@ -76,14 +69,8 @@ Problem duffing(double k) {
   p.p0 = Vec::Constant(1, 10);
   p.h_energy = 1.0 / 50;
   p.paper_steps = {2000, 4000, 6000, 8000, 400, 800, 1200, 1600};
-  // q'' + 100q = k^2 (2q^3 - q)  <=>  U(q) = -k^2 (q^4 - q^2) / 2.
-  p.grad_u = [k2](const Vec& q, Vec& g) { g = -k2 * (2 * q.array().cube() - q.array()); };
-  p.potential = [k2](const Vec& q) {
-    return -0.5 * k2 * (q.array().pow(4) - q.array().square()).sum();
-  };
-  p.hessian_u = [k2](const Vec& q) {
-    return Eigen::MatrixXd::Constant(1, 1, -k2 * (6 * q[0] * q[0] - 1));
-  };
+  const Potential u = duffing_potential(k);
+  p.grad_u = u.grad_u, p.potential = u.potential, p.hessian_u = u.hessian_u;
   p.force_ld = [k2](const VecLD& q, VecLD& f) {
     f[0] = -100 * q[0] + (long double)k2 * (2 * q[0] * q[0] * q[0] - q[0]);
   };
@@ -138,6 +125,12 @@ Problem sine_gordon_2d(int n) {
   p.grad_u = [](const Vec& q, Vec& g) { g = q.array().sin(); };
   p.potential = [](const Vec& q) { return -q.array().cos().sum(); };
   return p;
+}
+
+std::vector<Invariant> invariants(const Problem& p) {
+  std::vector<Invariant> out{{"H", [p](const Vec& q, const Vec& v) { return p.energy(q, v); }}};
+  out.insert(out.end(), p.adiabatic.begin(), p.adiabatic.end());
+  return out;
 }
 
 Problem problem_by_key(const std::string& key) {

@@ -13,7 +13,8 @@ advisor), erkn.hessian_bounds_at / hessian_bounds_along, erkn.Ensemble (trajecto
 M: a float (M = w2 I), a 1-D array (diagonal), a 2-D symmetric array (dense), or an
 erkn.Stiffness (erkn.circulant(col), erkn.grid(axes, shift), ...).
 grad: a built-in potential by name ("sine", "duffing", "fpu", "phi4"; parameters with
-erkn.potential(name, **params)), evaluated in C++, or a callable: grad(q) returning grad U(q),
+erkn.potential(name, **params)), evaluated in C++, a problem's erkn.System (erkn.problems:
+fpu, henon_heiles, sine_gordon, duffing, stellar_orbits, klein_gordon, ...), or a callable: grad(q) returning grad U(q),
 or grad(q, out) writing it into `out`. q (and out) are NumPy views of erkn's memory, valid only
 during the call: copy q if you keep it.
 
@@ -25,6 +26,7 @@ is reached by a last shorter step. See the README's "Python" section.
 
 import inspect
 import numbers
+import sys
 import time
 
 import numpy as np
@@ -38,7 +40,7 @@ __version__ = "@PROJECT_VERSION@"
 __all__ = ["Ensemble", "Error", "Integrator", "Options", "Solution", "StepSizeAdvice",
            "Stiffness", "advise_step_size", "circulant", "dense", "diagonal", "grid",
            "hessian_bounds_along", "hessian_bounds_at", "load_methods", "methods", "mode_energies",
-           "potential", "scalar", "solve", "stability", "system", "tableau"]
+           "potential", "problems", "scalar", "solve", "stability", "system", "tableau"]
 
 # The method when none is named (and no tol= chooses one): the registry's method closest to the
 # cheapest over docs/accuracy.md's 24 cells (README, "Default method").
@@ -146,6 +148,10 @@ def system(M, grad, d, potential=None, hessian=None):
 
 def _system(M, grad, d, potential_fn, hessian):
     M = _stiffness(M)
+    if isinstance(grad, System):  # (a problem's: its U in C++, with this M)
+        if potential_fn is not None or hessian is not None:
+            raise Error("an erkn.System brings its own potential and Hessian")
+        return _erkn._with_stiffness(grad, M, d)
     if isinstance(grad, str):
         grad = potential(grad)
     if isinstance(grad, potential):
@@ -211,20 +217,84 @@ class Integrator(_erkn._Integrator):
         """A copy of the run's erkn.Options (fixed at construction)."""
         return Options._of(self._options)
 
-    def run(self, t_end, t_eval=None, every=1, energy=True):
-        """(t, q, p, energy) at t_eval, or else at the start, every `every`-th step and t_end."""
-        return self._run(_real(t_end, "t_end"), t_eval, _every(every), bool(energy))
+    def run(self, t_end, t_eval=None, every=1, energy=True, events=None, progress=None):
+        """(t, q, p, energy, events, stopped): the state at t_eval, or else at the start, every
+        `every`-th step and t_end; with events (see erkn.solve), (t_events, q_events, p_events,
+        statistics) and whether a terminal event stopped the run. progress: see erkn.solve."""
+        t_end = _real(t_end, "t_end")
+        return self._run(t_end, t_eval, _every(every), bool(energy), _events(events),
+                         _progress(progress, self.t, t_end))
+
+
+class _ProgressBar:
+    """A one-line bar on stderr, drawn from the first call after `after` seconds."""
+
+    def __init__(self, t0, t1, after):
+        self.t0, self.t1, self.after, self.drawn = t0, t1, after, False
+        self.start = time.monotonic()
+
+    def __call__(self, t):
+        if not self.drawn and time.monotonic() - self.start < self.after:
+            return
+        done = 1.0 if self.t1 == self.t0 else (t - self.t0) / (self.t1 - self.t0)
+        bar = "#" * int(30 * done)
+        sys.stderr.write(f"\rerkn: [{bar:<30}] {100 * done:5.1f} %  t = {t:.6g}")
+        if done >= 1.0:
+            sys.stderr.write("\n")
+        sys.stderr.flush()
+        self.drawn = True
+
+
+def _progress(progress, t0, t1):
+    """The callable the run calls between chunks: progress itself, a bar (True; None: a bar on
+    a terminal once the run has lasted 2 s), or None (False)."""
+    if progress is None:
+        return _ProgressBar(t0, t1, 2.0) if sys.stderr.isatty() else None
+    if progress is True:
+        return _ProgressBar(t0, t1, 0.0)
+    if progress is False:
+        return None
+    if not callable(progress):
+        raise Error(f"progress must be a callable progress(t), True or False; got {progress!r}")
+    return progress
+
+
+def _events(events):
+    """[(g, direction, terminal)] from event functions with SciPy's optional attributes
+    (g.direction: its sign; g.terminal: True or False), or None."""
+    if events is None:
+        return None
+    if callable(events):
+        events = [events]
+    out = []
+    for k, g in enumerate(events):
+        if not callable(g):
+            raise Error(f"event {k} must be a callable g(t, q, p); got {type(g).__name__}")
+        direction = _real(getattr(g, "direction", 0.0), f"event {k}'s direction")
+        terminal = getattr(g, "terminal", False)
+        if not isinstance(terminal, (bool, np.bool_)):
+            raise Error(f"event {k}'s terminal must be True or False; got {terminal!r}")
+        out.append((g, int(np.sign(direction)), bool(terminal)))
+    return out
 
 
 class Solution:
     """t (n,), q and p (n, d): row k is the state at t[k]; energy (n,) or None without a
     potential; stats: the integrator's counters and wall time; method: the method's name;
     choice: with tol=, how the method and h were chosen (a dict: method, h, estimated_error,
-    reason, pilot_cpu_time, pilot_gradient_evaluations, candidates), else None."""
+    reason, pilot_cpu_time, pilot_gradient_evaluations, candidates), else None.
+    With events (SciPy's names): t_events[k] (n_k,), q_events[k], p_events[k] (n_k, d) and
+    y_events[k] = [q, p] (n_k, 2d) at event k's zeros; stats["events"]: the work spent locating
+    them; status 1 if a terminal event stopped the run, else 0."""
 
-    def __init__(self, t, q, p, energy, stats, method, choice=None):
+    def __init__(self, t, q, p, energy, stats, method, choice=None, events=None, stopped=False):
         self.t, self.q, self.p, self.energy, self.stats, self.method = t, q, p, energy, stats, method
         self.choice = choice
+        self.status = 1 if stopped else 0
+        self.t_events = self.q_events = self.p_events = self.y_events = None
+        if events is not None:
+            self.t_events, self.q_events, self.p_events, self.stats["events"] = events
+            self.y_events = [np.hstack([q, p]) for q, p in zip(self.q_events, self.p_events)]
 
     def __repr__(self):
         span = f" in [{self.t[0]:g}, {self.t[-1]:g}]" if self.t.size else ""
@@ -234,7 +304,8 @@ class Solution:
 
 def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None, every=1,
           potential=None, hessian=None, options=None, energy_tolerance=None,
-          check_stability=None, pilot_fraction=1.0 / 32, safety=1.0):
+          check_stability=None, pilot_fraction=1.0 / 32, safety=1.0, events=None,
+          progress=None):
     """Integrates q'' + M q = -grad U(q) over t_span = (t0, t1) with step h, or to a tolerance.
 
     tol: the requested global error (max norm of q's error at t1). With tol, method "auto"
@@ -248,7 +319,18 @@ def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None
     t1. The energy H = p.p/2 + q.M q/2 + U(q) is reported when U is known (a built-in, or the
     `potential` callable); `hessian(q)` (or hessian(q, out)) helps the stage solver's Newton
     fallback. options: an erkn.Options (or a dict of its fields); energy_tolerance= and
-    check_stability= set those fields. Raises erkn.Error with erkn's message on any bad input
+    check_stability= set those fields.
+
+    events: event functions g(t, q, p) -> float (or one), as SciPy's solve_ivp takes them, with
+    the optional attributes g.terminal (stop at the first zero) and g.direction (> 0: zeros
+    where g rises only, < 0: falls only). Their zeros are located after every step on the
+    method's own shorter step from the step's start (to the method's order; erkn/events.hpp):
+    sol.t_events, sol.q_events, sol.p_events, sol.y_events.
+
+    Long runs: Ctrl-C (KeyboardInterrupt) stops the run within ~0.1 s, keeping the output up to
+    the last step in the exception's `solution`. progress: a callable progress(t), called about
+    every 0.05 s of stepping and at the end; True draws a bar on stderr; None (the default)
+    draws it only on a terminal and once the run has lasted 2 s; False never. Raises erkn.Error with erkn's message on any bad input
     or failed step; an error (or an exception from a callback) during the run carries the
     output up to the last completed step as its `solution` attribute."""
     if len(t_span) != 2:
@@ -271,12 +353,14 @@ def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None
     if t_eval is not None:
         t_eval = np.ascontiguousarray(t_eval, dtype=float)
     try:
-        t, q, p, energy = run.run(t1, t_eval, every)
-    except Exception as e:  # keep the output up to the last completed step (if a step began)
+        t, q, p, energy, found, stopped = run.run(t1, t_eval, every, events=events,
+                                                  progress=progress)
+    except BaseException as e:  # keep the output up to the last completed step (if one began)
         if run._partial is not None:
-            e.solution = Solution(*run._partial, run.statistics, run.method, choice)
+            t, q, p, energy, found, _ = run._partial
+            e.solution = Solution(t, q, p, energy, run.statistics, run.method, choice, found)
         raise
-    return Solution(t, q, p, energy, run.statistics, run.method, choice)
+    return Solution(t, q, p, energy, run.statistics, run.method, choice, found, stopped)
 
 
 def stability(name, V, z=0.0):
@@ -393,3 +477,6 @@ class Ensemble:
     def integrate(self, t_end, threads=0):
         """Every trajectory from t = 0 to t_end on `threads` threads (0: one per core)."""
         return EnsembleResult(self._ensemble._integrate(float(t_end), int(threads)))
+
+
+from . import problems  # noqa: E402  (erkn.problems: uses solve above)

@@ -68,7 +68,7 @@ def build_wheel(wheel_directory, config_settings=None, metadata_directory=None):
     with tempfile.TemporaryDirectory() as tmp:
         package = _build_package(pathlib.Path(tmp) / "build")
         for path in sorted(package.iterdir()):
-            if path.name == "__init__.py" or path.name.startswith("_erkn"):
+            if path.suffix == ".py" or path.name.startswith("_erkn"):
                 files[f"erkn/{path.name}"] = path.read_bytes()
     files[f"{dist_info}/METADATA"] = _metadata(version).encode()
     files[f"{dist_info}/WHEEL"] = ("Wheel-Version: 1.0\nGenerator: erkn_build\n"

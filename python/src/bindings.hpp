@@ -21,6 +21,8 @@ void bind_options(py::module_& m);
 /// advise_step_size with its report, hessian_bounds_at and hessian_bounds_along; _choose
 /// (choose_method_and_step).
 void bind_advisor(py::module_& m);
+/// The problems library (problems/): _Problem and its constructors, for erkn.problems.
+void bind_problems(py::module_& m);
 /// Ensemble: trajectories on threads, without the GIL for built-in potentials.
 void bind_ensemble(py::module_& m);
 

@@ -7,10 +7,13 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <optional>
 #include <vector>
 
 #include "bindings.hpp"
 #include "erkn/error.hpp"
+#include "events.hpp"
+#include "long_run.hpp"
 #include "system.hpp"
 
 namespace erkn::python {
@@ -44,6 +47,11 @@ struct Output {
   }
 };
 
+template <class Times>
+Eigen::Map<const Eigen::VectorXd> at_all(const Times& times) {
+  return Eigen::Map<const Eigen::VectorXd>(times.data(), times.size());
+}
+
 class PyIntegrator {
  public:
   PyIntegrator(const std::string& method, const PySystem& system, double h,
@@ -58,8 +66,11 @@ class PyIntegrator {
   }
 
   // Steps to t_end; output at `t_eval` (ascending, in [t, t_end]) or else at the start, every
-  // `every`-th step and t_end. Returns (t, q, p, energy or None).
-  py::tuple run(double t_end, const py::object& t_eval, long every, bool energy) {
+  // `every`-th step and t_end; with `events` (a sequence of (g, direction, terminal)), their zeros.
+  // Ctrl-C and progress(t) between chunks (long_run.hpp). Returns (t, q, p, energy or None,
+  // events or None, stopped by a terminal event).
+  py::tuple run(double t_end, const py::object& t_eval, long every, bool energy,
+                const py::object& events, const py::object& progress) {
     partial_ = py::none();  // (an earlier failure's output is not this run's)
     Output out{run_.q().size(), energy && bool(run_.system().potential), {}, {}, {}, {}};
     const auto add = [&](double t, const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
@@ -69,20 +80,33 @@ class PyIntegrator {
     const Times times = t_eval.is_none() ? Times() : Times::ensure(t_eval);
     if (!t_eval.is_none() && (!times || times.ndim() != 1))
       throw Error("t_eval must be a 1-D array of times");
+    if (!t_eval.is_none())  // (all of them before any step: the chunks see only their own)
+      TimeGrid(run_.t(), run_.h()).require_output_times(t_end, at_all(times));
+    const auto at = [&] { return at_all(times); };
+    std::optional<Events> found;
+    if (!events.is_none()) found.emplace(run_, events_from_python(events));
+    bool stopped = false;
     try {
-      stepping([&] {
-        if (!t_eval.is_none()) {
-          run_.integrate(t_end, Eigen::Map<const Eigen::VectorXd>(times.data(), times.size()), add);
-        } else {
-          add(run_.t(), run_.q(), run_.p());
-          run_.integrate(t_end, add, every);
-        }
-      });
+      if (t_eval.is_none()) add(run_.t(), run_.q(), run_.p());
+      Eigen::Index next = 0;  // the first output time after the last chunk
+      const auto chunk = [&](double t_c) {
+        if (t_eval.is_none()) return chunk_every(found, t_c, add, every);
+        const Eigen::Index from = next;
+        while (next < times.size() && (t_c == t_end || times.at(next) <= t_c)) ++next;
+        return chunk_times(found, t_c, at().segment(from, next - from), add);
+      };
+      stopped = LongRun(progress).to(run_, t_end, t_eval.is_none() ? every : 1, chunk);
+    } catch (const py::error_already_set& e) {  // (Ctrl-C: the last state joins the output)
+      if (e.matches(PyExc_KeyboardInterrupt) && t_eval.is_none() && !out.t.empty() &&
+          out.t.back() != run_.t())
+        add(run_.t(), run_.q(), run_.p());
+      partial_ = result(out, found, events, false);
+      throw;
     } catch (...) {  // (a failed run keeps what it computed: erkn.solve attaches it)
-      partial_ = out.to_python();
+      partial_ = result(out, found, events, false);
       throw;
     }
-    return out.to_python();
+    return result(out, found, events, stopped);
   }
 
   // Python observer(t, q, p) with copies of the state (the loop holds the GIL), after every
@@ -115,6 +139,30 @@ class PyIntegrator {
   py::object partial() const { return partial_; }
 
  private:
+  // One chunk of run(): to t_c with output every `every` steps, or at `times`; true when a
+  // terminal event stopped it. Built-in potentials step without the GIL; events hold it.
+  template <class Add>
+  bool chunk_every(std::optional<Events>& found, double t_c, Add& add, long every) {
+    if (found) return found->integrate(run_, t_c, add, every);
+    stepping([&] { run_.integrate(t_c, add, every); });
+    return false;
+  }
+  template <class Add>
+  bool chunk_times(std::optional<Events>& found, double t_c,
+                   const Eigen::Ref<const Eigen::VectorXd>& times, Add& add) {
+    if (found) return found->integrate(run_, t_c, times, add);
+    stepping([&] { run_.integrate(t_c, times, add); });
+    return false;
+  }
+
+  py::tuple result(Output& out, const std::optional<Events>& found, const py::object& events,
+                   bool stopped) {
+    py::object hits = py::none();
+    if (found) hits = hits_to_python(*found, py::len(events), run_.q().size());
+    const py::tuple o = out.to_python();
+    return py::make_tuple(o[0], o[1], o[2], o[3], hits, stopped);
+  }
+
   void step_to(double t_end, long every) {
     stepping([&] {
       run_.integrate(
@@ -150,7 +198,7 @@ void bind_integrator(py::module_& m) {
            "`every`-th step and at t_end, or at `times` (ascending, in [t, t_end]; between grid "
            "points by state_at, which leaves the trajectory unchanged)")
       .def("_run", &PyIntegrator::run, py::arg("t_end"), py::arg("t_eval"), py::arg("every"),
-           py::arg("energy"))
+           py::arg("energy"), py::arg("events") = py::none(), py::arg("progress") = py::none())
       .def("state_at", &PyIntegrator::state_at, py::arg("t"),
            "(q, p) at t in [t, t + h] by a step of size t - self.t; the integrator is unchanged")
       .def(

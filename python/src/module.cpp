@@ -13,4 +13,5 @@ PYBIND11_MODULE(_erkn, m) {
   erkn::python::bind_integrator(m);
   erkn::python::bind_advisor(m);
   erkn::python::bind_ensemble(m);
+  erkn::python::bind_problems(m);
 }

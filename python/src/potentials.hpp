@@ -1,5 +1,5 @@
 // Built-in potentials U, evaluated in C++ so small systems do not pay a Python call per
-// gradient. Each is a sum of quartic or trigonometric terms (see potentials.cpp).
+// gradient: the problems library's definitions (erkn/problems.hpp), by name.
 #pragma once
 
 #include <map>

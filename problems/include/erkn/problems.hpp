@@ -21,6 +21,31 @@ namespace erkn::problems {
 
 using VecLD = std::vector<long double>;
 
+/// A quantity the flow conserves: H exactly; an adiabatic invariant (FPU's oscillatory energies)
+/// only up to small oscillations, over times long in its parameter (Hairer-Lubich-Wanner XIII).
+struct Invariant {
+  std::string name;
+  std::function<double(const Vec& q, const Vec& p)> value;
+  bool exact = true;
+};
+
+/// U with its gradient and Hessian for any dimension: the problems' nonlinear parts, and the
+/// Python module's built-in potentials (one definition for both).
+struct Potential {
+  std::function<void(const Vec& q, Vec& grad)> grad_u;
+  std::function<double(const Vec& q)> potential;
+  std::function<Eigen::MatrixXd(const Vec& q)> hessian_u;
+};
+
+/// U = -kappa sum_i cos q_i (sine-Gordon: grad U = kappa sin q).
+Potential sine_potential(double kappa = 1);
+/// U = -k^2 sum_i (q_i^4 - q_i^2) / 2 (Duffing: q'' + M q = k^2 (2 q^3 - q)).
+Potential duffing_potential(double k);
+/// U = beta/4 sum_i q_i^4 (phi^4; the quadratic part belongs in M).
+Potential quartic_potential(double beta);
+/// The FPU chain's U for m stiff springs (see fpu()); d = 2m.
+Potential fpu_potential(int m);
+
 struct Problem {
   std::string key;    ///< "P1", "P2", "P3", or a scene's own key
   std::string title;  ///< e.g. "sine-Gordon, N = 32"
@@ -37,6 +62,8 @@ struct Problem {
   std::function<void(const VecLD& q, VecLD& force)> force_ld;
   /// Exact q(t), where known.
   std::optional<std::function<Vec(double t)>> exact;
+  /// Invariants beyond H (FPU: the stiff springs' energies I_1..I_m and their sum I).
+  std::vector<Invariant> adiabatic;
 
   int dim() const { return int(q0.size()); }
   double energy(const Vec& q, const Vec& p) const;
@@ -60,16 +87,25 @@ Problem sine_gordon_2d(int n);
 /// q = (x0_1..x0_m, x1_1..x1_m), M = diag(0, omega^2), U = 1/4 sum_i u_i^4 with the elongations
 /// u_0 = x0_1 - x1_1, u_i = x0_{i+1} - x1_{i+1} - x0_i - x1_i, u_m = x0_m + x1_m;
 /// x0_1 = 1, x0_1' = 1, x1_1 = 1/omega, x1_1' = 1, all else 0. Its numerical resonances at
-/// h omega near k pi are what erkn::advise_step_size is tested on.
+/// h omega near k pi are what erkn::advise_step_size is tested on. Adiabatic invariants: the
+/// stiff springs' energies I_j = (x1_j'^2 + omega^2 x1_j^2) / 2 and I = sum_j I_j (HLW I.5.1).
 Problem fpu(int m = 3, double omega = 50);
+/// Klein-Gordon / phi^4 u_tt = Lap u - u - u^3 on [0, 1]^dims (dims = 1, 2, 3), Dirichlet, n
+/// interior points per axis (row-major, the last axis fastest): u0 = 2 prod_a sin(pi x_a) +
+/// exp(-100 |x - c|^2), c = (0.3, 0.4, 0.5) (its first dims entries), u_t(0) = 0;
+/// M = -Lap_h + 1 (mass shift), U = sum u^4 / 4. Error at t = 1. No Hessian.
+Problem klein_gordon(int n, int dims = 3);
 /// Henon-Heiles: H = |p|^2/2 + |q|^2/2 + q1^2 q2 - q2^3/3 (M = I, U = q1^2 q2 - q2^3/3), started
 /// at q = (0, 0.1), p = (p1, 0) with p1 > 0 from the energy H0 (below the escape energy 1/6);
 /// error at t = 20.
 Problem henon_heiles(double energy = 0.13);
 
-/// "P1", "P2", "P3" -> the paper's problem, "FPU" -> fpu(), "HH" -> henon_heiles(); throws std::invalid_argument
-/// otherwise.
+/// "P1", "P2", "P3" -> the paper's problem, "FPU" -> fpu(), "HH" -> henon_heiles(); throws
+/// std::invalid_argument otherwise.
 Problem problem_by_key(const std::string& key);
+
+/// H (exact) and then the problem's adiabatic invariants.
+std::vector<Invariant> invariants(const Problem& p);
 
 /// M in the runtime's form (scalar, diagonal, circulant).
 Stiffness stiffness(const LinearPart& m);

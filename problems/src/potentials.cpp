@@ -1,0 +1,47 @@
+// The nonlinear parts U of the problems, for any dimension (also the Python module's built-in
+// potentials): each with its gradient and Hessian, written once here.
+#include <cmath>
+
+#include "erkn/problems.hpp"
+
+namespace erkn::problems {
+
+Potential sine_potential(double kappa) {
+  Potential u;
+  if (kappa == 1) {  // the paper's problem: no multiplication in grad U
+    u.grad_u = [](const Vec& q, Vec& g) { g = q.array().sin(); };
+  } else {
+    u.grad_u = [kappa](const Vec& q, Vec& g) { g = kappa * q.array().sin(); };
+  }
+  u.potential = [kappa](const Vec& q) { return -kappa * q.array().cos().sum(); };
+  u.hessian_u = [kappa](const Vec& q) {
+    return Eigen::MatrixXd((kappa * q.array().cos()).matrix().asDiagonal());
+  };
+  return u;
+}
+
+// q'' + M q = k^2 (2q^3 - q)  <=>  U(q) = -k^2 sum (q^4 - q^2) / 2.
+Potential duffing_potential(double k) {
+  const double k2 = k * k;
+  Potential u;
+  u.grad_u = [k2](const Vec& q, Vec& g) { g = -k2 * (2 * q.array().cube() - q.array()); };
+  u.potential = [k2](const Vec& q) {
+    return -0.5 * k2 * (q.array().square().square() - q.array().square()).sum();
+  };
+  u.hessian_u = [k2](const Vec& q) {
+    return Eigen::MatrixXd((-k2 * (6 * q.array().square() - 1)).matrix().asDiagonal());
+  };
+  return u;
+}
+
+Potential quartic_potential(double beta) {
+  Potential u;
+  u.grad_u = [beta](const Vec& q, Vec& g) { g = beta * q.array().cube(); };
+  u.potential = [beta](const Vec& q) { return 0.25 * beta * q.array().square().square().sum(); };
+  u.hessian_u = [beta](const Vec& q) {
+    return Eigen::MatrixXd((3 * beta * q.array().square()).matrix().asDiagonal());
+  };
+  return u;
+}
+
+}  // namespace erkn::problems

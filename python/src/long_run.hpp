@@ -1,0 +1,59 @@
+// Long runs from Python: a run is cut into chunks that end on grid points (the trajectory and
+// the output are those of one call: every chunk but the last is a whole number of `every`
+// steps), and between chunks, with the GIL held, Ctrl-C is checked (PyErr_CheckSignals: the
+// KeyboardInterrupt leaves the integrator at its last step, the output so far kept) and the
+// progress callback is called. Chunks grow from kFirstChunk steps until one lasts kChunkSeconds,
+// so the checks cost nothing measurable (python_solve_benchmark.py).
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+#include <chrono>
+
+#include "erkn/integrator.hpp"
+
+namespace erkn::python {
+
+namespace py = pybind11;
+
+class LongRun {
+ public:
+  static constexpr long kFirstChunk = 4096;
+  static constexpr double kChunkSeconds = 0.05;
+
+  /// progress: None or a callable progress(t), called between chunks and at the end.
+  explicit LongRun(py::object progress) : progress_(std::move(progress)) {}
+
+  /// Calls chunk(t_c) for grid points t_c and last chunk(t_end), each returning true to stop
+  /// (a terminal event); between them, Ctrl-C and progress. Returns chunk's last answer.
+  template <class Chunk>
+  bool to(const Integrator& run, double t_end, long every, Chunk&& chunk) {
+    for (;;) {
+      const long k = (size_ + every - 1) / every * every;
+      const double t_c = run.t() + double(k) * run.h();
+      if (run.steps_until(t_end) <= k || run.steps_until(t_c) != k) break;
+      const auto start = std::chrono::steady_clock::now();
+      if (chunk(t_c)) return true;
+      grow(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      between(run.t());
+    }
+    const bool stopped = chunk(t_end);
+    if (!progress_.is_none()) progress_(run.t());
+    return stopped;
+  }
+
+ private:
+  py::object progress_;
+  long size_ = kFirstChunk;
+
+  void grow(double seconds) {
+    if (seconds < kChunkSeconds / 2 && size_ < (1L << 40)) size_ *= 2;
+  }
+  // With the GIL: a pending Ctrl-C raises KeyboardInterrupt here; then progress(t).
+  void between(double t) {
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    if (!progress_.is_none()) progress_(t);
+  }
+};
+
+}  // namespace erkn::python

@@ -1,0 +1,102 @@
+# Long runs: Ctrl-C (SIGINT) stops erkn.solve cleanly with the output so far, progress(t) is
+# called between chunks, and chunking changes nothing in the trajectory or the output.
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import numpy as np
+import pytest
+
+import erkn
+
+# A solve that takes minutes unless interrupted (built-in potential: the GIL is released while
+# stepping, so only the checks between chunks can see the signal).
+LONG_SOLVE = textwrap.dedent("""
+    import sys, numpy as np, erkn
+    grad = {grad}
+    print("started", flush=True)
+    try:
+        erkn.solve(4.0, grad, q0=[0.5, -0.3], p0=[0.1, 0.2], t_span=(0, 1e9), h=0.01,
+                   every=10**6, method="{method}")
+    except KeyboardInterrupt as e:
+        sol = e.solution
+        ok = sol.t.size >= 1 and np.all(np.isfinite(sol.q)) and sol.t[-1] < 1e9
+        print("interrupted", sol.t.size, sol.t[-1], ok, flush=True)
+        sys.exit(0 if ok else 3)
+    sys.exit(4)
+""")
+
+
+def method():
+    return next(m["name"] for m in erkn.methods() if m["kind"] == "explicit")
+
+
+@pytest.mark.parametrize("grad", ['erkn.potential("phi4")', "lambda q: q**3"],
+                         ids=["builtin", "python"])
+def test_sigint_stops_a_long_solve_and_keeps_the_output(grad):
+    code = LONG_SOLVE.format(grad=grad, method=method())
+    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True,
+                            env=dict(os.environ))
+    assert proc.stdout.readline().strip() == "started"
+    time.sleep(1.5)  # (well into the run, past several chunks)
+    sent = time.monotonic()
+    proc.send_signal(signal.SIGINT)
+    out, _ = proc.communicate(timeout=60)
+    latency = time.monotonic() - sent
+    assert proc.returncode == 0, out
+    fields = out.split()
+    assert fields[0] == "interrupted" and fields[-1] == "True", out
+    assert float(fields[2]) > 0  # steps were taken and kept
+    assert latency < 5, f"the run stopped {latency:.1f} s after SIGINT"
+
+
+def test_negative_control_without_sigint_the_long_solve_keeps_running():
+    code = LONG_SOLVE.format(grad='erkn.potential("phi4")', method=method())
+    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
+    try:
+        assert proc.stdout.readline().strip() == "started"
+        with pytest.raises(subprocess.TimeoutExpired):
+            proc.wait(timeout=2)
+    finally:
+        proc.kill()
+        proc.wait()
+
+
+def test_progress_is_called_with_increasing_times_ending_at_t1():
+    seen = []
+    kw = dict(q0=[0.5, -0.3], p0=[0.1, 0.2], t_span=(0, 2000.0), h=0.01, every=1000)
+    sol = erkn.solve(4.0, "phi4", progress=seen.append, **kw)
+    assert len(seen) >= 3 and seen[-1] == 2000.0
+    assert all(a < b for a, b in zip(seen, seen[1:]))
+    # chunking leaves the trajectory and the output as one call makes them
+    run = erkn.Integrator(4.0, "phi4", q0=kw["q0"], p0=kw["p0"], h=0.01)
+    run.integrate(2000.0)
+    assert np.array_equal(run.q, sol.q[-1])
+    plain = erkn.solve(4.0, "phi4", progress=False, **kw)
+    assert np.array_equal(plain.q, sol.q) and np.array_equal(plain.t, sol.t)
+    t_eval = np.linspace(0, 2000.0, 77)
+    a = erkn.solve(4.0, "phi4", t_eval=t_eval, progress=lambda t: None, **kw)
+    assert np.array_equal(a.t, t_eval) and np.abs(a.q[-1] - sol.q[-1]).max() == 0
+
+
+def test_an_exception_from_progress_stops_the_run_with_its_output():
+    def progress(t):
+        if t > 100:
+            raise RuntimeError("enough")
+
+    with pytest.raises(RuntimeError, match="enough") as info:
+        erkn.solve(4.0, "phi4", q0=[0.5, -0.3], p0=[0.1, 0.2], t_span=(0, 2000.0), h=0.01,
+                   every=100, progress=progress)
+    assert 100 < info.value.solution.t[-1] < 2000
+
+
+def test_progress_true_draws_a_bar_and_bad_progress_is_refused(capsys):
+    erkn.solve(4.0, "phi4", q0=[0.5], p0=[0.1], t_span=(0, 10.0), h=0.01, progress=True)
+    assert "100.0 %" in capsys.readouterr().err
+    erkn.solve(4.0, "phi4", q0=[0.5], p0=[0.1], t_span=(0, 10.0), h=0.01)
+    assert capsys.readouterr().err == ""  # (not a terminal: no bar by default)
+    with pytest.raises(erkn.Error, match="progress must be"):
+        erkn.solve(4.0, "phi4", q0=[0.5], p0=[0.1], t_span=(0, 1.0), h=0.01, progress="yes")
