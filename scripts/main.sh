@@ -28,6 +28,12 @@ if [ -x "$build"/bench/erkn_integrate_benchmark ]; then
       --server "$build"/bench/erkn_integrate_benchmark --markdown docs/benchmarks.md > /dev/null
   fi
 fi
+# A Henon-Heiles Poincare section from erkn.solve's events (docs/poincare.md, the README's picture).
+if [ -d "$build"/python/erkn ]; then
+  python=$(sed -n 's/^Python_EXECUTABLE:FILEPATH=//p' "$build"/CMakeCache.txt)
+  PYTHONPATH="$build"/python "${python:-python3}" scripts/poincare_section.py --charts docs/charts \
+    --markdown docs/poincare.md
+fi
 # erkn.solve(tol) (method and h chosen) against the cheapest (method, h) of a sweep over the
 # registry: error window and CPU ratio per scene and tolerance (issue 20).
 if [ -x "$build"/bench/erkn_accuracy_benchmark ]; then

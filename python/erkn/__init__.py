@@ -245,11 +245,22 @@ class _ProgressBar:
         self.drawn = True
 
 
+_stderr_is_tty = (None, False)
+
+
+def _on_terminal():
+    """sys.stderr.isatty(), asked once per stderr object (a system call of ~5 us here)."""
+    global _stderr_is_tty
+    if sys.stderr is not _stderr_is_tty[0]:
+        _stderr_is_tty = (sys.stderr, sys.stderr.isatty())
+    return _stderr_is_tty[1]
+
+
 def _progress(progress, t0, t1):
     """The callable the run calls between chunks: progress itself, a bar (True; None: a bar on
     a terminal once the run has lasted 2 s), or None (False)."""
     if progress is None:
-        return _ProgressBar(t0, t1, 2.0) if sys.stderr.isatty() else None
+        return _ProgressBar(t0, t1, 2.0) if _on_terminal() else None
     if progress is True:
         return _ProgressBar(t0, t1, 0.0)
     if progress is False:

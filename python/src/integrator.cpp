@@ -7,6 +7,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -89,8 +90,8 @@ class PyIntegrator {
     try {
       if (t_eval.is_none()) add(run_.t(), run_.q(), run_.p());
       Eigen::Index next = 0;  // the first output time after the last chunk
-      const auto chunk = [&](double t_c) {
-        if (t_eval.is_none()) return chunk_every(found, t_c, add, every);
+      const auto chunk = [&](double t_c, long every_c) {
+        if (t_eval.is_none()) return chunk_every(found, t_c, add, every_c);
         const Eigen::Index from = next;
         while (next < times.size() && (t_c == t_end || times.at(next) <= t_c)) ++next;
         return chunk_times(found, t_c, at().segment(from, next - from), add);
@@ -139,14 +140,20 @@ class PyIntegrator {
   py::object partial() const { return partial_; }
 
  private:
-  // One chunk of run(): to t_c with output every `every` steps, or at `times`; true when a
-  // terminal event stopped it. Built-in potentials step without the GIL; events hold it.
+  // One chunk of run(): to t_c with output every `every` steps (none for every = 0), or at
+  // `times`; true when a terminal event stopped it. Built-in potentials step without the GIL;
+  // events hold it.
   template <class Add>
   bool chunk_every(std::optional<Events>& found, double t_c, Add& add, long every) {
-    if (found) return found->integrate(run_, t_c, add, every);
-    stepping([&] { run_.integrate(t_c, add, every); });
+    const auto none = [](double, const Eigen::VectorXd&, const Eigen::VectorXd&) {};
+    if (found)
+      return every ? found->integrate(run_, t_c, add, every)
+                   : found->integrate(run_, t_c, none, kNever);
+    stepping([&] { every ? run_.integrate(t_c, add, every) : run_.integrate(t_c); });
     return false;
   }
+  // (An observer interval no chunk reaches: none is called.)
+  static constexpr long kNever = std::numeric_limits<long>::max();
   template <class Add>
   bool chunk_times(std::optional<Events>& found, double t_c,
                    const Eigen::Ref<const Eigen::VectorXd>& times, Add& add) {

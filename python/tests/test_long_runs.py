@@ -100,3 +100,18 @@ def test_progress_true_draws_a_bar_and_bad_progress_is_refused(capsys):
     assert capsys.readouterr().err == ""  # (not a terminal: no bar by default)
     with pytest.raises(erkn.Error, match="progress must be"):
         erkn.solve(4.0, "phi4", q0=[0.5], p0=[0.1], t_span=(0, 1.0), h=0.01, progress="yes")
+
+
+@pytest.mark.parametrize("every", [1, 3, 4096, 5000, 10**6])
+def test_chunked_output_every_k_steps_is_that_of_one_call(every):
+    # (chunks of 4096, 8192, ... steps: `every` dividing them, not dividing them, and larger)
+    kw = dict(q0=[0.5, -0.3], p0=[0.1, 0.2], h=0.01)
+    steps = 60000 if every > 1 else 9000
+    sol = erkn.solve(4.0, "phi4", t_span=(0, steps * 0.01), every=every, progress=lambda t: None,
+                     **kw)
+    seen = []
+    run = erkn.Integrator(4.0, "phi4", **kw)
+    run.integrate(steps * 0.01, observer=lambda t, q, p: seen.append((t, q)), every=every)
+    assert np.array_equal(sol.t[1:], [t for t, _ in seen])
+    assert np.array_equal(sol.q[1:], np.array([q for _, q in seen]))
+    assert len(sol.t) == 1 + steps // every + (steps % every != 0)

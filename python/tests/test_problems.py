@@ -95,3 +95,14 @@ def test_bad_parameters_are_refused_with_erkn_errors():
     with pytest.raises(erkn.Error, match="dimension 2; q0 has 3"):
         p = erkn.problems.henon_heiles()
         erkn.solve(p.M, p.grad, q0=[0, 0, 0], p0=[0, 0, 0], t_span=(0, 1), h=0.1)
+
+
+def test_the_python_guide_examples_run():
+    from conftest import SOURCE_DIR
+    text = (SOURCE_DIR / "docs" / "python.md").read_text()
+    blocks = [b.split("```", 1)[0] for b in text.split("```python\n")[1:]]
+    assert len(blocks) == 2
+    scope = {}
+    for block in blocks:
+        exec(compile(block, "docs/python.md", "exec"), scope)
+    assert len(scope["section"][0]) > 100 and scope["I"]["I"].size > 1

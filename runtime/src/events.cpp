@@ -131,7 +131,11 @@ bool Events::after_step(Integrator& run) {
                    [](const EventHit& a, const EventHit& b) { return a.t < b.t; });
   for (std::size_t i = first; i < hits_.size() && !stop; ++i)
     if (events_[hits_[i].event].terminal) stop = &hits_[i];
-  if (!stop) return remember(run), false;
+  if (!stop) {  // (the new state is the next step's start)
+    t_prev_ = t_new;
+    q_prev_.swap(q_), p_prev_.swap(p_);
+    return false;
+  }
   hits_.resize(std::size_t(stop - hits_.data()) + 1);  // (none after the terminal one)
   run.set_state(hits_.back().q, hits_.back().p, hits_.back().t);
   remember(run);
