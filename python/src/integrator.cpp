@@ -63,7 +63,7 @@ class PyIntegrator {
 
   void step(long n) {
     if (n < 0) throw Error("step(n): n must be >= 0; got " + std::to_string(n));
-    stepping([&] { run_.step(n); });
+    LongRun(py::none()).steps(run_, n, [&](long k) { stepping([&] { run_.step(k); }); });
   }
 
   // Steps to t_end; output at `t_eval` (ascending, in [t, t_end]) or else at the start, every
@@ -170,10 +170,13 @@ class PyIntegrator {
     return py::make_tuple(o[0], o[1], o[2], o[3], hits, stopped);
   }
 
+  // To t_end without output, in chunks (Ctrl-C between them).
   void step_to(double t_end, long every) {
-    stepping([&] {
-      run_.integrate(
-          t_end, [](double, auto&, auto&) {}, every);
+    if (every < 1)
+      throw Error("the observer interval must be >= 1 step; got " + std::to_string(every));
+    LongRun(py::none()).to(run_, t_end, 1, [&](double t_c, long) {
+      stepping([&] { run_.integrate(t_c); });
+      return false;
     });
   }
 

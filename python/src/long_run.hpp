@@ -48,6 +48,18 @@ class LongRun {
     return stopped;
   }
 
+  /// n steps of run as calls f(k) of chunks, with Ctrl-C and progress between them.
+  template <class F>
+  void steps(const Integrator& run, long n, F&& f) {
+    for (; n > size_; between(run.t())) {
+      const auto start = std::chrono::steady_clock::now();
+      f(size_);
+      n -= size_;
+      grow(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
+    f(n);
+  }
+
  private:
   py::object progress_;
   long size_ = kFirstChunk;

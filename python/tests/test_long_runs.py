@@ -115,3 +115,39 @@ def test_chunked_output_every_k_steps_is_that_of_one_call(every):
     assert np.array_equal(sol.t[1:], [t for t, _ in seen])
     assert np.array_equal(sol.q[1:], np.array([q for _, q in seen]))
     assert len(sol.t) == 1 + steps // every + (steps % every != 0)
+
+
+LONG_INTEGRATOR = textwrap.dedent("""
+    import sys, numpy as np, erkn
+    run = erkn.Integrator(4.0, "phi4", q0=[0.5, -0.3], p0=[0.1, 0.2], h=0.01, method="{method}")
+    print("started", flush=True)
+    try:
+        {call}
+    except KeyboardInterrupt:
+        ok = 0 < run.t < 1e9 and np.all(np.isfinite(run.q))
+        print("interrupted", run.t, ok, flush=True)
+        sys.exit(0 if ok else 3)
+    sys.exit(4)
+""")
+
+
+@pytest.mark.parametrize("call", ["run.integrate(1e9)", "run.step(10**11)"])
+def test_sigint_stops_integrator_calls_without_output_at_their_last_step(call):
+    code = LONG_INTEGRATOR.format(method=method(), call=call)
+    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
+    assert proc.stdout.readline().strip() == "started"
+    time.sleep(1.0)
+    proc.send_signal(signal.SIGINT)
+    out, _ = proc.communicate(timeout=60)
+    assert proc.returncode == 0 and out.split()[-1] == "True", out
+
+
+def test_chunked_step_and_integrate_are_one_call():
+    kw = dict(q0=[0.5, -0.3], p0=[0.1, 0.2], h=0.01)
+    a, b, c = (erkn.Integrator(4.0, "phi4", **kw) for _ in range(3))
+    a.step(50000)  # (chunks of 4096, 8192, ... steps)
+    b.integrate(500.0)
+    for _ in range(50000):
+        c.step()
+    assert np.array_equal(a.q, c.q) and np.array_equal(b.q, c.q) and a.t == b.t == c.t
+    assert a.statistics["steps"] == 50000
