@@ -5,13 +5,13 @@
 // layout). Per step the only communication is the transforms into M's eigenbasis (FFTW-MPI,
 // transposed output: one all-to-all per transform) and one MPI_Allreduce per stage iteration
 // (the stage solver's norms); the coefficients act on each rank's spectral rows and grad U on
-// each rank's slab. The step is eq. (d) of the paper with the fixed-point stage iteration
-// (starting from the previous step's stages extrapolated; stopping when theta/(1-theta)|dQ| <=
-// Options::tolerance). With the stages solved to round-off the result agrees with
-// erkn::Integrator's on the whole grid to round-off; at the default tolerance the two differ by
-// about that tolerance, since erkn::Integrator's solver has its own starting values and early
-// stops. A stage whose fixed-point iteration fails is an error (there is no distributed Newton
-// fallback): reduce h.
+// each rank's slab. The step is eq. (d) of the paper with erkn::Integrator's stage solver
+// (runtime/src/stage_solver.hpp, the same code over a distributed space): fixed-point iteration
+// from predicted starting values, with its first-iteration stop, and matrix-free Newton-Krylov
+// where it fails, every norm and dot product summed over the ranks. With the stages solved to
+// round-off the result agrees with erkn::Integrator's on the whole grid to round-off (the sums
+// over the ranks and FFTW-MPI round differently); at the default tolerance the two differ by
+// about that tolerance.
 //
 // The System's callbacks see the rank's slab: gradient must be pointwise (grad U(q)_j depends on
 // q_j only, as for sine-Gordon or phi^4), and potential returns the slab's part of U (the
