@@ -64,6 +64,8 @@ class StagePredictor {
     else
       out.setZero();
   }
+  /// Counts a step of stage i towards its next order check; true when it is due (adapt).
+  bool adapt_due(int i) { return --adapt_wait_[i] <= 0; }
   template <class Abar>
   void adapt(int i, const Abar& abar_ii, Map& prediction, Map& below, Map& above);
 
@@ -131,13 +133,13 @@ void StagePredictor<Space>::set_nodes(int i) {
   adapt_wait_[i] = adapt_interval_[i] = 1;
 }
 
-// Called after stage i is solved (G(i) known) with predict(i)'s result in `prediction`; every
-// adapt_interval steps, moves stage i's order n to whichever of n - 1, n, n + 1 nodes would have
-// given the solved stage the best guess, |h^2 abar_ii(V) (g_pred - g_i)|: high degrees where the
-// stage gradients are smooth on the scale of h, low ones where they oscillate (the extrapolation
-// then amplifies more than it predicts, most harmfully in the modes with large abar_ii).
-// Checked every step while the order moves; each check that keeps it doubles the interval to
-// the next, up to kMaxAdaptInterval steps: checked at every step, its two more predictions and
+// Called after stage i is solved (G(i) known) with predict(i)'s result in `prediction`, when
+// adapt_due(i) (every adapt_interval steps): moves stage i's order n to whichever of n - 1, n, n +
+// 1 nodes would have given the solved stage the best guess, |h^2 abar_ii(V) (g_pred - g_i)|: high
+// degrees where the stage gradients are smooth on the scale of h, low ones where they oscillate
+// (the extrapolation then amplifies more than it predicts, most harmfully in the modes with large
+// abar_ii). Checked every step while the order moves; each check that keeps it doubles the interval
+// to the next, up to kMaxAdaptInterval steps: checked at every step, its two more predictions and
 // norms per stage cost P2/P3 15-20% of the CPU per grad U (erkn_implicit_benchmark) and saved
 // no evaluation there; with the interval, evaluations per stage (erkn_stage_evaluations) moved
 // by <= 0.05 on P1-P3, and P1's savings (SERKN3s4(1) at 1e-9: 1.13 against 1.42) stay.
@@ -147,7 +149,6 @@ template <class Space>
 template <class Abar>
 void StagePredictor<Space>::adapt(int i, const Abar& abar_ii, Map& prediction, Map& below,
                                   Map& above) {
-  if (--adapt_wait_[i] > 0) return;
   const int available = available_nodes(i), n = std::min(order_[i], available);
   if (available < 2) return;  // (adapt_wait_ <= 0: checked at the next step)
   const std::array<int, 3> orders{n, n - 1, n + 1};

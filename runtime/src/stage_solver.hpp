@@ -152,6 +152,7 @@ class StageSolver {
   static constexpr double kEps = std::numeric_limits<double>::epsilon();
 
   const Method& method_;
+  int s_;  // stages
   const System& system_;
   const Options& options_;
   Space& space_;
@@ -179,6 +180,7 @@ StageSolver<Space, Coef>::StageSolver(const Method& method, const System& system
                                       const Options& options, Space& space,
                                       const StepCoefficients<Coef>& k)
     : method_(method),
+      s_(method.stages()),
       system_(system),
       options_(options),
       space_(space),
@@ -209,10 +211,11 @@ template <class State>
 void StageSolver<Space, Coef>::solve(const State& q_hat, const State& p_hat, const StepPlace& at,
                                      Statistics& stats) {
   at_ = at;
-  for (int i = 0; i < method_.stages(); ++i) {
+  for (int i = 0; i < s_; ++i) {
     start_stage(i, q_hat, p_hat);
     solve_stage(i, stats);
-    predictor_.adapt(i, Space::co(k_.abar(i, i)), x_.guess_hat, x_.Q_hat_new, x_.g_first_hat);
+    if (predictor_.adapt_due(i))
+      predictor_.adapt(i, Space::co(k_.abar(i, i)), x_.guess_hat, x_.Q_hat_new, x_.g_first_hat);
   }
 }
 

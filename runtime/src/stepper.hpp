@@ -27,6 +27,7 @@ class Stepper final : public StepperBase {
   Stepper(const Method& method, System system, double h, const Options& options,
           Transform transform, const Eigen::VectorXd& lambda, Eigen::Index d)
       : method_(method),
+        s_(method.stages()),
         system_(std::move(system)),
         options_(options),
         k_(method, h, lambda),
@@ -82,7 +83,7 @@ class Stepper final : public StepperBase {
     const StepCoefficients<Coef>& k = k_;
     dq_hat_ = co(k.phi0m1()) * q_hat_ + co(k.hphi1()) * p_hat_;
     dp_hat_ = co(k.mhMphi1()) * q_hat_ + co(k.phi0m1()) * p_hat_;
-    for (int i = 0; i < method_.stages(); ++i) {
+    for (int i = 0; i < s_; ++i) {
       dq_hat_ -= co(k.h2bbar(i)) * solver_.G(i);
       dp_hat_ -= co(k.hb(i)) * solver_.G(i);
     }
@@ -100,6 +101,7 @@ class Stepper final : public StepperBase {
   }
 
   Method method_;
+  int s_;  // stages
   System system_;
   Options options_;
   StepCoefficients<Coef> k_;
