@@ -1,5 +1,5 @@
 // The paper's problems P1 sine-Gordon (N = 32, circulant M), P2 Duffing (d = 1) and P3 stellar
-// orbits (d = 2) (DESIGN.md section 4) for the benchmarks that put erkn beside the hand-written
+// orbits (d = 2) (docs/design.md §4) for the benchmarks that put erkn beside the hand-written
 // splitting peer (bench/splitting_peer.hpp): one gradient body for both, M, the initial state and
 // the step size h; and the thread CPU timer both use.
 #pragma once

@@ -3,7 +3,7 @@
 // the same run: time per grad U evaluation and setup time (thread CPU time), each as a ratio
 // erkn / peer, and the share of a step spent outside grad U (the gradient timed alone on the same
 // states). Problems: P1 sine-Gordon (N = 32, circulant M), P2 Duffing (d = 1), P3 stellar orbits
-// (d = 2), DESIGN.md section 4. Methods: every explicit registry method.
+// (d = 2), docs/design.md §4. Methods: every explicit registry method.
 //
 // After the benchmarks, a summary table gives issue 9's three targets side by side per method
 // and problem, as medians over the repetitions: the ratio per grad U evaluation (erkn with the

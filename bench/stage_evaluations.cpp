@@ -1,4 +1,4 @@
-// Gradient evaluations per implicit stage solve on the paper's problems P1-P3 (DESIGN.md section
+// Gradient evaluations per implicit stage solve on the paper's problems P1-P3 (docs/design.md section
 // 4), for every implicit method of the registry, at the step sizes that reach the errors 1e-6 and
 // 1e-9 at t_error: the step count is doubled from the paper's smallest until the max-norm error of
 // q(t_error) against the experiments' reference is below the tolerance. Default Options (stage

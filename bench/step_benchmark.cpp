@@ -1,4 +1,4 @@
-// One step of SERKN3s4(1) on sine-Gordon (problem 1, DESIGN.md section 4) with N grid points,
+// One step of SERKN3s4(1) on sine-Gordon (problem 1, docs/design.md §4) with N grid points,
 // M circulant (FFT) or dense (eigenbasis): time per step, grad U evaluations per step, and the
 // share of the step spent outside grad U (the integrator's own work).
 //

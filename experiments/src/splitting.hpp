@@ -1,6 +1,6 @@
 // Exact-flow splitting peers: compositions of the exact flow of q'' + Mq = 0 (computed in M's
 // eigen coordinates) with kicks p -= h b_i grad U(q), the strongest explicit competitors of the
-// ERKN methods (DESIGN.md section 1, "the explicit family"). Written independently of the runtime:
+// ERKN methods (docs/design.md §1, "the explicit family"). Written independently of the runtime:
 // own coefficient tables, own linear flow, the problem's own grad U.
 #pragma once
 

@@ -1,4 +1,4 @@
-// erkn_stability_hmax [OUT.md]: for each problem of DESIGN.md §4 and each method, the largest
+// erkn_stability_hmax [OUT.md]: for each problem of docs/design.md §4 and each method, the largest
 // step size h at which the method still gives a bounded solution, written as a markdown table
 // (docs/stability.md is this program's output).
 //

@@ -11,13 +11,6 @@ namespace {
 
 using Boundary = GridAxis::Boundary;
 
-Boundary boundary_of(const std::string& name) {
-  if (name == "periodic") return Boundary::periodic;
-  if (name == "dirichlet") return Boundary::dirichlet;
-  if (name == "neumann") return Boundary::neumann;
-  throw Error("unknown boundary '" + name + "' (periodic, dirichlet or neumann)");
-}
-
 std::vector<std::string> split(const std::string& s, char sep) {
   std::vector<std::string> parts;
   std::stringstream in(s);
@@ -57,7 +50,7 @@ std::vector<GridAxis> parse_axes(const std::string& grid, const std::string& bou
     }
     if (used == 0 || used != n[a].size() || size < 2)
       throw Error("--grid " + grid + ": every axis needs a whole number of points >= 2");
-    const Boundary kind = boundary_of(b.size() == 1 ? b[0] : b[a]);
+    const Boundary kind = GridAxis::boundary_named(b.size() == 1 ? b[0] : b[a]);
     const double spacing = 2.0 / double(kind == Boundary::dirichlet ? size + 1 : size);
     axes.push_back({Eigen::Index(size), spacing, kind});
   }

@@ -88,13 +88,6 @@ System python_callbacks(const py::object& grad, bool grad_writes, const py::obje
   return s;
 }
 
-GridAxis::Boundary boundary(const std::string& name) {
-  if (name == "periodic") return GridAxis::Boundary::periodic;
-  if (name == "dirichlet") return GridAxis::Boundary::dirichlet;
-  if (name == "neumann") return GridAxis::Boundary::neumann;
-  throw Error("unknown boundary '" + name + "'; known: periodic, dirichlet, neumann");
-}
-
 std::string structure_name(Stiffness::Structure s) {
   switch (s) {
     case Stiffness::Structure::scalar:
@@ -140,7 +133,8 @@ void bind_system(py::module_& m) {
       "grid",
       [](const std::vector<std::tuple<Eigen::Index, double, std::string>>& axes, double shift) {
         std::vector<GridAxis> a;
-        for (const auto& [n, spacing, b] : axes) a.push_back({n, spacing, boundary(b)});
+        for (const auto& [n, spacing, b] : axes)
+          a.push_back({n, spacing, GridAxis::boundary_named(b)});
         return Stiffness::grid(std::move(a), shift);
       },
       py::arg("axes"), py::arg("shift") = 0.0,

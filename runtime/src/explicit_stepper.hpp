@@ -1,5 +1,5 @@
 // The step of an explicit method (every abar_ii identically 0), generic over M's eigenbasis
-// (Transform) and the coefficient type (Coef). Such a method is a splitting (DESIGN.md section 1,
+// (Transform) and the coefficient type (Coef). Such a method is a splitting (docs/design.md §1,
 // the explicit family) and steps as one: exact flows of q'' + M q = 0 over tau_k =
 // h (c_k - c_{k-1}) (c_0 = 0 before the first node, c_{s+1} = 1 after the last) alternated with
 // kicks p -= h d_k g_k, g_k = grad U(Q_k) (+ M Q_k for RKN methods), each one pass over the

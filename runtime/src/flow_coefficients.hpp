@@ -1,6 +1,6 @@
 // The exact flow of q'' + M q = 0 over tau_k = h (c_k - c_{k-1}), k = 0..s (c_{-1} = 0,
 // c_s = 1): an explicit method (abar_ii = 0) is this flow alternated with kicks
-// p -= h d_k grad U(Q_k) (DESIGN.md section 1, the explicit family). Per eigenvalue lambda
+// p -= h d_k grad U(Q_k) (docs/design.md §1, the explicit family). Per eigenvalue lambda
 // (w = sqrt(lambda), x = w tau) the flow is [q; p] <- [cos x, sin(x)/w; -w sin x, cos x] [q; p];
 // cos x - 1 = -2 sin^2(x/2) is kept as well, without cancellation, for the increments of
 // compensated summation. One sincos of x/2 gives all of them (sin x = 2 sin(x/2) cos(x/2)), and a

@@ -1,11 +1,11 @@
 #include "erkn/method.hpp"
 
 #include <cmath>
-#include <sstream>
 #include <string>
 #include <type_traits>
 
 #include "erkn/error.hpp"
+#include "format.hpp"
 #include "method_registry.hpp"
 
 namespace erkn {
@@ -20,13 +20,6 @@ std::deque<Method>& registry() {
 #undef ERKN_METHOD
   };
   return all;
-}
-
-std::string format_double(double x) {
-  std::ostringstream os;
-  os.precision(17);
-  os << x;
-  return os.str();
 }
 
 double sinc(double t) { return t == 0.0 ? 1.0 : std::sin(t) / t; }
@@ -96,7 +89,7 @@ double Method::pole_within(double v, double tolerance) const {
 
 void Method::evaluate(double v, double* b, double* bbar, double* abar) const {
   if (table_->coefficients) return table_->coefficients(v, b, bbar, abar);
-  // The explicit family (DESIGN.md): b_i = d_i phi0((1-c_i)^2 v), bbar_i = d_i (1-c_i)
+  // The explicit family (docs/design.md): b_i = d_i phi0((1-c_i)^2 v), bbar_i = d_i (1-c_i)
   // phi1((1-c_i)^2 v), abar_ij = d_j (c_i-c_j) phi1((c_i-c_j)^2 v), abar_ii = 0; phi0(w^2 v) =
   // cos(w x), phi1(w^2 v) = sinc(w x), x = sqrt(v), as the emitted functions evaluate them.
   const double x = std::sqrt(v), *c = table_->c, *d = table_->d;
@@ -111,21 +104,20 @@ void Method::evaluate(double v, double* b, double* bbar, double* abar) const {
 
 Coefficients Method::at(double v, double pole_tolerance) const {
   if (!std::isfinite(v)) throw Error("coefficient argument v = h^2*lambda is not finite");
-  if (v < 0)
-    throw Error("coefficient argument v = h^2*lambda = " + format_double(v) + " is negative");
+  if (v < 0) throw Error("coefficient argument v = h^2*lambda = " + format(v, 17) + " is negative");
   // (NaN or a negative tolerance would make every pole test false: coefficients on a pole.)
   if (!(pole_tolerance >= 0) || !std::isfinite(pole_tolerance))
-    throw Error("Method::at: pole_tolerance = " + format_double(pole_tolerance) +
+    throw Error("Method::at: pole_tolerance = " + format(pole_tolerance, 17) +
                 " must be finite and >= 0");
   if (kind() == Kind::erkn) {
     if (!entire() && v > generated::kPoleSearchMax)
-      throw Error(std::string(name()) + ": v = h^2*lambda = " + format_double(v) +
+      throw Error(std::string(name()) + ": v = h^2*lambda = " + format(v, 17) +
                   " exceeds the range where poles are known (v <= " +
-                  format_double(generated::kPoleSearchMax) + ")");
+                  format(generated::kPoleSearchMax, 17) + ")");
     if (double p = pole_within(v, pole_tolerance); p > 0)
       throw Error(std::string(name()) + ": coefficients are singular at v = h^2*lambda = " +
-                  format_double(v) + ", within a relative " + format_double(pole_tolerance) +
-                  " of the pole v = " + format_double(p));
+                  format(v, 17) + ", within a relative " + format(pole_tolerance, 17) +
+                  " of the pole v = " + format(p, 17));
   }
   Coefficients k;
   k.s = stages();

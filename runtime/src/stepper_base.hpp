@@ -17,7 +17,7 @@ inline bool explicit_stage(const Method& method, int i) {
 }
 
 /// True when every stage is explicit: the method is a splitting of the exact linear flow and
-/// kicks (DESIGN.md section 1).
+/// kicks (docs/design.md §1).
 inline bool explicit_stages(const Method& method) {
   for (int i = 0; i < method.stages(); ++i)
     if (!explicit_stage(method, i)) return false;

@@ -131,6 +131,13 @@ Stiffness Stiffness::dense(const Eigen::MatrixXd& m) {
   return Stiffness(d);
 }
 
+GridAxis::Boundary GridAxis::boundary_named(const std::string& name) {
+  if (name == "periodic") return Boundary::periodic;
+  if (name == "dirichlet") return Boundary::dirichlet;
+  if (name == "neumann") return Boundary::neumann;
+  throw Error("unknown boundary '" + name + "' (periodic, dirichlet or neumann)");
+}
+
 Eigen::VectorXd GridAxis::eigenvalues() const {
   using std::numbers::pi;
   const double scale = 4 / (spacing * spacing);

@@ -11,7 +11,7 @@ namespace erkn::test {
 namespace {
 
 /// Nodes and weights of an explicit method; its coefficients follow from the symplectic
-/// conditions with abar_ii = 0 (DESIGN.md section 1, the explicit family).
+/// conditions with abar_ii = 0 (docs/design.md §1, the explicit family).
 struct Splitting {
   const char* name;
   int s;

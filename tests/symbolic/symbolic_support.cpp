@@ -244,12 +244,6 @@ Series mul(const Series& x, const Series& y) {
   return z;
 }
 
-Series scale(const Qs& a, const Series& x) {
-  Series z = x;
-  for (Qs& q : z) q = a * q;
-  return z;
-}
-
 // ---------------------------------------------------------------------------------------------
 
 std::vector<std::string> coefficient_names(int s) {

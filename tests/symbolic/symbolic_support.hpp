@@ -157,7 +157,6 @@ bool identically_equal(const gen::Rational& x, const gen::Rational& y);
 /// Truncated series arithmetic.
 Series add(const Series& x, const Series& y);
 Series mul(const Series& x, const Series& y);
-Series scale(const Qs& a, const Series& x);
 /// Evaluates an expression in the method's symbols as a series from coefficient series.
 Series eval_series(const GiNaC::ex& e, const Method& m, const std::vector<Series>& coefficients);
 

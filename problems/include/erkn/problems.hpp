@@ -1,7 +1,7 @@
 // The problems library shared by tests, benchmarks and experiments: oscillatory Hamiltonian
 // systems q'' + Mq = -grad U(q), H = p'p/2 + q'Mq/2 + U(q), each defined once with its gradient,
 // potential, Hessian, a long-double force for reference solutions, and its exact solution where
-// known. The paper's test problems (section 4.2, DESIGN.md section 4) are the defaults.
+// known. The paper's test problems (section 4.2, docs/design.md §4) are the defaults.
 //
 //   const erkn::problems::Problem p = erkn::problems::sine_gordon(32);
 //   erkn::Integrator run(erkn::Method::by_name("SERKN2s4"), erkn::problems::system(p), 1.0 / 40,

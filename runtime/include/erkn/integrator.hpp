@@ -1,6 +1,6 @@
 // erkn::Integrator: a fixed-step ERKN (or RKN-limit) integrator for one System and step h.
 //
-// Each step is eq. (d) of the paper with V = h^2 M:
+// Each step is eq. (d) of the paper (the label in its LaTeX source; eq. 3 in print), V = h^2 M:
 //   Q_i     = phi0(c_i^2 V) q + h c_i phi1(c_i^2 V) p - h^2 sum_{j<=i} abar_ij(V) g_j
 //   q_{n+1} = phi0(V) q + h phi1(V) p - h^2 sum_i bbar_i(V) g_i
 //   p_{n+1} = -h M phi1(V) q + phi0(V) p - h sum_i b_i(V) g_i

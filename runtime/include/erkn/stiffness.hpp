@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace erkn {
@@ -41,6 +42,8 @@ struct GridAxis {
   Boundary boundary = Boundary::periodic;
   /// mu_0..mu_{n-1} above (closed form).
   Eigen::VectorXd eigenvalues() const;
+  /// The boundary called "periodic", "dirichlet" or "neumann"; erkn::Error naming the three else.
+  static Boundary boundary_named(const std::string& name);
 };
 
 class Stiffness {
