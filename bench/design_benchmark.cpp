@@ -35,7 +35,16 @@ struct Way {
   std::string label;
   bool designed = false;
   std::function<double(long)> error;  // runs n steps, returns the error at t_error
+  int gradients = 0;                  // per step (explicit methods; 0: implicit)
 };
+
+// Gradients per step of an explicit method: s, or s - 1 when c_1 = 0 and c_s = 1 (the last
+// kick of a step merged with the first of the next); 0 for implicit methods.
+int gradients(const erkn::Method& m) {
+  if (!m.is_explicit()) return 0;
+  const int s = m.stages();
+  return s > 1 && m.table().c[0] == 0 && m.table().c[s - 1] == 1 ? s - 1 : s;
+}
 
 bool designed(const erkn::Method& m) {
   return std::string(m.table().reference).find("generator/search/") != std::string::npos;
@@ -48,7 +57,8 @@ Way erkn_way(const Scene& s, const erkn::Method& m) {
 
 template <class Basis, class Gradient>
 Way peer_way(const Scene& s, const erkn::Method& m, std::shared_ptr<Basis> basis, Gradient g) {
-  return {std::string(m.name()) + " (specialist)", designed(m), [&s, &m, basis, g](long n) {
+  return {std::string(m.name()) + " (specialist)", designed(m),
+          [&s, &m, basis, g](long n) {
             bench::specialist::Peer run(m.table().c, m.table().d, m.stages(),
                                         s.problem.t_error / double(n), *basis, g, s.problem.q0,
                                         s.problem.p0);
@@ -57,7 +67,8 @@ Way peer_way(const Scene& s, const erkn::Method& m, std::shared_ptr<Basis> basis
             run.state(q, p);
             const double e = (q - s.reference).lpNorm<Eigen::Infinity>();
             return std::isfinite(e) ? e : bench::kInf;
-          }};
+          },
+          gradients(m)};
 }
 
 template <class Basis, class Gradient>
@@ -135,6 +146,7 @@ struct Result {
   std::string label;
   bool designed = false;
   long n = 0;
+  long evaluations = 0;      // gradients over the run (0: implicit)
   double cpu = bench::kInf;  // re-timed median
 };
 
@@ -148,7 +160,8 @@ std::vector<Result> timed(const std::vector<Way>& ways, const std::vector<Fewest
   std::vector<std::function<void()>> runs;
   for (size_t i = 0; i < ways.size(); ++i)
     if (fewest[i].n && fewest[i].cpu <= 2 * cheapest) {
-      out.push_back({ways[i].label, ways[i].designed, fewest[i].n});
+      out.push_back(
+          {ways[i].label, ways[i].designed, fewest[i].n, fewest[i].n * ways[i].gradients});
       runs.push_back([w = &ways[i], n = fewest[i].n] { w->error(n); });
     }
   if (runs.empty()) return out;
@@ -190,9 +203,9 @@ std::string fixed(double x, int digits) {
 
 std::string row(const Cell& c) {
   auto who = [](const Result& r) {
-    return std::isfinite(r.cpu)
-               ? r.label + " | " + std::to_string(r.n) + " | " + fixed(1e6 * r.cpu, 2)
-               : std::string("(not within 2x) | | ");
+    return std::isfinite(r.cpu) ? r.label + " | " + std::to_string(r.n) + " | " +
+                                      std::to_string(r.evaluations) + " | " + fixed(1e6 * r.cpu, 2)
+                                : std::string("(not within 2x) | | | ");
   };
   const double margin = c.other.cpu / c.mine.cpu - 1;
   return "| " + c.scene + " | " + bench::sci(c.tol, 0) + " | " + who(c.mine) + " | " +
@@ -231,8 +244,8 @@ Config parse(int argc, char** argv) {
 }
 
 std::string header() {
-  return "| scene | tol | designed | n | CPU us | best other | n | CPU us | margin | >= 10 % |\n"
-         "|---|---|---|---|---|---|---|---|---|---|\n";
+  return "| scene | tol | designed | n | gradients | CPU us | best other | n | gradients | CPU us "
+         "| margin | >= 10 % |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 }
 
 }  // namespace
@@ -260,7 +273,8 @@ int main(int argc, char** argv) try {
       "the tolerance, re-timed in " +
       std::to_string(cfg.rounds) +
       " interleaved rounds (setup included, thread CPU, median; contenders within 2x of the "
-      "cheapest scan run). Margin: best other / designed - 1.\n\n" +
+      "cheapest scan run). Gradients: evaluations of grad U over the run (explicit methods). "
+      "Margin: CPU of the best other / CPU of the designed - 1.\n\n" +
       table + "\nMargin >= 10 % in " + std::to_string(met) + " of " + std::to_string(cells) +
       " cells.\n";
   if (cfg.markdown.empty())

@@ -22,9 +22,9 @@ def floats(text):
 def explicit_methods(tables):
     """name -> (c, d, order, error constant, generalized orders, generalized constants)."""
     out = {}
-    rows = re.findall(r'\{"([^"]+)", "[^"]*", (\d+), (\d+), ([^,]+), (\w+), (\w+), (\w+),', tables)
-    for name, _, order, const, _, explicit, _ in rows:
-        ns = re.sub(r"[()]", "_", name).rstrip("_")
+    rows = re.findall(r'\{"([^"]+)", "([^"]*)", (\d+), (\d+), ([^,]+), (\w+), (\w+), (\w+),',
+                      tables)
+    for name, ns, _, order, const, _, explicit, _ in rows:
         block = tables[tables.index("namespace " + ns + " {"):]
         grab = lambda key: floats(re.search(key + r"\[\] = \{([^}]*)\}", block).group(1))
         if explicit == "false" or "modified" in block[:block.index("coefficients(")]:

@@ -23,8 +23,11 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import sen_conditions as sc  # noqa: E402
 from splitting_family import Family, work  # noqa: E402
 
-# name: (stages, layout, order, generalized, eps, tol)
+# name: (stages, layout, order, generalized, eps, tol). SD = designed by this search.
 DESIGNS = {
+    # 9 kicks, generalized order (10, 6, 4) (one more kick than ABA(10,6,4), one free
+    # parameter), for the general case eps = 1 at tol = 1e-8: the sine-Gordon cells.
+    "SD9(10,6,4)": (9, "ABA", 4, [10, 6, 4], 1.0, 1e-8),
 }
 
 
@@ -119,7 +122,7 @@ def main():
     best = search(fam, eps, tol, a.starts)
     if best is None:
         sys.exit("no feasible method from %d starts" % a.starts)
-    command = "generator/search/near_integrable.py %s --starts %d (eps = %g, tol = %g)" % (
+    command = "generator/search/near_integrable.py '%s' --starts %d (eps = %g, tol = %g)" % (
         a.design, a.starts, eps, tol)
     print(spec_block(a.design, fam, best[1], DESIGNS[a.design], command))
 
