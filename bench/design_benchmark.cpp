@@ -52,7 +52,8 @@ bool designed(const erkn::Method& m) {
 
 Way erkn_way(const Scene& s, const erkn::Method& m) {
   return {std::string(m.name()), designed(m),
-          [&s, &m](long n) { return bench::fixed_run(s, m, s.problem.t_error / double(n)).error; }};
+          [&s, &m](long n) { return bench::fixed_run(s, m, s.problem.t_error / double(n)).error; },
+          gradients(m)};
 }
 
 template <class Basis, class Gradient>
