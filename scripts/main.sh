@@ -38,6 +38,7 @@ fi
 # registry: error window and CPU ratio per scene and tolerance (issue 20).
 if [ -x "$build"/bench/erkn_accuracy_benchmark ]; then
   "$build"/bench/erkn_accuracy_benchmark --markdown docs/accuracy.md 2> /dev/null
+  python3 scripts/readme_tables.py  # the README's "Choosing a method" table from that run
 fi
 if [ -x "$build"/mpi/erkn-mpi ]; then  # MPI scaling on 1, 2 and 4 ranks (erkn::mpi built)
   [ "$(id -u)" -ne 0 ] || export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1

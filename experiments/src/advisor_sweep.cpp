@@ -9,10 +9,11 @@
 //             false): what Options::check_stability refuses and `erkn advise --problem` reports
 //             (Hessian range and mode energies at the start).
 //   criterion the relative energy error E = max |H_n - H_0| / |H_0| over N = 1e5 steps of h
-//             (sampled every 50 steps, blow-up guard off) against 0.5, the README's "runs clean"
-//             bound (twice the guard's limit). A run BLOWS UP when E >= 0.5 (it stops there: the
-//             rest cannot undo that) or when a step throws an erkn::Error (a non-finite state, or
-//             a stage solver that fails: the method cannot run at that h); else it is BOUNDED.
+//             (sampled every 50 steps, blow-up guard off) against 0.5, docs/stability-advisor.md's
+//             "runs clean" bound (twice the guard's limit). A run BLOWS UP when E >= 0.5 (it stops
+//             there: the rest cannot undo that) or when a step throws an erkn::Error (a non-finite
+//             state, or a stage solver that fails: the method cannot run at that h); else it is
+//             BOUNDED.
 // A false alarm is a flagged h whose run is bounded, a miss an unflagged h whose run blows up;
 // the false-alarm rate is false alarms / bounded runs, the miss rate misses / blown-up runs.
 // Step sizes the integrator refuses at construction (h^2 lambda on a pole) are counted apart.

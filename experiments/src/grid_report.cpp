@@ -117,7 +117,7 @@ void step_table(std::ostream& md, const GridScene& sc) {
 void dense_table(std::ostream& md, const std::vector<std::pair<int, double>>& dense) {
   if (dense.empty()) return;
   md << "\n## General sparse M: the dense path\n\nerkn does not apply functions of V to a general "
-        "sparse M matrix-free (README, \"General sparse M\"); such an M goes through "
+        "sparse M matrix-free (docs/scale.md, \"General sparse M\"); such an M goes through "
         "`Stiffness::dense`, whose setup is one symmetric eigendecomposition (O(d^3) time, 2 d^2 "
         "doubles) and whose transforms are d x d products (O(d^2) per transform). Setup CPU time "
         "measured in this run:\n\n| d | eigendecomposition (s) | matrices (MB) "

@@ -62,7 +62,7 @@ def sine_gordon(n=32):
 
 
 def test_the_equations_own_growth_is_information_not_a_finding():
-    # The README's sine-Gordon example: at u = pi, M + Hessian has lambda + kappa = 0 - 1 < 0.
+    # The sine-Gordon example of docs/python.md: at u = pi, M + Hessian has lambda + kappa = 0 - 1 < 0.
     M, q0, p0 = sine_gordon()
     for h in (0.025, 0.1):
         advice = erkn.advise_step_size("SERKN2s4", M, h, "sine", q0=q0, p0=p0)

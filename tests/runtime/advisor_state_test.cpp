@@ -1,5 +1,5 @@
 // The step-size advisor with the state (advise_step_size(method, system, h, q0, p0)): the mode
-// energies it reads (erkn::mode_energies, every structure of M), no false alarm on the README's
+// energies it reads (erkn::mode_energies, every structure of M), no false alarm on docs/python.md's
 // sine-Gordon example (the differential equation grows at u = pi, the method does not) and on a
 // 1-D Dirichlet wave grid with smooth data (a dense spectrum always has some eigenvalue in a
 // resonance band; those short waves hold no energy), and the alarm where such a mode is excited.
@@ -83,9 +83,9 @@ double energy_error(const Method& m, const System& s, double h, const Eigen::Vec
   return worst;
 }
 
-// The README's sine-Gordon example (P1) at the h = 0.025 and h = 0.1: M + Hessian of U
-// has the direction lambda = 0, kappa = -1 (u = pi is the top of the pendulum), which the advisor
-// reports as the equation's growth, rate 1, and flags nothing; check_stability accepts the
+// The sine-Gordon example of docs/python.md (P1) at the h = 0.025 and h = 0.1: M + Hessian
+// of U has the direction lambda = 0, kappa = -1 (u = pi is the top of the pendulum), which the
+// advisor reports as the equation's growth, rate 1, and flags nothing; check_stability accepts the
 // construction. The runs keep the energy (5e3 steps). Negative control: a Hessian range with
 // kappa >= 0 there reports no growth.
 TEST(AdvisorState, SineGordonsOwnGrowthIsNoAlarm) {

@@ -43,7 +43,7 @@ double energy_error(const Method& m, double h, long n) {
 // "Runs clean" at h: over 1e5 steps the relative energy error is below 0.5 and at most 10 times
 // the smaller of the errors at h (1 - 3 %) and h (1 + 3 %): the error the method has at that step
 // size off resonance, not a resonance peak (the peaks at the flagged step sizes are 3 to 1e7
-// times higher; README, "Resonances").
+// times higher; docs/stability-advisor.md, "Resonances").
 // Returns that smaller neighbouring error.
 double expect_clean(const Method& m, double h, double error) {
   const double neighbours =
@@ -62,7 +62,7 @@ HessianBounds pilot_hessian(const Method& m) {
 // Issue 12's resonant step sizes h omega, for every ERKN method of the registry including the
 // explicit (splitting) ones (one test per method and step size, to keep each short): flagged; the
 // suggested h runs clean over 1e5 steps and its energy error is at least 3 times smaller than the
-// flagged h's. Prints a table row (README).
+// flagged h's. Prints a table row (docs/stability-advisor.md).
 void expect_predicted(const Method& m, double h_omega) {
   const double h = h_omega / kOmega;
   const Eigen::VectorXd lambda = fpu().M.eigenvalues();

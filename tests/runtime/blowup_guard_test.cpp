@@ -81,7 +81,7 @@ INSTANTIATE_TEST_SUITE_P(Registry, BlowupGuard, ::testing::Range(size_t(0), Meth
                          });
 
 // Negative control: the guard is what stops them (SERKN2s4 at 0.999 pi: a relative energy error
-// ~1e5 over 1e5 steps without it, README "Resonances").
+// ~1e5 over 1e5 steps without it, docs/stability-advisor.md, "Resonances").
 TEST(BlowupGuardControl, WithoutTheGuardTheSameRunBlowsUpQuietly) {
   const Outcome off = run_fpu(Method::by_name("SERKN2s4"), 0.999 * kPi / kOmega, false);
   EXPECT_FALSE(off.stopped) << off.message;
