@@ -188,10 +188,23 @@ std::pair<ex, ex> two_free_nodes(const MethodSpec& spec, const ex& p, const ex& 
 
 /// A decimal among the spec's nodes, drifts or weights: they get polished.
 bool has_decimals(const MethodSpec& spec) {
-  for (const auto* list : {&spec.c, &spec.d, &spec.e})
+  for (const auto* list :
+       {&spec.c, &spec.d, &spec.e, &spec.pre_drift, &spec.pre_kick, &spec.pre_modified})
     for (const std::string& x : *list)
       if (x.find('.') != std::string::npos) return true;
   return false;
+}
+
+/// A processed method's pre-processor as given (pre_drift, pre_kick, pre_modified), into out.pre.
+void take_processor(const MethodSpec& spec, Derived& out) {
+  auto read = [&](const std::vector<std::string>& texts, const std::string& what) {
+    std::vector<Qs> values;
+    for (size_t k = 0; k < texts.size(); ++k)
+      values.push_back(read_constant(spec, what + std::to_string(k + 1), texts[k]));
+    return values;
+  };
+  out.pre = {read(spec.pre_drift, "pre_drift"), read(spec.pre_kick, "pre_kick"),
+             read(spec.pre_modified, "pre_modified")};
 }
 
 /// Nodes and weights as given (every c_i and d_i, the e_i of modified kicks), into out; decimal
@@ -213,9 +226,11 @@ void take_given_nodes(const MethodSpec& spec, exmap& nodes, const std::vector<sy
     out.node_derivation.push_back(
         "decimals read in " + std::to_string(Qs::kApproxDigits) +
         " digits, not polished (kind erkn): the certification judges them as given");
+  take_processor(spec, out);
   if (has_decimals(spec) && spec.kind == SpecKind::explicit_erkn) {
-    Polished p = polish_explicit(spec.name, out.c, out.d, out.e, spec.order, spec.generalized);
-    out.c = p.c, out.d = p.d, out.e = p.e, out.unmet_by_decimals = p.unmet;
+    Polished p =
+        polish_explicit(spec.name, out.c, out.d, out.e, spec.order, spec.generalized, out.pre);
+    out.c = p.c, out.d = p.d, out.e = p.e, out.pre = p.pre, out.unmet_by_decimals = p.unmet;
     out.node_derivation.push_back(p.summary());
   }
 }
@@ -518,6 +533,27 @@ std::string generalized_failure(const Certificate& cert, int K) {
   return "no failing condition";
 }
 
+// Refuses (throws) a certificate below the spec's claims, naming the first failing tree.
+void check_claim(const Derived& m, const Certificate& cert, bool rkn, const std::string& unmet) {
+  const std::string what = m.pre.empty() ? "" : " (of pi o K o pi^-1, the processed method)";
+  for (size_t K = 0; !rkn && K < m.spec.generalized.size(); ++K)
+    if (K >= cert.generalized.size() || cert.generalized[K] < m.spec.generalized[K])
+      throw std::runtime_error(
+          m.spec.name + ": claimed generalized order " + std::to_string(m.spec.generalized[K]) +
+          " for eps^" + std::to_string(K + 1) + what + " is not certified (" +
+          (K < cert.generalized.size() ? std::to_string(cert.generalized[K]) : "unchecked") +
+          "): " + generalized_failure(cert, int(K) + 1) + unmet);
+  if (cert.order < m.spec.order) {
+    const CheckedCondition* f = cert.first_failure();
+    throw std::runtime_error(
+        (rkn ? m.spec.rkn + " (the V -> 0 limit of " + m.spec.name + ")" : m.spec.name) +
+        ": claimed order " + std::to_string(m.spec.order) + what + " fails at tree " +
+        cert.trees[f->condition.tree].name + ": condition " + f->condition.text(cert.trees) +
+        " has residual " + f->residual + " (certified order " + std::to_string(cert.order) + ")" +
+        unmet);
+  }
+}
+
 }  // namespace
 
 void certify_order(Derived& m) {
@@ -544,22 +580,12 @@ void certify_order(Derived& m) {
   for (bool rkn : {false, true}) {
     if (rkn && m.spec.rkn.empty()) continue;
     Certificate cert = certify(t, rkn, max_power);
-    for (size_t K = 0; !rkn && K < m.spec.generalized.size(); ++K)
-      if (K >= cert.generalized.size() || cert.generalized[K] < m.spec.generalized[K])
-        throw std::runtime_error(
-            m.spec.name + ": claimed generalized order " + std::to_string(m.spec.generalized[K]) +
-            " for eps^" + std::to_string(K + 1) + " is not certified (" +
-            (K < cert.generalized.size() ? std::to_string(cert.generalized[K]) : "unchecked") +
-            "): " + generalized_failure(cert, int(K) + 1) + unmet);
-    if (cert.order < m.spec.order) {
-      const CheckedCondition* f = cert.first_failure();
-      throw std::runtime_error(
-          (rkn ? m.spec.rkn + " (the V -> 0 limit of " + m.spec.name + ")" : m.spec.name) +
-          ": claimed order " + std::to_string(m.spec.order) + " fails at tree " +
-          cert.trees[f->condition.tree].name + ": condition " + f->condition.text(cert.trees) +
-          " has residual " + f->residual + " (certified order " + std::to_string(cert.order) + ")" +
-          unmet);
+    if (!rkn && !m.pre.empty()) {  // the kernel's own order; the claims are psi's
+      m.kernel_certificate = std::move(cert);
+      const KickSequence psi = composition(m.c, m.d, m.e, m.pre);
+      cert = certify(explicit_series(psi.c, psi.d, max_power / 2 + 1, psi.e), false, max_power);
     }
+    check_claim(m, cert, rkn, unmet);
     (rkn ? m.rkn_certificate : m.certificate) = std::move(cert);
   }
 }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "certify.hpp"
+#include "processing.hpp"
 #include "spec.hpp"
 #include "trig.hpp"
 
@@ -32,12 +33,18 @@ struct Derived {
   /// Modified-kick coefficients: stage i kicks p -= h (d_i grad U + h^2 e_i grad(|grad U|^2));
   /// empty for plain kicks.
   std::vector<Qs> e;
+  /// A processed method's pre-processor pi^-1 (empty: not processed); c, d, e are then the
+  /// kernel K of psi = pi o K o pi^-1.
+  Processor pre;
   /// In table order: b_1..b_s, bbar_1..bbar_s, abar_11, abar_21, abar_22, ...
   std::vector<Coefficient> coefficients;
   std::vector<std::string> node_derivation;  ///< c and d as functions of the free nodes
-  Certificate certificate;                   ///< order conditions of eq. (f), checked
-  Certificate rkn_certificate;               ///< the same for the V -> 0 limit (if spec.rkn is set)
-  double certify_seconds = 0;                ///< wall time of both certifications
+  /// Order conditions of eq. (f), checked: of psi = pi o K o pi^-1 for a processed method
+  /// (its effective order), else of the method.
+  Certificate certificate;
+  Certificate kernel_certificate;  ///< a processed method's kernel K alone (its own order)
+  Certificate rkn_certificate;     ///< the same for the V -> 0 limit (if spec.rkn is set)
+  double certify_seconds = 0;      ///< wall time of both certifications
   /// Conditions of the claim that the spec's decimals miss by more than 1e-8 (Polished::unmet):
   /// the certification then refuses the claim.
   int unmet_by_decimals = 0;

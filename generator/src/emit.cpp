@@ -260,13 +260,15 @@ std::string table_entry(const Derived& m, bool rkn) {
 // The runtime does not integrate modified kicks yet: methods with them are certified and derived
 // (derivation.md) but not emitted into the tables.
 // A user's methods (`with_modified`) keep those with modified kicks: Method::add refuses them
-// at program start, naming what the runtime lacks.
+// at program start, naming what the runtime lacks. Processed methods (no processor in the
+// runtime yet) are certified and derived, not emitted.
 std::vector<std::pair<const Derived*, bool>> registry(const std::vector<Derived>& methods,
                                                       bool with_modified = false) {
   std::vector<std::pair<const Derived*, bool>> out;
   for (bool rkn : {false, true})
     for (const Derived& m : methods)
-      if ((!rkn || !m.spec.rkn.empty()) && (m.e.empty() || (with_modified && !rkn)))
+      if ((!rkn || !m.spec.rkn.empty()) && (m.e.empty() || (with_modified && !rkn)) &&
+          m.pre.empty())
         out.emplace_back(&m, rkn);
   return out;
 }
@@ -352,6 +354,27 @@ std::string certificate_md(const Derived& m) {
   return md.str();
 }
 
+// A processed method: its pre-processor and the kernel's own certificate.
+std::string processor_md(const Derived& m) {
+  if (m.pre.empty()) return "";
+  std::ostringstream md;
+  md << "\nProcessed: psi = pi o K o pi^-1, the coefficients below are the kernel K's. "
+        "The pre-processor pi^-1 (applied before the first step; pi, its inverse, to every "
+        "state a user sees):\n\n";
+  for (size_t k = 0; k < m.pre.kick.size(); ++k)
+    md << "- drift `" << m.pre.drift[k].to_string() << "`, kick `" << m.pre.kick[k].to_string()
+       << "`"
+       << (m.pre.modified.empty() ? "" : ", modified `" + m.pre.modified[k].to_string() + "`")
+       << "\n";
+  if (m.pre.drift.size() > m.pre.kick.size())
+    md << "- drift `" << m.pre.drift.back().to_string() << "`\n";
+  const Certificate& K = m.kernel_certificate;
+  md << "\nThe kernel K alone: order " << K.order << ", generalized " << generalized_md(K)
+     << "; the certificate below is psi's (" << m.stages() + 2 * m.pre.kick.size()
+     << " kicks: pi^-1, K, pi), its effective order.\n";
+  return md.str();
+}
+
 std::string derivation_md(const std::vector<Derived>& methods, const std::string& command,
                           const std::string& specs = "generator/methods.spec") {
   std::ostringstream md;
@@ -376,6 +399,7 @@ std::string derivation_md(const std::vector<Derived>& methods, const std::string
             "the order certificate weighs the term f'(Q_i) f(Q_i), f = -grad U, with -2 e_i "
             "(certify.hpp). Not in the tables (generated/src/tables.cpp) yet: the runtime does "
             "not integrate modified kicks.\n";
+    md << processor_md(m);
     md << "\n| coefficient | solved as | V^0 | V^1 | V^2 | V^3 | V^4 "
           "|\n|---|---|---|---|---|---|---|\n";
     for (const Coefficient& k : m.coefficients) {

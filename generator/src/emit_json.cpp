@@ -48,6 +48,10 @@ std::string methods_json(const std::vector<Derived>& methods) {
       throw std::runtime_error(methods[k].spec.name +
                                ": --json writes explicit methods only (constant coefficients); "
                                "a diagonal implicit method's coefficients are functions of V");
+    if (!methods[k].pre.empty())
+      throw std::runtime_error(methods[k].spec.name +
+                               ": --json writes unprocessed methods only (Method::load has no "
+                               "processor): compile processed methods with erkn_add_methods");
     out += method_json(methods[k]) + (k + 1 < methods.size() ? ",\n" : "\n");
   }
   return out + "]}\n";

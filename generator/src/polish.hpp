@@ -9,12 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "processing.hpp"
 #include "qs.hpp"
 
 namespace erkn::gen {
 
 struct Polished {
   std::vector<Qs> c, d, e;     ///< e: modified-kick coefficients (empty: none)
+  Processor pre;               ///< the polished pre-processor (processed methods)
   double correction = 0;       ///< largest |change| of a c_i, d_i or e_i
   double residual_before = 0;  ///< largest |residual| of the conditions polished onto
   double residual_after = 0;
@@ -31,8 +33,11 @@ struct Polished {
 /// naming a tree. Throws (naming
 /// `method`) if no such polishing is within 1e-8 of the decimals with every residual below 1e-50.
 /// Modified kicks (e non-empty) are polished with c and d (a stage's e_i given exactly, such
-/// as 0 for a plain kick, stays as given).
+/// as 0 for a plain kick, stays as given). A processed method (pre non-empty) is polished onto
+/// the conditions of psi = pi o K o pi^-1 (processing.hpp), the processor's decimals with the
+/// kernel's.
 Polished polish_explicit(const std::string& method, std::vector<Qs> c, std::vector<Qs> d,
-                         std::vector<Qs> e, int order, const std::vector<int>& generalized);
+                         std::vector<Qs> e, int order, const std::vector<int>& generalized,
+                         const Processor& pre = {});
 
 }  // namespace erkn::gen

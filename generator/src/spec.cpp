@@ -27,6 +27,22 @@ std::vector<std::string> nodes_from_drifts(const std::vector<std::string>& drift
   return c;
 }
 
+// A processor (pre_drift, pre_kick, pre_modified) needs an explicit kernel with its kicks given.
+template <class Fail>
+void check_processor(const MethodSpec& m, Fail fail) {
+  if (!m.processed() && m.pre_drift.empty() && m.pre_modified.empty()) return;
+  if (!m.processed()) fail("a processor needs `pre_kick`");
+  const size_t k = m.pre_kick.size();
+  if (m.pre_drift.size() != k && m.pre_drift.size() != k + 1)
+    fail("`pre_drift` needs one drift before each of the " + std::to_string(k) +
+         " `pre_kick` (and optionally one after the last)");
+  if (!m.pre_modified.empty() && m.pre_modified.size() != k)
+    fail("`pre_modified` needs one coefficient per `pre_kick`");
+  if (m.kind != SpecKind::explicit_erkn || m.d.empty())
+    fail("a processor needs kind explicit with the kernel's kicks d given");
+  if (!m.rkn.empty()) fail("no `rkn` limit for a processed method");
+}
+
 void check(const MethodSpec& m) {
   auto fail = [&](const std::string& why) {
     throw std::runtime_error("methods.spec:" + std::to_string(m.line) + ": method " + m.name +
@@ -41,6 +57,7 @@ void check(const MethodSpec& m) {
     fail("kind explicit has abar_ii = 0: no `diagonal`");
   if (m.kind == SpecKind::erkn && m.rkn.empty()) fail("kind erkn needs the `rkn` name");
   if (m.source.empty()) fail("needs a `source`");
+  check_processor(m, fail);
   if (m.e.empty()) return;
   if (int(m.e.size()) != m.stages) fail("needs one modified-kick coefficient per stage");
   if (m.kind != SpecKind::explicit_erkn)
@@ -87,6 +104,12 @@ bool set_field(MethodSpec& m, const std::string& key, const std::string& value) 
     m.d = split(value, ',');
   } else if (key == "modified") {
     m.e = split(value, ',');
+  } else if (key == "pre_drift") {
+    m.pre_drift = split(value, ',');
+  } else if (key == "pre_kick") {
+    m.pre_kick = split(value, ',');
+  } else if (key == "pre_modified") {
+    m.pre_modified = split(value, ',');
   } else if (key == "diagonal") {
     m.diagonal = split(value, ';');
   } else {

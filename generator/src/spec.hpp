@@ -25,6 +25,13 @@ struct MethodSpec {
   /// Modified-kick coefficients (`modified`): stage i kicks p -= h (d_i grad U + h^2 e_i
   /// grad(|grad U|^2)). Empty: plain kicks. Explicit methods only.
   std::vector<std::string> e;
+  /// Processed methods, psi = pi o K o pi^-1 (c, d, e are the kernel K): the pre-processor
+  /// pi^-1 that the runtime applies to a user's state before the kernel steps, as written:
+  /// drift pre_drift[0] h, kick pre_kick[0] (modified: pre_modified[0]), drift pre_drift[1] h, ...
+  /// (one drift per kick, and optionally a last one). Its inverse pi maps the kernel's state to
+  /// the one a user sees. Empty: not processed.
+  std::vector<std::string> pre_drift, pre_kick, pre_modified;
+  bool processed() const { return !pre_kick.empty(); }
   std::vector<std::string> drift;     ///< as written; c_i = drift_1 + ... + drift_i
   std::string drift_sum;              ///< sum of all s+1 drifts when `drift` gives them: must be 1
   std::vector<std::string> diagonal;  ///< equations `lhs == rhs` fixing abar_ii (kind erkn)
