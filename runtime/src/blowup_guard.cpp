@@ -7,11 +7,16 @@
 
 namespace erkn::detail {
 
-void BlowupGuard::start(bool on, bool energy, double measure, double scale) {
-  on_ = on, energy_ = energy;
+void BlowupGuard::start(bool on) {
+  on_ = pending_ = on;
   countdown_ = kInterval;
+}
+
+void BlowupGuard::set_reference(bool energy, double measure, double scale) {
+  energy_ = energy;
   reference_ = measure;
   scale_ = scale;
+  pending_ = false;
 }
 
 double BlowupGuard::growth(double measure) {

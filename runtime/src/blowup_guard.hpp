@@ -11,7 +11,9 @@
 //   eigenbasis) against its first positive value, limit kGrowthLimit: exponential growth crosses
 //   it within a few checks, a bounded nonlinear exchange never does.
 // A non-finite measure is always beyond the limit. The check costs one state transform, one
-// product with M and (with a potential) one U per kInterval steps.
+// product with M and (with a potential) one U per kInterval steps. The reference is measured when
+// the first check needs it, from the checkpoint (the state the guard started at): a run shorter
+// than kInterval steps pays nothing for the guard but the checkpoint's copy of the state.
 #pragma once
 
 #include <Eigen/Core>
@@ -33,9 +35,14 @@ class BlowupGuard {
     long steps = 0;
   };
 
-  /// Starts over at a new state (construction, set_state): `energy` true measures H with the
-  /// reference H_0 = measure and `scale`, else E_2 against its first positive value.
-  void start(bool on, bool energy, double measure, double scale);
+  /// Starts over at a new state (construction, set_state), which the checkpoint saved next
+  /// holds; its measure, the reference, is pending until set_reference.
+  void start(bool on);
+  /// True from start until set_reference.
+  bool pending() const { return pending_; }
+  /// The reference: `energy` true measures H with the reference H_0 = measure and `scale`, else
+  /// E_2 against its first positive value.
+  void set_reference(bool energy, double measure, double scale);
   /// True once per kInterval calls (when on).
   bool due() {
     if (!on_ || --countdown_ > 0) return false;
@@ -58,7 +65,7 @@ class BlowupGuard {
                       const std::string& cause) const;
 
  private:
-  bool on_ = false, energy_ = false;
+  bool on_ = false, energy_ = false, pending_ = false;
   long countdown_ = kInterval;
   double reference_ = 0, scale_ = 0;
   Checkpoint checkpoint_;

@@ -2,11 +2,11 @@
 // (Transform) and the coefficient type (Coef). Such a method is a splitting (docs/design.md §1,
 // the explicit family) and steps as one: exact flows of q'' + M q = 0 over tau_k =
 // h (c_k - c_{k-1}) (c_0 = 0 before the first node, c_{s+1} = 1 after the last) alternated with
-// kicks p -= h d_k g_k, g_k = grad U(Q_k) (+ M Q_k for RKN methods), each one pass over the
-// eigen coordinates. With c_1 = 0 and c_s = 1 the first kick reuses the previous step's last
-// gradient (FSAL). The first pass reads the state and writes a second copy of it, which replaces
-// the state once every gradient has been evaluated and the result is finite: a failed step leaves
-// the state unchanged.
+// kicks p -= h d_k g_k, g_k = grad U(Q_k) (+ M Q_k for RKN methods), passes over the eigen
+// coordinates (explicit_passes.hpp: a kick and the flow after it make one pass). With c_1 = 0
+// and c_s = 1 the first kick reuses the previous step's last gradient (FSAL). The first pass
+// reads the state and writes a second copy of it, which replaces the state once every gradient
+// has been evaluated and the result is finite: a failed step leaves the state unchanged.
 //
 // The last flow of a step and the first of the next are one exact flow (over tau_s + tau_0), so the
 // stored state stays one flow behind: after a step it is the state before flow s, which is
@@ -16,9 +16,7 @@
 // identity eigenbasis) that copy is a set of fixed-size arrays the compiler keeps in registers.
 //
 // Compensated summation (Options::compensated_summation) keeps with q and p the low-order parts
-// eq, ep that rounding has dropped (the state is q + eq, p + ep): each pass adds the rounding
-// error of its sums q + dq, p + dp to eq, ep (flow_update, kick_update). get_state returns q + eq
-// and p + ep.
+// eq, ep that rounding has dropped (explicit_passes.hpp); get_state returns q + eq and p + ep.
 //
 // Its cost (construction + integrate, on vs off alternated in one process per run, medians of
 // 3-5 runs, main 183cf83 + the SIMD passes, loaded 2-core machine): sine-Gordon N = 2048 SABA2
@@ -37,6 +35,7 @@
 #include <utility>
 
 #include "erkn/integrator.hpp"
+#include "explicit_passes.hpp"
 #include "flow_coefficients.hpp"
 #include "m_operator.hpp"
 #include "stage_checks.hpp"
@@ -54,6 +53,9 @@ class ExplicitStepper final : public StepperBase {
   using SpectralMap = Eigen::Map<Spectral, kAlignment>;
   using ConstMap = Eigen::Map<const Spectral, kAlignment>;
   static constexpr bool kIdentity = std::is_same_v<Transform, IdentityTransform>;
+  // A transform with a staging buffer (HalfSpectrumTransform): the flow before a gradient writes
+  // the stage's eigen coordinates there, scaled, and the inverse transform needs no copy pass.
+  static constexpr bool kStaged = requires(Transform & t) { t.staging(); };
   static_assert(!kFixed || kIdentity, "a fixed dimension needs the identity basis");
   // The state (q, p, eq, ep), the gradient of the current stage and the last stage's gradient of
   // the previous step; with a dynamic dimension also the state's second copy (4 arrays).
@@ -91,7 +93,7 @@ class ExplicitStepper final : public StepperBase {
         M_(system_.M, d),
         m_(transform_.spectral_size(d)),
         stride_(kFixed ? D : aligned_stride<Scalar>(m_)),
-        spectral_(zeros(stride_)),
+        spectral_(storage(stride_)),
         state_{slot(0), slot(1), slot(2), slot(3)},
         G_(slot(4)),
         G_last_(slot(5)),
@@ -140,16 +142,25 @@ class ExplicitStepper final : public StepperBase {
   System& system() override { return system_; }
 
  private:
-  static Storage zeros(Eigen::Index stride) {
+  // (Uninitialised with a dynamic dimension: set_state writes the state, every pass what it
+  // reads later.)
+  static Storage storage(Eigen::Index stride) {
     if constexpr (kFixed)
       return Storage{};
     else
-      return Spectral::Zero(kArrays * stride);
+      return Spectral(kArrays * stride);
   }
 
   // One step into the second copy (a fixed dimension: whole arrays, which the compiler keeps
   // in registers), checked, and then the state (without summation errors when !kKahan: they then
   // stay zero).
+  //
+  // With arrays two of the finiteness checks ride on the kick passes, which OR the bits of x - x
+  // (0 exactly when x is finite; nonfinite_bits) over the force they read and the p they write:
+  // a reduction that vectorises with the pass, where a separate check would reread the arrays.
+  // The force is non-finite when the gradient is (a transform spreads a non-finite entry over
+  // all of its outputs). Every stage's physical Q is checked before the gradient is called, so q
+  // after the step is finite (the last stage's, or the state's); p is the last kick's.
   template <bool kKahan>
   void passes(long& evaluations) {
     if constexpr (kFixed) {
@@ -160,36 +171,45 @@ class ExplicitStepper final : public StepperBase {
       FixedMap(state_.q) = v.q, FixedMap(state_.p) = v.p;
       if (kKahan) FixedMap(state_.eq) = v.eq, FixedMap(state_.ep) = v.ep;
     } else {
-      stages<kKahan>(state_, work_, evaluations);
-      require_finite(work_);
+      if (stages<kKahan>(state_, work_, evaluations)) non_finite_result(true, place_);
       std::swap(state_, work_);
     }
   }
 
   // The flows and kicks from `start` into `to` (S: State or Values; start may be to), the first
-  // flow merged with the pending one, the last left pending.
+  // flow merged with the pending one, the last left pending; kick i and flow i + 1 in one pass.
+  // In the identity basis each flow before a gradient writes the stage's Q_ as it goes (with a
+  // staging transform: the inverse transform's input), and the last kick saves the gradient to
+  // G_ for FSAL: no pass reloads what the last one stored. Returns the non-finite bits of the
+  // last kick's p (arrays; with Values 0: they are checked whole).
   template <bool kKahan, class S>
-  EIGEN_ALWAYS_INLINE void stages(const S& start, S& to, long& evaluations) {
+  EIGEN_ALWAYS_INLINE std::uint64_t stages(const S& start, S& to, long& evaluations) {
     const S* from = &start;
+    const bool reuse = fsal_ && have_history_;  // (stage 1's force; its flow never moves)
+    const int first = pending_ ? flows_.merged(method_) : 0;
+    bool staged = false;  // (stage i's Q written by the last pass)
+    if (flows_.moves(first)) {
+      apply<kKahan, kFlowStaged>(*from, to, 0, nullptr, first);
+      from = &to;
+      staged = kStage;
+    }
+    PassBits bits;
     for (int i = 0; i < s_; ++i) {
-      const bool reuse = i == 0 && fsal_ && have_history_;
-      // In the identity basis the flow writes the stage's Q_ as it goes and the kick saves the
-      // gradient to G_ (for FSAL): no pass reloads what the last one stored.
-      double* const Q = kIdentity && !reuse ? Q_.data() : nullptr;
-      bool have_Q = false;
-      const int k = i == 0 && pending_ ? flows_.merged(method_) : i;
-      if (flows_.moves(k)) {
-        flow<kKahan>(k, *from, to, Q);
-        from = &to;
-        have_Q = Q != nullptr;
-      }
-      if (reuse)
-        kick<kKahan>(h_ * method_.table().d[0], G_last_, *from, to, nullptr);
+      const bool reused = i == 0 && reuse;
+      const double hd = h_ * method_.table().d[i];  // (reused: d_1 on the last gradient)
+      const Scalar* g = reused ? G_last_ : evaluate(&from->q[0], staged, i, evaluations);
+      staged = i + 1 < s_ && flows_.moves(i + 1);
+      if (staged)
+        bits = apply<kKahan, kKickFlow>(*from, to, hd, g, i + 1);
+      else if (kIdentity && i == s_ - 1)  // (the FSAL force)
+        bits = apply<kKahan, kKickSaved>(*from, to, hd, g, 0);
       else
-        kick<kKahan>(h_ * method_.table().d[i], evaluate(&from->q[0], have_Q, i, evaluations),
-                     *from, to, kIdentity ? G_ : nullptr);
+        bits = apply<kKahan, kKick>(*from, to, hd, g, 0);
+      staged = staged && kStage;
+      if (!reused && bits.g) non_finite_gradient(i, place_);
       from = &to;
     }
+    return bits.p;
   }
 
   // get_state: q + eq and p + ep after the pending flow, rounded (with a dynamic dimension: in
@@ -198,11 +218,16 @@ class ExplicitStepper final : public StepperBase {
   void load(Eigen::VectorXd& q, Eigen::VectorXd& p) {
     if constexpr (kFixed) {
       Values v{Fixed(state_.q), Fixed(state_.p), Fixed(state_.eq), Fixed(state_.ep)};
-      if (pending_) flow<kKahan>(s_, v, v, nullptr);
+      if (pending_) apply<kKahan, kFlow>(v, v, 0, nullptr, s_);
       q = (v.q + v.eq).matrix(), p = (v.p + v.ep).matrix();
     } else {
       const State* from = &state_;
-      if (pending_) flow<kKahan>(s_, state_, work_, nullptr), from = &work_;
+      if (pending_) apply<kKahan, kFlow>(state_, work_, 0, nullptr, s_), from = &work_;
+      if constexpr (kStaged) {  // (the sum, scaled, straight into the staging buffer)
+        inverse_of_sum<kKahan>(from->q, from->eq, q);
+        inverse_of_sum<kKahan>(from->p, from->ep, p);
+        return;
+      }
       if (kKahan) {
         map(work_.q) = map(from->q) + map(from->eq);
         map(work_.p) = map(from->p) + map(from->ep);
@@ -212,157 +237,79 @@ class ExplicitStepper final : public StepperBase {
       transform_.inverse(map(from->p), p);
     }
   }
+  // out = the physical vector of x + ex (x alone without kKahan), through the staging buffer.
+  template <bool kKahan>
+  void inverse_of_sum(const Scalar* x, const Scalar* ex, Eigen::VectorXd& out) {
+    double* __restrict y = transform_.staging();
+    const double* __restrict a = reinterpret_cast<const double*>(x);
+    const double* __restrict b = reinterpret_cast<const double*>(ex);
+    for (Eigen::Index j = 0; j < kLanes * m_; ++j)
+      y[j] = stage_scale_ * (kKahan ? a[j] + b[j] : a[j]);
+    transform_.inverse_staged(out);
+  }
 
   void require_finite(const Values& v) const {
-    const double big = std::numeric_limits<double>::max();
-    const bool q_ok = (v.q.abs() <= big).all();
-    if (!q_ok || !(v.p.abs() <= big).all()) non_finite_result(q_ok, place_);
-  }
-  template <class S>
-  void require_finite(const S& x) const {
-    const bool q_ok = all_finite(&x.q[0], n());
-    if (!q_ok || !all_finite(&x.p[0], n())) non_finite_result(q_ok, place_);
+    const bool q_ok = all_finite<D>(v.q.data(), D);
+    if (!q_ok || !all_finite<D>(v.p.data(), D)) non_finite_result(q_ok, place_);
   }
 
-  // The exact flow of (q, p) with coefficients cos, cos - 1, sin(w tau)/w, -w sin(w tau), for
-  // one coordinate (T = double) or a whole fixed-size array; and the kick p += dp.
-  //
-  // Compensated, each pass adds the rounding error of q + dq (p + dp) to eq (ep), dq =
-  // (cos - 1) q + sinc p for the flow. With a fixed dimension, where the step is a chain of
-  // dependent operations, the errors are folded into q and p at the kick, from values known
-  // before dp (whose gradient comes last). With arrays, where the passes' memory traffic counts,
-  // each pass folds them into its own increments (dq + eq, dp + ep) and keeps the residuals of
-  // the sums: the flow then reads cos - 1 but not cos, and the kick makes one sum, not two.
-  static constexpr bool kFoldAtKick = kFixed;
+  // The passes a step makes (explicit_passes.hpp, PassKind {kick, flow, in place, save, stage}):
+  // a flow, the first one staging Q (identity basis: Q_, else the transform's staging buffer,
+  // if any); kicks, the last one saving the force to G_ (identity basis); a kick and the next
+  // flow, staging its Q.
+  static constexpr bool kStage = kIdentity || kStaged;
+  static constexpr PassKind kFlow{false, true, false, false, false};
+  static constexpr PassKind kFlowStaged{false, true, false, false, kStage};
+  static constexpr PassKind kKick{true, false, true, false, false};
+  static constexpr PassKind kKickSaved{true, false, true, kIdentity, false};
+  static constexpr PassKind kKickFlow{true, true, true, false, kStage};
 
-  template <bool kKahan, class T, class C>
-  EIGEN_ALWAYS_INLINE static void flow_update(const C& cos, const C& cm1, const C& sinc,
-                                              const C& msinc, T& q, T& p, T& eq, T& ep) {
-    const T q0 = q, p0 = p;
-    if constexpr (kKahan && !kFoldAtKick) {
-      const T dq = (cm1 * q0 + sinc * p0) + eq, dp = (msinc * q0 + cm1 * p0) + ep;
-      q = q0 + dq, p = p0 + dp;
-      eq = (q0 - q) + dq, ep = (p0 - p) + dp;
-    } else {
-      const T sp = sinc * p0, mq = msinc * q0;
-      p = mq + cos * p0;
-      q = cos * q0 + sp;
-      if constexpr (kKahan) {
-        eq += (q0 - q) + (cm1 * q0 + sp);
-        ep += (p0 - p) + (mq + cm1 * p0);
-      }
+  // The pass `kind` (in place when from is to) with the kick's hd and g and flow k.
+  template <bool kKahan, PassKind kind>
+  EIGEN_ALWAYS_INLINE PassBits apply(const State& from, State& to, double hd, const Scalar* g,
+                                     int k) {
+    const PassArrays a = arrays(from), b = arrays(to);
+    const auto f = flow_of(k);
+    const double* gd = reinterpret_cast<const double*>(g);
+    double* save = reinterpret_cast<double*>(G_);
+    double* Q = stage_input();
+    constexpr PassKind copy{kind.kick, kind.flow, false, kind.save, kind.stage};
+    constexpr PassKind in_place{kind.kick, kind.flow, true, kind.save, kind.stage};
+    if (&from == &to)
+      return pass<kKahan, in_place, kLanes>(n(), a, b, hd, gd, save, f, Q, stage_scale_);
+    return pass<kKahan, copy, kLanes>(n(), a, b, hd, gd, save, f, Q, stage_scale_);
+  }
+  // (Fixed dimension: in place, whole arrays; checked by checked_gradient and require_finite.)
+  template <bool kKahan, PassKind kind>
+  EIGEN_ALWAYS_INLINE PassBits apply(const Values&, Values& v, double hd, const Scalar* g, int k) {
+    if constexpr (kind.kick) {
+      kick_update<kKahan, true>(Fixed(-hd * Eigen::Map<const Fixed>(g)), v.q, v.p, v.eq, v.ep);
+      if (kind.save)
+        for (int e = 0; e < D; ++e) G_[e] = g[e];
     }
-  }
-
-  template <bool kKahan, class T>
-  EIGEN_ALWAYS_INLINE static void kick_update(const T& dp, T& q, T& p, T& eq, T& ep) {
-    if constexpr (kKahan && kFoldAtKick) {
-      const T q1 = q + eq;
-      eq = (q - q1) + eq;
-      q = q1;
-      const T p1 = p + ep, e1 = (p - p1) + ep;
-      p = p1 + dp;
-      ep = e1 + ((p1 - p) + dp);
-    } else if constexpr (kKahan) {
-      const T p0 = p, dpe = dp + ep;
-      p = p0 + dpe;
-      ep = (p0 - p) + dpe;
-    } else {
-      p += dp;
+    if constexpr (kind.flow) {
+      flow_update<kKahan, true>(fixed(flows_.cos(k)), fixed(flows_.cm1(k)), fixed(flows_.sinc(k)),
+                                fixed(flows_.msinc(k)), v.q, v.p, v.eq, v.ep);
+      if (kind.stage)
+        for (int e = 0; e < D; ++e) Q_[e] = v.q[e];
     }
+    return {};
   }
 
   // The arrays' passes run over doubles: a complex eigen coordinate (half spectrum) is kLanes = 2
-  // of them, re and im, which share their real coefficients. Every array a pass writes is a
-  // distinct stream (__restrict; an in-place pass reads through the pointer it writes), so the
-  // loops compile to SIMD (checked with -fopt-info-vec).
+  // of them, re and im, which share their real coefficients.
   static constexpr int kLanes = int(sizeof(Scalar) / sizeof(double));
-  static double* lanes(Scalar* x) { return reinterpret_cast<double*>(x); }
-  static const double* lanes(const Scalar* x) { return reinterpret_cast<const double*>(x); }
-
-  // Flow k from `from` to `to` (in place when they are the same); its q also to Q when given
-  // (identity basis only).
-  template <bool kKahan>
-  EIGEN_ALWAYS_INLINE void flow(int k, const State& from, State& to, double* Q) {
-    if (&from == &to)
-      flow_pass<kKahan, true>(k, from, to, Q);
+  static PassArrays arrays(const State& x) {
+    auto d = [](Scalar* y) { return reinterpret_cast<double*>(y); };
+    return {d(x.q), d(x.p), d(x.eq), d(x.ep)};
+  }
+  // Flow k's coefficients: the one value of each (scalar M) or pointers to the arrays.
+  auto flow_of(int k) const {
+    if constexpr (std::is_same_v<Coef, double>)
+      return PassFlow<double>{flows_.cos(k), flows_.cm1(k), flows_.sinc(k), flows_.msinc(k)};
     else
-      flow_pass<kKahan, false>(k, from, to, Q);
-  }
-  template <bool kKahan, bool kInPlace>
-  EIGEN_ALWAYS_INLINE void flow_pass(int k, const State& from, const State& to,
-                                     double* __restrict Q) {
-    const auto cos = values(flows_.cos(k)), cm1 = values(flows_.cm1(k));
-    const auto sinc = values(flows_.sinc(k)), msinc = values(flows_.msinc(k));
-    double* __restrict q = lanes(to.q);
-    double* __restrict p = lanes(to.p);
-    double* __restrict eq = lanes(to.eq);
-    double* __restrict ep = lanes(to.ep);
-    const double* __restrict q_in = kInPlace ? nullptr : lanes(from.q);
-    const double* __restrict p_in = kInPlace ? nullptr : lanes(from.p);
-    const double* __restrict eq_in = kInPlace ? nullptr : lanes(from.eq);
-    const double* __restrict ep_in = kInPlace ? nullptr : lanes(from.ep);
-    for (Eigen::Index e = 0; e < n(); ++e) {
-      const double c = at(cos, e), cm = at(cm1, e), sc = at(sinc, e), ms = at(msinc, e);
-      for (int l = 0; l < kLanes; ++l) {
-        const Eigen::Index x = kLanes * e + l;
-        double qx = kInPlace ? q[x] : q_in[x], px = kInPlace ? p[x] : p_in[x];
-        double eqx = kKahan ? (kInPlace ? eq[x] : eq_in[x]) : 0;
-        double epx = kKahan ? (kInPlace ? ep[x] : ep_in[x]) : 0;
-        flow_update<kKahan>(c, cm, sc, ms, qx, px, eqx, epx);
-        q[x] = qx, p[x] = px;
-        if (kKahan) eq[x] = eqx, ep[x] = epx;
-        if constexpr (kIdentity)
-          if (Q) Q[x] = qx;
-      }
-    }
-  }
-  // (Fixed dimension: in place, whole arrays.)
-  template <bool kKahan>
-  EIGEN_ALWAYS_INLINE void flow(int k, const Values&, Values& v, double* Q) {
-    flow_update<kKahan>(fixed(flows_.cos(k)), fixed(flows_.cm1(k)), fixed(flows_.sinc(k)),
-                        fixed(flows_.msinc(k)), v.q, v.p, v.eq, v.ep);
-    if (Q)
-      for (int e = 0; e < D; ++e) Q[e] = v.q[e];
-  }
-
-  // The kick p -= hd g from `from` to `to` (in place when they are the same); g also to save
-  // when given.
-  template <bool kKahan>
-  EIGEN_ALWAYS_INLINE void kick(double hd, const Scalar* g, const State& from, State& to,
-                                Scalar* save) {
-    if (&from == &to) {
-      kick_pass<kKahan, true>(hd, lanes(g), from, to, save ? lanes(save) : nullptr);
-    } else {
-      kick_pass<kKahan, false>(hd, lanes(g), from, to, save ? lanes(save) : nullptr);
-      std::copy_n(from.q, n(), to.q);
-      if (kKahan) std::copy_n(from.eq, n(), to.eq);
-    }
-  }
-  template <bool kKahan, bool kInPlace>
-  EIGEN_ALWAYS_INLINE void kick_pass(double hd, const double* __restrict g, const State& from,
-                                     const State& to, double* __restrict save) {
-    double* __restrict p = lanes(to.p);
-    double* __restrict ep = lanes(to.ep);
-    const double* __restrict p_in = kInPlace ? nullptr : lanes(from.p);
-    const double* __restrict ep_in = kInPlace ? nullptr : lanes(from.ep);
-    for (Eigen::Index x = 0; x < kLanes * n(); ++x) {
-      double q = 0, px = kInPlace ? p[x] : p_in[x], eq = 0;
-      double epx = kKahan ? (kInPlace ? ep[x] : ep_in[x]) : 0;
-      kick_update<kKahan>(-hd * g[x], q, px, eq, epx);
-      p[x] = px;
-      if (kKahan) ep[x] = epx;
-      if (save) save[x] = g[x];
-    }
-  }
-  template <bool kKahan>
-  EIGEN_ALWAYS_INLINE void kick(double hd, const Scalar* g, const Values&, Values& v,
-                                Scalar* save) {
-    Fixed ge;
-    for (int e = 0; e < D; ++e) ge[e] = g[e];
-    kick_update<kKahan>(Fixed(-hd * ge), v.q, v.p, v.eq, v.ep);
-    if (save)
-      for (int e = 0; e < D; ++e) save[e] = g[e];
+      return PassFlow<const double*>{flows_.cos(k).data(), flows_.cm1(k).data(),
+                                     flows_.sinc(k).data(), flows_.msinc(k).data()};
   }
 
   // The force at the stage q (eigen coordinates; already in Q_ when have_Q), evaluated in
@@ -371,10 +318,16 @@ class ExplicitStepper final : public StepperBase {
                                              long& evaluations) {
     if constexpr (kIdentity) {
       if (!have_Q) std::copy_n(q, n(), Q_.data());
+    } else if constexpr (kStaged) {
+      if (have_Q)
+        transform_.inverse_staged(Q_);
+      else
+        transform_.inverse(ConstMap(q, m_), Q_);
     } else {
       transform_.inverse(ConstMap(q, m_), Q_);
     }
-    checked_gradient<D>(system_, Q_, g_, d_, i, place_, evaluations);
+    checked_gradient<D>(system_, Q_, g_, d_, i, place_, evaluations, kFixed);  // (arrays: the
+                                                                               // kick checks g)
     if (rkn_) {
       M_.apply(Q_, Mq_);
       g_ += Mq_;
@@ -387,6 +340,22 @@ class ExplicitStepper final : public StepperBase {
     }
   }
 
+  static double staging_scale(const Transform& t) {
+    if constexpr (kStaged)
+      return t.staging_scale();
+    else
+      return 1;
+  }
+  // Where the flow before a gradient writes the stage's q (as doubles), or nullptr.
+  double* stage_input() {
+    if constexpr (kIdentity)
+      return Q_.data();
+    else if constexpr (kStaged)
+      return transform_.staging();
+    else
+      return nullptr;
+  }
+
   // The number of eigen coordinates (a constant when D is).
   Eigen::Index n() const {
     if constexpr (kFixed)
@@ -395,14 +364,6 @@ class ExplicitStepper final : public StepperBase {
       return m_;
   }
 
-  // A coefficient's values for the passes: the one value (scalar M) or a pointer to the array.
-  static double values(double value) { return value; }
-  template <class Map>
-  static const double* values(const Map& map) {
-    return map.data();
-  }
-  static double at(double value, Eigen::Index) { return value; }
-  static double at(const double* values, Eigen::Index e) { return values[e]; }
   // A coefficient as a fixed-size array (or the one value of a scalar M).
   static double fixed(double value) { return value; }
   template <class Map>
@@ -423,6 +384,7 @@ class ExplicitStepper final : public StepperBase {
   double h_;  // (the kicks' h d_i are formed as they are used)
   FlowCoefficients<Coef> flows_;
   Transform transform_;
+  double stage_scale_ = staging_scale(transform_);  // (what stage_input wants)
   MOperator M_;
   // kArrays arrays in eigen coordinates, m_ entries each and stride_ apart.
   Eigen::Index m_, stride_;

@@ -214,6 +214,14 @@ class FftwHalfSpectrum final : public HalfSpectrumBackend {
   // straight to x when it has the planned alignment.
   void inverse(const std::complex<double>* y, double* x) override {
     complex_map(spectrum_.data) = scale() * Eigen::Map<const Eigen::VectorXcd>(y, m_);
+    inverse_staged(x);
+  }
+  // The staged y / d is that buffer (the explicit stepper's flow writes it: no copy pass).
+  std::complex<double>* staging() override {
+    return reinterpret_cast<std::complex<double>*>(spectrum_.data);
+  }
+  double staging_scale() const override { return scale(); }
+  void inverse_staged(double* x) override {
     if (planned_alignment(x, real_.data)) {
       fftw_execute_dft_c2r(plans_.inverse, spectrum_.data, x);
       return;

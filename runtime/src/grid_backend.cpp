@@ -152,10 +152,14 @@ class EigenHalfSpectrum final : public HalfSpectrumBackend {
   }
   void forward(const double* x, std::complex<double>* y) override { fft_.fwd(y, x, n_); }
   void inverse(const std::complex<double>* y, double* x) override { fft_.inv(x, y, n_); }
+  std::complex<double>* staging() override { return staged_.data(); }
+  double staging_scale() const override { return 1; }
+  void inverse_staged(double* x) override { inverse(staged_.data(), x); }
 
  private:
   Eigen::Index n_;
   Eigen::FFT<double> fft_;
+  Eigen::VectorXcd staged_ = Eigen::VectorXcd(n_ / 2 + 1);
 };
 
 }  // namespace

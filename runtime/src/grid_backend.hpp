@@ -47,6 +47,12 @@ class HalfSpectrumBackend {
   virtual void forward(const double* x, std::complex<double>* y) = 0;
   /// x = F^{-1} y; y is not changed.
   virtual void inverse(const std::complex<double>* y, double* x) = 0;
+  /// The buffer (m complex numbers) inverse_staged transforms: a pass that writes y there,
+  /// scaled by staging_scale(), spares inverse its own copy of y.
+  virtual std::complex<double>* staging() = 0;
+  virtual double staging_scale() const = 0;
+  /// x = F^{-1} y from y staged as above; the staging buffer's contents are lost.
+  virtual void inverse_staged(double* x) = 0;
 };
 
 /// True when every axis is periodic and, without FFTW, there is one axis of n >= 4 (Eigen's

@@ -138,7 +138,7 @@ Integrator::Integrator(const Method& method, System system, double h, const Eige
   q_ = q0;
   p_ = p0;
   energy_0_ = monitored_energy(q0, p0);
-  start_guard(q0, p0);
+  guard_->start(options.blowup_guard);  // (its reference, at the checkpoint: when first needed)
   stepper_->set_state(q_, p_);
   save_checkpoint();
 }
@@ -254,7 +254,7 @@ void Integrator::set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p, d
                 std::to_string(q_.size()) + ", the new q has size " + std::to_string(q.size()));
   const TimeGrid grid = grid_.with_start(t);  // (validates t)
   energy_0_ = monitored_energy(q, p);
-  start_guard(q, p);
+  guard_->start(options_.blowup_guard);
   stepper_->set_state(q, p);
   q_ = q;
   p_ = p;
@@ -270,7 +270,8 @@ void Integrator::set_step_size(double h) {
   fresh->set_state(q(), p());  // (the summation errors are dropped)
   grid_ = grid;
   stepper_ = std::move(fresh);
-  save_checkpoint();  // (a checkpoint's time is on the grid of its h)
+  if (guard_->pending()) start_guard(guard_->checkpoint().q, guard_->checkpoint().p);
+  save_checkpoint();  // (on the grid of h; the guard's reference measured before, at the start)
 }
 
 long Integrator::steps_until(double t_end) const { return grid_.plan_to(t_end).whole; }
@@ -369,16 +370,16 @@ double Integrator::guard_measure(const Eigen::VectorXd& q, const Eigen::VectorXd
   return E2 + U;
 }
 
+// The guard's reference: the measure of the state it started at, (q, p).
 void Integrator::start_guard(const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
-  if (!options_.blowup_guard) return guard_->start(false, false, 0, 0);
   if (!system().potential) {
     Eigen::VectorXd Mq(q.size());
     stepper_->apply_M(q, Mq);
-    return guard_->start(true, false, 0.5 * p.squaredNorm() + 0.5 * q.dot(Mq), 0);
+    return guard_->set_reference(false, 0.5 * p.squaredNorm() + 0.5 * q.dot(Mq), 0);
   }
   double scale = 0;
   const double H = guard_measure(q, p, &scale);
-  guard_->start(true, std::isfinite(H), std::isfinite(H) ? H : 0, scale);  // (else: E_2)
+  guard_->set_reference(std::isfinite(H), std::isfinite(H) ? H : 0, scale);  // (else: E_2)
 }
 
 void Integrator::save_checkpoint() {
@@ -392,6 +393,7 @@ void Integrator::save_checkpoint() {
 // the state again and the run stops. After a step that failed with `failure`, a passed check
 // changes nothing (the caller rethrows the failure).
 void Integrator::check_guard(const char* failure) {
+  if (guard_->pending()) start_guard(guard_->checkpoint().q, guard_->checkpoint().p);
   const double measure = guard_measure(q(), p(), nullptr);
   if (guard_->growth(measure) <= 1) return failure ? void() : save_checkpoint();
   const double t_now = t();

@@ -131,6 +131,14 @@ struct HalfSpectrumTransform {
   void inverse(const Y& y, X&& x) {
     backend->inverse(y.data(), x.data());
   }
+  /// Where a pass may stage the eigen coordinates y (as doubles, re and im) times
+  /// staging_scale() for inverse_staged, which then transforms them without a copy of its own.
+  double* staging() { return reinterpret_cast<double*>(backend->staging()); }
+  double staging_scale() const { return backend->staging_scale(); }
+  template <class X>
+  void inverse_staged(X&& x) {
+    backend->inverse_staged(x.data());
+  }
   /// The 2-norm of the physical vector.
   template <class Y>
   double norm(const Y& y) const {

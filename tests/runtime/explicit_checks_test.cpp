@@ -1,0 +1,174 @@
+// The explicit stepper's finiteness checks ride on its passes over arrays (explicit_stepper.hpp,
+// nonfinite_bits): a stage's q as the flow writes it, the gradient as the kick reads it, p after
+// the last kick. They must refuse what the separate checks refused, with the same messages, on
+// every eigenbasis of M the array passes run in, for every explicit method: a non-finite value
+// from the gradient (named by stage), a stage that overflows, a p that overflows; each leaves
+// the state, t and the counts as they were, and the same run without the fault steps on
+// (negative control).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "problems.hpp"
+#include "refusals.hpp"
+
+namespace erkn::test {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Basis {
+  const char* name;
+  Stiffness M;
+};
+
+// One of each eigenbasis with arrays of a dynamic size (d above the fixed-size limit of 4).
+std::vector<Basis> bases() {
+  using B = GridAxis::Boundary;
+  Eigen::VectorXd col = Eigen::VectorXd::Zero(16);
+  col[0] = 2, col[1] = col[15] = -1;
+  Eigen::VectorXd col3(3);
+  col3 << 2, -1, -1;
+  return {{"diagonal (identity basis)", Stiffness::diagonal(Eigen::VectorXd::LinSpaced(6, 1, 6))},
+          {"dense", Stiffness::dense(rotated(Eigen::Vector3d(1, 2, 3)))},
+          {"circulant N = 3 (Fourier basis)", Stiffness::circulant(col3)},
+          {"circulant N = 16 (half spectrum)", Stiffness::circulant(col)},
+          {"Dirichlet grid (real transform)",
+           Stiffness::grid({{4, 0.5, B::dirichlet}, {3, 0.5, B::dirichlet}})},
+          {"periodic grid (half spectrum)",
+           Stiffness::grid({{4, 0.5, B::periodic}, {4, 0.5, B::periodic}})}};
+}
+
+std::vector<Method> explicit_methods() {
+  std::vector<Method> out;
+  for (const Method& m : Method::all())
+    if (m.is_explicit()) out.push_back(m);
+  return out;
+}
+
+// sin q, whose `fault` replaces entry 0 of the gradient at call number `at` (1-based, counted
+// from `counting` on).
+struct Faulty {
+  double fault = 0;
+  long at = 0, calls = 0;
+  bool counting = false;
+  System system(const Stiffness& M) {
+    System s;
+    s.M = M;
+    s.gradient = [this](const Eigen::VectorXd& q, Eigen::VectorXd& g) {
+      g = q.array().sin().matrix();
+      if (counting && ++calls == at) g[0] = fault;
+    };
+    return s;
+  }
+};
+
+Eigen::VectorXd start(Eigen::Index d, double phase) {
+  return (Eigen::VectorXd::LinSpaced(d, 0, 1).array() + phase).sin().matrix();
+}
+
+// The k-th gradient call of a step is the stage that named it: stage k, or k + 1 when the
+// method reuses the last gradient of the previous step (FSAL: one call fewer per step).
+TEST(ExplicitChecks, NonFiniteGradientAtEveryStageIsNamedAndChangesNothing) {
+  for (const Basis& basis : bases())
+    for (const Method& m : explicit_methods())
+      for (double fault : {kNaN, kInf}) {
+        SCOPED_TRACE(std::string(basis.name) + ", " + std::string(m.name()));
+        const Eigen::Index d = basis.M.dim();
+        Faulty probe;
+        Integrator counted(m, probe.system(basis.M), 0.05, start(d, 0.1), start(d, 0.7));
+        counted.step();
+        probe.counting = true;
+        counted.step();
+        const long calls = probe.calls;
+        const int shift = calls == m.stages() - 1 ? 1 : 0;
+        for (long k = 1; k <= calls; ++k) {
+          Faulty f;
+          f.fault = fault;
+          f.at = k;
+          Integrator run(m, f.system(basis.M), 0.05, start(d, 0.1), start(d, 0.7));
+          run.step();
+          const Snapshot before(run);
+          const long evaluations = run.statistics().gradient_evaluations;
+          f.counting = true;
+          const std::string message = error_of([&] { run.step(); });
+          EXPECT_CONTAINS(message, "non-finite value at step 2");
+          EXPECT_CONTAINS(message, "stage " + std::to_string(k + shift) + ";");
+          before.expect_same(run);
+          EXPECT_EQ(run.statistics().gradient_evaluations, evaluations);
+          f.fault = 0.5;  // negative control: a finite value steps on
+          f.calls = 0;
+          EXPECT_NO_THROW(run.step());
+          EXPECT_EQ(run.statistics().steps, before.steps + 1);
+        }
+      }
+}
+
+// A gradient of -1e308 in every entry: within a few steps p overflows (or the next stage does);
+// the step is refused naming it, and nothing changes. Negative control: -1e300 steps on.
+TEST(ExplicitChecks, OverflowingKickIsRefusedAndChangesNothing) {
+  for (const Basis& basis : bases())
+    for (const Method& m : explicit_methods()) {
+      SCOPED_TRACE(std::string(basis.name) + ", " + std::string(m.name()));
+      const Eigen::Index d = basis.M.dim();
+      double size = -1e300;
+      System s = Faulty().system(basis.M);
+      s.gradient = [&size](const Eigen::VectorXd& q, Eigen::VectorXd& g) {
+        g = (q.array().sin() + size).matrix();
+      };
+      Options unguarded;  // (the guard would return to the start: the energy grows too far)
+      unguarded.blowup_guard = false;
+      Integrator run(m, s, 1.0, start(d, 0.1), start(d, 0.7), unguarded);
+      EXPECT_NO_THROW(run.step());
+      size = -1e308;
+      std::string message;
+      for (int n = 0; n < 8 && message.empty(); ++n) {
+        const Snapshot before(run);
+        message = error_of([&] { run.step(); });
+        if (message.empty()) continue;
+        EXPECT_CONTAINS(message, "step " + std::to_string(before.steps + 1));
+        EXPECT_TRUE(message.find("non-finite") != std::string::npos ||
+                    message.find("not finite") != std::string::npos)
+            << message;
+        before.expect_same(run);
+      }
+      EXPECT_FALSE(message.empty());
+    }
+}
+
+// U = 0 and a state near the largest double: the transform or the first flow overflows, so a stage
+// is not finite, caught before the gradient is called (which would throw). Negative control: the
+// state 1e8 times smaller.
+TEST(ExplicitChecks, OverflowingStageIsRefusedBeforeTheGradient) {
+  for (const Basis& basis : bases())
+    for (const Method& m : explicit_methods()) {
+      SCOPED_TRACE(std::string(basis.name) + ", " + std::string(m.name()));
+      const Eigen::Index d = basis.M.dim();
+      System s;
+      s.M = basis.M;
+      s.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) {
+        if (!q.allFinite()) throw Error("the gradient was called with a non-finite q");
+        g.setZero(q.size());
+      };
+      const Eigen::VectorXd big = Eigen::VectorXd::Constant(d, 1.79e308);
+      Options unguarded;  // (the guard would stop first: the state's energy overflows)
+      unguarded.blowup_guard = false;
+      Integrator run(m, s, 1.0, big, big, unguarded);
+      const std::string message = error_of([&] { run.step(); });
+      EXPECT_CONTAINS(message, "step 1");  // (the gradient's own error would not say so)
+      EXPECT_TRUE(message.find("is not finite") != std::string::npos ||
+                  message.find("non-finite") != std::string::npos)
+          << message;
+      EXPECT_EQ(run.q(), big);
+      EXPECT_EQ(run.statistics().steps, 0);
+      Integrator small(m, s, 1.0, big / 1e8, big / 1e8, unguarded);
+      EXPECT_NO_THROW(small.step());
+    }
+}
+
+}  // namespace
+}  // namespace erkn::test
