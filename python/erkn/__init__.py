@@ -339,7 +339,8 @@ def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None
     sol.t_events, sol.q_events, sol.p_events, sol.y_events.
 
     Long runs: Ctrl-C (KeyboardInterrupt) stops the run within ~0.1 s, keeping the output up to
-    the last step in the exception's `solution`. progress: a callable progress(t), called about
+    the last step in the exception's `solution`, whose last row is the last state (also with
+    t_eval: after the output times reached). progress: a callable progress(t), called about
     every 0.05 s of stepping and at the end; True draws a bar on stderr; None (the default)
     draws it only on a terminal and once the run has lasted 2 s; False never. Raises erkn.Error with erkn's message on any bad input
     or failed step; an error (or an exception from a callback) during the run carries the

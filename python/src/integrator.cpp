@@ -97,9 +97,9 @@ class PyIntegrator {
         return chunk_times(found, t_c, at().segment(from, next - from), add);
       };
       stopped = LongRun(progress).to(run_, t_end, t_eval.is_none() ? every : 1, chunk);
-    } catch (const py::error_already_set& e) {  // (Ctrl-C: the last state joins the output)
-      if (e.matches(PyExc_KeyboardInterrupt) && t_eval.is_none() && !out.t.empty() &&
-          out.t.back() != run_.t())
+    } catch (const py::error_already_set& e) {  // (Ctrl-C: the last state joins the output,
+      // after the t_eval times reached so far when there are output times)
+      if (e.matches(PyExc_KeyboardInterrupt) && (out.t.empty() || out.t.back() != run_.t()))
         add(run_.t(), run_.q(), run_.p());
       partial_ = result(out, found, events, false);
       throw;

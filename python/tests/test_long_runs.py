@@ -20,7 +20,7 @@ LONG_SOLVE = textwrap.dedent("""
     print("started", flush=True)
     try:
         erkn.solve(4.0, grad, q0=[0.5, -0.3], p0=[0.1, 0.2], t_span=(0, 1e9), h=0.01,
-                   every=10**6, method="{method}")
+                   {output}, method="{method}")
     except KeyboardInterrupt as e:
         sol = e.solution
         ok = sol.t.size >= 1 and np.all(np.isfinite(sol.q)) and sol.t[-1] < 1e9
@@ -34,10 +34,16 @@ def method():
     return next(m["name"] for m in erkn.methods() if m["kind"] == "explicit")
 
 
-@pytest.mark.parametrize("grad", ['erkn.potential("phi4")', "lambda q: q**3"],
-                         ids=["builtin", "python"])
-def test_sigint_stops_a_long_solve_and_keeps_the_output(grad):
-    code = LONG_SOLVE.format(grad=grad, method=method())
+# With output times the last state joins those reached (t_eval's second time, 1e8, is far beyond
+# the interrupted run: without it the output would end at t = 0).
+BUILTIN, EVERY = 'erkn.potential("phi4")', "every=10**6"
+
+
+@pytest.mark.parametrize("grad, output", [(BUILTIN, EVERY), ("lambda q: q**3", EVERY),
+                                          (BUILTIN, "t_eval=np.linspace(0, 1e9, 11)")],
+                         ids=["builtin", "python", "t_eval"])
+def test_sigint_stops_a_long_solve_and_keeps_the_output(grad, output):
+    code = LONG_SOLVE.format(grad=grad, method=method(), output=output)
     proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True,
                             env=dict(os.environ))
     assert proc.stdout.readline().strip() == "started"
@@ -49,12 +55,12 @@ def test_sigint_stops_a_long_solve_and_keeps_the_output(grad):
     assert proc.returncode == 0, out
     fields = out.split()
     assert fields[0] == "interrupted" and fields[-1] == "True", out
-    assert float(fields[2]) > 0  # steps were taken and kept
+    assert float(fields[2]) > 0  # steps were taken and the last state kept
     assert latency < 5, f"the run stopped {latency:.1f} s after SIGINT"
 
 
 def test_negative_control_without_sigint_the_long_solve_keeps_running():
-    code = LONG_SOLVE.format(grad='erkn.potential("phi4")', method=method())
+    code = LONG_SOLVE.format(grad=BUILTIN, method=method(), output=EVERY)
     proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
     try:
         assert proc.stdout.readline().strip() == "started"
