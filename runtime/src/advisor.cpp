@@ -7,6 +7,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "advisor_trial.hpp"
 #include "erkn/error.hpp"
 #include "erkn/integrator.hpp"
 #include "format.hpp"
@@ -37,12 +38,15 @@ void validate(const Eigen::VectorXd& eigenvalues, double h, HessianBounds k,
                   o.pole_margin < 1 && o.trace_tolerance >= 0 && o.z_samples >= 2 &&
                   o.z_samples <= 100000 && o.max_change >= 0 && o.max_change < 1 &&
                   o.search_step > 0 && o.search_step <= 1 && std::isfinite(o.trace_tolerance) &&
-                  o.min_excitation >= 0 && o.min_excitation <= 1;
+                  o.min_excitation >= 0 && o.min_excitation <= 1 && o.steps >= 1 &&
+                  o.energy_tolerance > 0 && std::isfinite(o.energy_tolerance) &&
+                  o.trial_steps >= 0 && o.trial_margin >= 1 && std::isfinite(o.trial_margin);
   if (!ok)
     throw Error(
         "advise_step_size: invalid AdvisorOptions (need 1 <= potential_degree <= 64, 0 <= "
         "pole_margin < 1, finite trace_tolerance >= 0, 2 <= z_samples <= 100000, 0 <= "
-        "max_change < 1, 0 < search_step <= 1, 0 <= min_excitation <= 1)");
+        "max_change < 1, 0 < search_step <= 1, 0 <= min_excitation <= 1, steps >= 1, finite "
+        "energy_tolerance > 0, trial_steps >= 0, finite trial_margin >= 1)");
   // The search tries 2 max_change / search_step step sizes: bounded, so the advice ends.
   if (o.max_change / o.search_step > kMaxSearchSteps)
     throw Error("advise_step_size: AdvisorOptions max_change / search_step = " +
@@ -293,6 +297,29 @@ std::string equation_lines(const std::vector<AdvisorFinding>& equation, double h
   return s.str();
 }
 
+// The trial run's evidence (none without a trial).
+std::string trial_line(const TrialRun& t) {
+  if (t.steps == 0 && t.failure.empty()) return "";
+  std::ostringstream s;
+  s << "  trial run: " << t.steps << " steps at h";
+  if (!t.failure.empty()) return s.str() + ", then stopped: " + t.failure + "\n";
+  s << ", largest relative energy error " << format(t.error, 3) << " (" << format(t.early, 3)
+    << " over its first 1/16), predicted " << format(t.predicted, 3) << " over " << t.horizon
+    << " steps against the limit " << format(t.limit, 3) << ": "
+    << (t.flagged ? "flagged" : "within it") << "\n";
+  return s.str();
+}
+
+// The linear findings the trial shows to be harmless (at most 3 listed).
+std::string note_lines(const std::vector<AdvisorFinding>& notes, double h) {
+  if (notes.empty()) return "";
+  std::string s = "information: " + std::to_string(notes.size()) +
+                  " eigenvalue(s) of M in an unstable band or at a resonance, which the trial run "
+                  "shows to stay within the limit\n";
+  for (size_t i = 0; i < std::min<size_t>(notes.size(), 3); ++i) s += finding_line(notes[i], h);
+  return s + (notes.size() > 3 ? "  ...\n" : "");
+}
+
 }  // namespace
 
 std::string StepSizeAdvice::report(const Method& method) const {
@@ -301,13 +328,18 @@ std::string StepSizeAdvice::report(const Method& method) const {
     << ", " << format(hessian.hi) << "]: ";
   if (safe())
     s << "the method is stable at h: no eigenvalue of M in an unstable band, at a resonance of "
-         "an excited mode or near a pole\n";
+         "an excited mode or near a pole"
+      << (trial.steps > 0 ? " that the trial run finds harmful\n" : "\n");
   else
-    s << findings.size() << " eigenvalue(s) of M flagged\n";
+    s << findings.size() << " eigenvalue(s) of M flagged"
+      << (trial.flagged ? "; the trial run flags h\n" : "\n");
   for (const AdvisorFinding& f : findings) s << finding_line(f, h);
-  s << equation_lines(equation, h);
+  s << trial_line(trial) << note_lines(notes, h) << equation_lines(equation, h);
   if (safe()) return s.str();
-  if (std::isnan(suggested_h))
+  if (std::isnan(suggested_h) && findings.empty())
+    s << "only the trial run flags h (a breakdown the linear model does not see): take a smaller "
+         "h or a more accurate method\n";
+  else if (std::isnan(suggested_h))
     s << "no step size within the searched range avoids them\n";
   else
     s << "nearest step size without findings: h = " << format(suggested_h, 12) << "\n";
@@ -362,8 +394,16 @@ StepSizeAdvice advise_step_size(const Method& method, const System& system, doub
                                 const Eigen::VectorXd& q0, const Eigen::VectorXd& p0,
                                 const AdvisorOptions& options) {
   const Eigen::VectorXd energy = mode_energies(system.M, q0, p0);  // (checks q0, p0)
-  return advise_step_size(method, system.M.eigenvalues(), h, hessian_bounds_at(system, q0), options,
-                          energy);
+  StepSizeAdvice advice = advise_step_size(method, system.M.eigenvalues(), h,
+                                           hessian_bounds_at(system, q0), options, energy);
+  if (options.trial_steps == 0) return advice;
+  advice.trial = detail::trial_run(method, system, h, q0, p0, options);
+  detail::judge_by_trial(advice);
+  if (advice.safe())
+    advice.suggested_h = h;
+  else if (advice.findings.empty())
+    advice.suggested_h = std::numeric_limits<double>::quiet_NaN();  // (only the trial flags h)
+  return advice;
 }
 
 }  // namespace erkn

@@ -32,9 +32,23 @@
 //              Derivation and the FPU runs that check it: README, "Resonances".
 // What it cannot guarantee: K and M need not commute and K changes along the solution, so this is
 // a per-eigenvalue model of the linearisation; a range [lo, hi] estimated at the initial state
-// can be exceeded later, and energy can reach a mode later. An h it accepts is not a proof of
-// bounded energy, and a flagged h is not a proof of blow-up. Its false-alarm and miss rates on a
-// sweep of step sizes against 1e5-step runs: docs/advisor.md.
+// can be exceeded later, and energy can reach a mode later.
+//
+// Severity (advise_step_size with the System, q0 and p0): a linear finding says where growth can
+// come from, not that the run grows beyond its criterion (most resonances only raise a bounded
+// energy error; a thin tongue at a sampled kappa is detuned by the Hessian changing along the
+// solution), and the linear model misses nonlinear breakdown (sine-Gordon at h omega > pi: sin q
+// driven at speeds |p| h of order 1 per step). So the verdict comes from a trial run: the first
+// min(trial_steps, steps) steps of the run itself (blow-up guard off). Its relative energy error
+// E(n) after n steps and E(n / 16) give the growth exponent alpha = log(E(n) / E(n / 16)) / log 16
+// in [0, 1] (0: a bounded error, 1/2: a random walk, 1: a drift) and the prediction
+//     E(steps) = E(n) (steps / n)^alpha.
+// h is flagged when the trial fails (a stage solver or a non-finite state) or the prediction
+// reaches energy_tolerance / trial_margin; pole findings always flag; the other linear findings
+// are kept as `notes` (information) unless the trial flags h (then they are its likely cause).
+// Cost: the trial's steps plus one U per step (4096 steps by default: 4 % of a 1e5-step run).
+// An h it accepts is not a proof of bounded energy, and a flagged h is not a proof of blow-up.
+// Its false-alarm and miss rates on a sweep of step sizes against 1e5-step runs: docs/advisor.md.
 #pragma once
 
 #include <Eigen/Core>
@@ -71,6 +85,31 @@ struct AdvisorOptions {
   /// E_2 = 1/2 |p|^2 + 1/2 q^T M q (all eigenvalues equal to lambda together), when the state is
   /// known (mode energies given): round-off and smooth data leave short waves far below it.
   double min_excitation = 1e-8;
+  /// The run the verdict is about (with the System): its length in steps, and the relative
+  /// energy error |H - H_0| / (E_2(q0, p0) + |U(q0)|) it must stay below ("runs clean").
+  long steps = 100000;
+  double energy_tolerance = 0.5;
+  /// Steps of the trial run (with the System; at most `steps`); 0: no trial, and every linear
+  /// finding flags h (as advise_step_size without the System does).
+  long trial_steps = 4096;
+  /// The trial flags h when its predicted error reaches energy_tolerance / trial_margin: near
+  /// its limit the energy error of a chaotic exchange between modes jumps (sine-Gordon: 10-fold
+  /// between 4096 and 1e5 steps).
+  double trial_margin = 10;
+};
+
+/// The trial run's evidence (advise_step_size with the System; see the top of this header).
+/// Without System::potential it measures E_2 = 1/2 |p|^2 + 1/2 q^T M q against its start
+/// (error = the largest E_2 / E_2(0) - 1) and flags growth beyond the blow-up guard's 1e4.
+struct TrialRun {
+  long steps = 0;        ///< steps taken (0: no trial)
+  double error = 0;      ///< the largest relative energy error over the trial
+  double early = 0;      ///< the same over its first steps / 16
+  double predicted = 0;  ///< error extrapolated to AdvisorOptions::steps
+  long horizon = 0;      ///< AdvisorOptions::steps: the run predicted
+  double limit = 0;      ///< what predicted is held against
+  std::string failure;   ///< the erkn::Error that stopped the trial, or why it stopped
+  bool flagged = false;  ///< failure, or predicted at or beyond the limit
 };
 
 /// The method's hazards (unstable, resonance, pole), and `equation`: the differential
@@ -96,9 +135,15 @@ struct StepSizeAdvice {
   /// Information: eigenvalues where the differential equation itself grows (lambda + kappa < 0
   /// for some kappa); the method follows that growth at any h, so it is no finding.
   std::vector<AdvisorFinding> equation;
-  /// The nearest h without findings, or NaN when none lies within max_change of h.
+  /// Information: the linear model's unstable and resonance findings that the trial run shows to
+  /// stay within the criterion (with the System only).
+  std::vector<AdvisorFinding> notes;
+  /// The trial run (with the System and AdvisorOptions::trial_steps > 0).
+  TrialRun trial;
+  /// The nearest h without findings (of the linear model), or NaN when none lies within
+  /// max_change of h or only the trial flags h (a nonlinear breakdown: take a smaller h).
   double suggested_h = 0;
-  bool safe() const { return findings.empty(); }
+  bool safe() const { return findings.empty() && !trial.flagged; }
   /// A human-readable account: every finding, then the suggestion.
   std::string report(const Method& method) const;
 };
@@ -123,7 +168,7 @@ HessianBounds hessian_bounds_along(const Method& method, const System& system, d
                                    long steps);
 
 /// advise_step_size with M's eigenvalues, the Hessian bounds at q0 and the mode energies of
-/// (q0, p0).
+/// (q0, p0), judged by a trial run of the problem (see the top of this header).
 StepSizeAdvice advise_step_size(const Method& method, const System& system, double h,
                                 const Eigen::VectorXd& q0, const Eigen::VectorXd& p0,
                                 const AdvisorOptions& options = {});

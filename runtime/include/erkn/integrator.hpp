@@ -59,8 +59,9 @@ struct Options {
   /// the energy at construction or set_state; absolute when H_0 = 0) throws erkn::Error naming
   /// the step and the drift, and leaves the state before that step. Needs System::potential.
   double energy_tolerance = 0;
-  /// Construction (and set_step_size) refuses an h that erkn::advise_step_size finds unstable on
-  /// the linearisation at the initial state (see erkn/advisor.hpp); off by default.
+  /// Construction (and set_step_size) refuses an h that erkn::advise_step_size flags at the
+  /// current state: a pole, or a trial run of 4096 steps whose energy error, extrapolated to 1e5
+  /// steps, reaches 0.05 (see erkn/advisor.hpp, "Severity"); off by default.
   bool check_stability = false;
   /// Blow-up guard, on by default: every 1024 steps, a relative energy error |H - H_0| above 0.5
   /// (with System::potential; relative to 1/2|p0|^2 + 1/2 q0^T M q0 + |U(q0)|), else a 1e4-fold

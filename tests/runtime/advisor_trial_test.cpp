@@ -1,0 +1,136 @@
+// The step-size advisor's trial run (erkn/advisor.hpp, "Severity"), on FPU (erkn::problems::fpu,
+// stiff omega = 50) for every method of the registry: when the trial is the whole run (steps =
+// trial_steps) the verdict is the run's own energy criterion, so a linear finding without growth
+// is information and a blow-up is flagged; the prediction extrapolates the trial's error; without
+// a potential the trial measures E_2's growth; bad options are refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "problems.hpp"
+
+namespace erkn::test {
+namespace {
+
+constexpr double kOmega = 50, kPi = std::numbers::pi;
+constexpr long kSteps = 2048;
+
+const problems::Problem& fpu_problem() {
+  static const problems::Problem p = problems::fpu(3, kOmega);
+  return p;
+}
+
+// The largest |H_n - H_0| / H_0 over n steps (every step; FPU's U(q0) >= 0, so H_0 is the trial's
+// scale E_2 + |U(q0)|); infinity when a step fails or the energy is not finite.
+double run_error(const Method& m, const System& s, double h, long n) {
+  Options unguarded;
+  unguarded.blowup_guard = false;
+  try {
+    Integrator run(m, s, h, fpu_problem().q0, fpu_problem().p0, unguarded);
+    const double H0 = run.energy();
+    double worst = 0;
+    for (long k = 1; k <= n && std::isfinite(worst); ++k) {
+      run.step();
+      const double e = std::abs(run.energy() - H0) / H0;
+      worst = std::isnan(e) ? INFINITY : std::max(worst, e);
+    }
+    return worst;
+  } catch (const Error&) {
+    return INFINITY;
+  }
+}
+
+AdvisorOptions whole_run() {
+  AdvisorOptions o;
+  o.max_change = 0;
+  o.steps = o.trial_steps = kSteps;
+  return o;
+}
+
+// At h omega = pi (a resonance for every ERKN method) and 0.999 pi (unstable for the low-order
+// ones): flagged exactly when the run's own error reaches energy_tolerance / trial_margin; the
+// linear finding is kept either as a finding (flagged) or as a note (information). Negative
+// control: the linear model alone (trial_steps = 0) flags every one of them. Both verdicts occur.
+TEST(AdvisorTrial, WholeRunTrialFlagsExactlyTheRunsBeyondTheLimit) {
+  const System s = problems::system(fpu_problem());
+  int flagged = 0, noted = 0;
+  for (const Method& m : Method::all())
+    for (double h_omega : {0.999 * kPi, kPi}) {
+      SCOPED_TRACE(std::string(m.name()) + " h omega / pi = " + std::to_string(h_omega / kPi));
+      const double h = h_omega / kOmega;
+      const AdvisorOptions o = whole_run();
+      const StepSizeAdvice a = advise_step_size(m, s, h, fpu_problem().q0, fpu_problem().p0, o);
+      const double error = run_error(m, s, h, kSteps);
+      ASSERT_EQ(a.trial.horizon, kSteps);
+      EXPECT_EQ(a.safe(), error < o.energy_tolerance / o.trial_margin) << a.report(m);
+      if (std::isfinite(error)) EXPECT_NEAR(a.trial.error, error, 1e-12 * (1 + error));
+      AdvisorOptions linear = o;
+      linear.trial_steps = 0;
+      const StepSizeAdvice b =
+          advise_step_size(m, s, h, fpu_problem().q0, fpu_problem().p0, linear);
+      if (m.kind() != Kind::erkn || b.safe()) continue;
+      EXPECT_EQ(a.findings.size() + a.notes.size(), b.findings.size()) << a.report(m);
+      if (a.safe()) EXPECT_NE(a.report(m).find("information"), std::string::npos) << a.report(m);
+      ++(a.safe() ? noted : flagged);
+    }
+  EXPECT_GT(flagged, 0);
+  EXPECT_GT(noted, 0);
+}
+
+// The prediction: error (steps / n)^alpha with alpha in [0, 1] from the errors after n / 16 and n
+// steps, so it lies between the trial's error and its linear extrapolation; with steps = n it is
+// the trial's error. A blow-up within the trial is a failure and flags h (Strang at 0.999 pi).
+TEST(AdvisorTrial, PredictionLiesBetweenTheTrialsErrorAndItsDrift) {
+  const System s = problems::system(fpu_problem());
+  for (const Method& m : Method::all()) {
+    SCOPED_TRACE(std::string(m.name()));
+    AdvisorOptions o = whole_run();
+    o.steps = 100000;
+    const StepSizeAdvice a =
+        advise_step_size(m, s, 1.0 / kOmega, fpu_problem().q0, fpu_problem().p0, o);
+    ASSERT_EQ(a.trial.steps, kSteps);
+    EXPECT_LE(a.trial.early, a.trial.error);
+    EXPECT_GE(a.trial.predicted, a.trial.error);
+    EXPECT_LE(a.trial.predicted, a.trial.error * 100000.0 / kSteps * (1 + 1e-12));
+  }
+  const Method strang = Method::by_name("Strang");
+  const StepSizeAdvice blown = advise_step_size(strang, s, 0.999 * kPi / kOmega, fpu_problem().q0,
+                                                fpu_problem().p0, whole_run());
+  EXPECT_FALSE(blown.safe());
+  EXPECT_FALSE(blown.trial.failure.empty()) << blown.report(strang);
+  EXPECT_NE(blown.report(strang).find("trial run"), std::string::npos);
+}
+
+// Without System::potential the trial measures E_2 = 1/2 |p|^2 + 1/2 q^T M q: Strang at
+// 0.999 pi blows up (flagged), at h omega = 1 it stays bounded (not flagged).
+TEST(AdvisorTrial, WithoutAPotentialTheTrialMeasuresTheLinearEnergy) {
+  System s = problems::system(fpu_problem());
+  s.potential = nullptr;
+  const Method strang = Method::by_name("Strang");
+  const Eigen::VectorXd &q0 = fpu_problem().q0, &p0 = fpu_problem().p0;
+  EXPECT_FALSE(advise_step_size(strang, s, 0.999 * kPi / kOmega, q0, p0, whole_run()).safe());
+  const StepSizeAdvice calm = advise_step_size(strang, s, 1.0 / kOmega, q0, p0, whole_run());
+  EXPECT_TRUE(calm.safe()) << calm.report(strang);
+  EXPECT_LT(calm.trial.error, 1.0);
+}
+
+TEST(AdvisorTrial, RefusesInvalidTrialOptions) {
+  const System s = problems::system(fpu_problem());
+  const Method m = Method::by_name("SABA2");
+  const auto refused = [&](auto change) {
+    AdvisorOptions o;
+    change(o);
+    EXPECT_THROW(advise_step_size(m, s, 0.01, fpu_problem().q0, fpu_problem().p0, o), Error);
+  };
+  refused([](AdvisorOptions& o) { o.steps = 0; });
+  refused([](AdvisorOptions& o) { o.energy_tolerance = 0; });
+  refused([](AdvisorOptions& o) { o.energy_tolerance = NAN; });
+  refused([](AdvisorOptions& o) { o.trial_steps = -1; });
+  refused([](AdvisorOptions& o) { o.trial_margin = 0.5; });
+  refused([](AdvisorOptions& o) { o.trial_margin = INFINITY; });
+  EXPECT_NO_THROW(advise_step_size(m, s, 0.01, fpu_problem().q0, fpu_problem().p0, whole_run()));
+}
+
+}  // namespace
+}  // namespace erkn::test
