@@ -41,7 +41,8 @@ std::vector<erkn::Method> implicit_methods() {
 erkn::Method peer_method() {
   const erkn::Method* best = nullptr;
   for (const erkn::Method& m : erkn::Method::all())
-    if (m.is_explicit() && (!best || m.stages() > best->stages())) best = &m;
+    if (m.is_explicit() && !m.has_modified_kicks() && (!best || m.stages() > best->stages()))
+      best = &m;  // (the peer kicks with grad U only)
   if (!best) throw erkn::Error("the registry has no explicit method for the peer");
   return *best;
 }

@@ -21,7 +21,7 @@ namespace problems = erkn::problems;
 std::vector<Method> explicit_methods() {
   std::vector<Method> out;
   for (const Method& m : Method::all())
-    if (m.is_explicit()) out.push_back(m);
+    if (m.is_explicit() && !m.has_modified_kicks()) out.push_back(m);  // (the peer: grad U kicks)
   return out;
 }
 

@@ -25,7 +25,11 @@ void print_tableau(const Method& m, const std::function<std::string(int)>& value
   std::vector<double> c(m.table().c, m.table().c + s), d(m.table().d, m.table().d + s);
   std::cout << "{\"method\": " << json_string(std::string(m.name())) << ", \"stages\": " << s
             << ", \"order\": " << m.order() << ",\n \"c\": " << json_list(c)
-            << ",\n \"d\": " << json_list(d) << ",\n \"b\": [";
+            << ",\n \"d\": " << json_list(d);
+  if (m.has_modified_kicks())
+    std::cout << ",\n \"modified\": "
+              << json_list(std::vector<double>(m.modified().begin(), m.modified().end()));
+  std::cout << ",\n \"b\": [";
   for (int i = 0; i < s; ++i) std::cout << (i ? ", " : "") << value(i);
   std::cout << "],\n \"bbar\": [";
   for (int i = 0; i < s; ++i) std::cout << (i ? ", " : "") << value(s + i);
@@ -64,7 +68,8 @@ std::string json_constants(std::span<const double> xs) {
 }
 
 // One JSON object per method: name, kind, stages, certified order, generalized order, the
-// error constants, poles, source, whether it is one of the paper's methods, and the id
+// error constants, poles, modified-kick coefficients e_i (empty: plain kicks), source, whether
+// it is one of the paper's methods, and the id
 // (erkn.methods() has the same).
 void list_json() {
   std::cout << "[";
@@ -72,6 +77,7 @@ void list_json() {
   for (const Method& m : Method::all()) {
     std::vector<double> generalized(m.generalized_order().begin(), m.generalized_order().end());
     std::vector<double> poles(m.poles().begin(), m.poles().end());
+    std::vector<double> modified(m.modified().begin(), m.modified().end());
     std::cout << (first ? "\n" : ",\n") << " {\"name\": " << json_string(std::string(m.name()))
               << ", \"kind\": " << json_string(std::string(m.kind_name()))
               << ", \"stages\": " << m.stages() << ", \"order\": " << m.order()
@@ -79,7 +85,7 @@ void list_json() {
               << ", \"error_constant\": " << json_number_or_null(m.error_constant())
               << ", \"generalized_error_constant\": "
               << json_constants(m.generalized_error_constant())
-              << ", \"poles\": " << json_list(poles)
+              << ", \"poles\": " << json_list(poles) << ", \"modified\": " << json_list(modified)
               << ", \"source\": " << json_string(std::string(m.reference()))
               << ", \"paper\": " << (m.from_paper() ? "true" : "false")
               << ", \"id\": " << json_string(std::string(m.id_name())) << "}";

@@ -40,6 +40,10 @@ if [ -x "$build"/bench/erkn_accuracy_benchmark ]; then
   "$build"/bench/erkn_accuracy_benchmark --markdown docs/accuracy.md 2> /dev/null
   python3 scripts/readme_tables.py  # the README's "Choosing a method" table from that run
 fi
+# The best modified-kick method against the best plain-kick one, CPU to a tolerance (issue 18).
+if [ -x "$build"/bench/erkn_modified_kick_benchmark ]; then
+  "$build"/bench/erkn_modified_kick_benchmark --markdown docs/modified_kicks.md > /dev/null 2>&1
+fi
 if [ -x "$build"/mpi/erkn-mpi ]; then  # MPI scaling on 1, 2 and 4 ranks (erkn::mpi built)
   [ "$(id -u)" -ne 0 ] || export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
   export OMPI_MCA_btl_vader_single_copy_mechanism=none  # (CMA fails in containers)

@@ -76,6 +76,8 @@ Scene wave_grid(int n, int k) {
   s.hessian = [](const Eigen::VectorXd& q, Eigen::MatrixXd& H) {
     H = (3 * q.array().square()).matrix().asDiagonal();
   };
+  s.hessian_vector_product = [](const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                Eigen::VectorXd& hv) { hv = 3 * q.array().square() * v.array(); };
   Eigen::VectorXd q0(d);
   for (Eigen::Index i = 0; i < d; ++i)  // (row-major: i = i0 n + i1)
     q0[i] = std::sin(pi * (i % n + 1) * dx) * (k == 1 ? 1 : std::sin(pi * (i / n + 1) * dx));

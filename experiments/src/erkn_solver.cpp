@@ -1,4 +1,5 @@
 // The adapter to the ERKN runtime: every method of erkn::Method::all() as an ex::Solver.
+#include <algorithm>
 #include <cmath>
 #include <erkn/integrator.hpp>
 #include <erkn/method.hpp>
@@ -69,7 +70,9 @@ bool same_coefficients(const erkn::Method& a, const erkn::Method& b, double v) {
 // coefficients agree at several v (the RKN limits use only v = 0): e.g. the RKN limits of the
 // pole-free variants are the paper's RKN limits, since the variants keep c, d and abar_ii(0).
 bool same_method(const erkn::Method& a, const erkn::Method& b) {
-  if (a.kind() != b.kind() || a.stages() != b.stages() || a.is_explicit() != b.is_explicit())
+  if (a.kind() != b.kind() || a.stages() != b.stages() || a.is_explicit() != b.is_explicit() ||
+      !std::equal(a.modified().begin(), a.modified().end(), b.modified().begin(),
+                  b.modified().end()))
     return false;
   const std::vector<double> vs =
       a.kind() == erkn::Kind::rkn ? std::vector<double>{0} : std::vector<double>{0, 0.37, 2.9};

@@ -160,6 +160,7 @@ double bytes_per_unknown(const erkn::Method& m, const Problem& pr, double h) {
   erkn::System system;
   system.M = erkn::problems::stiffness(pr.M);
   system.gradient = pr.grad_u;
+  system.hessian_vector_product = pr.hessian_vector_u;
   erkn::Integrator integrator(m, std::move(system), h, pr.q0, pr.p0);
   integrator.step();
   return (in_use() - before) / double(pr.dim());

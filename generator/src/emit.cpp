@@ -106,7 +106,8 @@ std::string node_arrays(const Derived& m) {
   auto str = [](const Qs& q) { return quoted(q.to_string()); };
   return "constexpr double c[] = {" + joined(m.c, dbl) + "};\nconstexpr double d[] = {" +
          joined(m.d, dbl) + "};\nconstexpr const char* c_exact[] = {" + joined(m.c, str) +
-         "};\nconstexpr const char* d_exact[] = {" + joined(m.d, str) + "};\n\n";
+         "};\nconstexpr const char* d_exact[] = {" + joined(m.d, str) + "};\n" +
+         (m.e.empty() ? "" : "constexpr double modified[] = {" + joined(m.e, dbl) + "};\n") + "\n";
 }
 
 std::string closed_forms_array(const Derived& m, bool rkn) {
@@ -252,24 +253,18 @@ std::string table_entry(const Derived& m, bool rkn) {
      << ",\n     " << id << "::c, " << id << "::d, " << id << "::c_exact, " << id << "::d_exact, "
      << id << "::coefficients, " << id << "::series,\n     " << id << "::closed_forms, "
      << (has_poles ? id + "::poles, std::size(" + id + "::poles)" : std::string("nullptr, 0"))
-     << "},\n";
+     << (m.e.empty() ? "" : ", " + id + "::modified") << "},\n";
   return os.str();
 }
 
-// Every (method, rkn) pair that is emitted, in registry order: the methods, then their limits.
-// The runtime does not integrate modified kicks yet: methods with them are certified and derived
-// (derivation.md) but not emitted into the tables.
-// A user's methods (`with_modified`) keep those with modified kicks: Method::add refuses them
-// at program start, naming what the runtime lacks. Processed methods (no processor in the
-// runtime yet) are certified and derived, not emitted.
-std::vector<std::pair<const Derived*, bool>> registry(const std::vector<Derived>& methods,
-                                                      bool with_modified = false) {
+// Every (method, rkn) pair that is emitted, in registry order: the methods, then their limits
+// (methods with modified kicks have none). Processed methods (no processor in the runtime yet)
+// are certified and derived, not emitted.
+std::vector<std::pair<const Derived*, bool>> registry(const std::vector<Derived>& methods) {
   std::vector<std::pair<const Derived*, bool>> out;
   for (bool rkn : {false, true})
     for (const Derived& m : methods)
-      if ((!rkn || !m.spec.rkn.empty()) && (m.e.empty() || (with_modified && !rkn)) &&
-          m.pre.empty())
-        out.emplace_back(&m, rkn);
+      if ((!rkn || !m.spec.rkn.empty()) && m.pre.empty()) out.emplace_back(&m, rkn);
   return out;
 }
 
@@ -397,8 +392,8 @@ std::string derivation_md(const std::vector<Derived>& methods, const std::string
     if (!m.e.empty())
       md << "\nModified kicks: stage i kicks p -= h (d_i grad U + h^2 e_i grad(|grad U|^2)); "
             "the order certificate weighs the term f'(Q_i) f(Q_i), f = -grad U, with -2 e_i "
-            "(certify.hpp). Not in the tables (generated/src/tables.cpp) yet: the runtime does "
-            "not integrate modified kicks.\n";
+            "(certify.hpp). The runtime forms grad(|grad U|^2) = 2 Hess(U) grad U from "
+            "System::hessian_vector_product (erkn/system.hpp).\n";
     md << processor_md(m);
     md << "\n| coefficient | solved as | V^0 | V^1 | V^2 | V^3 | V^4 "
           "|\n|---|---|---|---|---|---|---|\n";
@@ -427,29 +422,18 @@ std::string user_cpp(const std::vector<Derived>& methods, const std::string& com
       banner(command, "//", specs) +
       "// Compiled into the program (erkn_add_methods); Method::by_name and Method::all() list\n"
       "// these methods after erkn's own. The closed forms are as in erkn's generated tables.\n"
-      "#include <cmath>\n#include <iterator>\n#include <span>\n\n"
+      "#include <cmath>\n#include <iterator>\n\n"
       "#include \"erkn/method.hpp\"\n#include \"erkn/table_support.hpp\"\n\nnamespace {\n\n"
       "using erkn::generated::Table;\nusing erkn::generated::support::horner;\n"
       "using erkn::generated::support::sinc;\nusing erkn::generated::support::sincl;\n\n";
-  std::string modified = "const std::span<const double> kModified[] = {";
-  for (const auto& [m, rkn] : registry(methods, true)) {
-    out += method_cpp(*m, rkn);
-    if (m->e.empty()) {
-      modified += "{}, ";
-      continue;
-    }
-    auto dbl = [](const Qs& q) { return num(q.to_double()); };
-    out += "constexpr double " + identifier(name_of(*m, rkn)) + "_e[] = {" + joined(m->e, dbl) +
-           "};  // modified kicks e_1..e_s\n\n";
-    modified += identifier(name_of(*m, rkn)) + "_e, ";
-  }
+  for (const auto& [m, rkn] : registry(methods)) out += method_cpp(*m, rkn);
   out += "const Table kTables[] = {\n";
-  for (const auto& [m, rkn] : registry(methods, true)) out += table_entry(*m, rkn);
-  return out + "};\n" + modified +
+  for (const auto& [m, rkn] : registry(methods)) out += table_entry(*m, rkn);
+  return out +
          "};\n\n// Adds the tables to the registry before main().\n"
          "[[maybe_unused]] const bool kAdded = [] {\n"
-         "  for (size_t k = 0; k < std::size(kTables); ++k) erkn::Method::add(kTables[k], "
-         "kModified[k]);\n  return true;\n}();\n\n}  // namespace\n";
+         "  for (const Table& t : kTables) erkn::Method::add(t);\n  return true;\n}();\n\n}  // "
+         "namespace\n";
 }
 
 }  // namespace

@@ -189,6 +189,11 @@ GridIntegrator::GridIntegrator(MPI_Comm comm, const Method& method, System syste
   detail::collectively(comm, [&] {
     if (system.M.structure() != Stiffness::Structure::grid)
       throw Error("the distributed integrator needs M = Stiffness::grid");
+    if (method.has_modified_kicks())
+      throw Error(std::string(method.name()) +
+                  " has modified kicks (grad(|grad U|^2)), which the distributed integrator "
+                  "does not form: use a method with plain kicks (Method::has_modified_kicks() "
+                  "false), or erkn::Integrator on one process");
     const TimeGrid grid(0, h);  // (validates h, the same on every rank)
     erkn::detail::check_step_size(method, h, system.M.eigenvalues(), options.pole_tolerance);
   });

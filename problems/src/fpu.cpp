@@ -79,6 +79,14 @@ Potential fpu_potential(int m) {
     for (int i = 0; i <= m; ++i) w[i] = 3 * std::pow(elongation(q, m, i), 2);
     return Eigen::MatrixXd(G * w.asDiagonal() * G.transpose());
   };
+  // Hess U v = sum_i 3 u_i^2 (grad u_i . v) grad u_i (u is linear in q).
+  u.hessian_vector_u = [m](const Vec& q, const Vec& v, Vec& hv) {
+    hv.setZero(2 * m);
+    for (int i = 0; i <= m; ++i) {
+      const double u = elongation(q, m, i);
+      add_spring(hv, m, i, 3 * u * u * elongation(v, m, i));
+    }
+  };
   return u;
 }
 
@@ -99,6 +107,7 @@ Problem fpu(int m, double omega) {
   p.h_energy = 1 / omega;
   const Potential u = fpu_potential(m);
   p.grad_u = u.grad_u, p.potential = u.potential, p.hessian_u = u.hessian_u;
+  p.hessian_vector_u = u.hessian_vector_u;
   p.force_ld = [m, omega](const VecLD& q, VecLD& f) {
     f.assign(2 * m, 0.0L);
     for (int i = 0; i <= m; ++i) {

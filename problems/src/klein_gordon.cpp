@@ -40,6 +40,7 @@ Problem klein_gordon(int n, int dims) {
   p.t_error = 1;
   const Potential u = quartic_potential(1);
   p.grad_u = u.grad_u, p.potential = u.potential;  // (no Hessian on a grid)
+  p.hessian_vector_u = u.hessian_vector_u;
   return p;
 }
 

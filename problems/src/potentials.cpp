@@ -17,6 +17,9 @@ Potential sine_potential(double kappa) {
   u.hessian_u = [kappa](const Vec& q) {
     return Eigen::MatrixXd((kappa * q.array().cos()).matrix().asDiagonal());
   };
+  u.hessian_vector_u = [kappa](const Vec& q, const Vec& v, Vec& hv) {
+    hv = kappa * q.array().cos() * v.array();
+  };
   return u;
 }
 
@@ -31,6 +34,9 @@ Potential duffing_potential(double k) {
   u.hessian_u = [k2](const Vec& q) {
     return Eigen::MatrixXd((-k2 * (6 * q.array().square() - 1)).matrix().asDiagonal());
   };
+  u.hessian_vector_u = [k2](const Vec& q, const Vec& v, Vec& hv) {
+    hv = -k2 * (6 * q.array().square() - 1) * v.array();
+  };
   return u;
 }
 
@@ -40,6 +46,9 @@ Potential quartic_potential(double beta) {
   u.potential = [beta](const Vec& q) { return 0.25 * beta * q.array().square().square().sum(); };
   u.hessian_u = [beta](const Vec& q) {
     return Eigen::MatrixXd((3 * beta * q.array().square()).matrix().asDiagonal());
+  };
+  u.hessian_vector_u = [beta](const Vec& q, const Vec& v, Vec& hv) {
+    hv = 3 * beta * q.array().square() * v.array();
   };
   return u;
 }

@@ -49,6 +49,7 @@ Problem sine_gordon(int n, double kappa) {
   p.paper_steps = {400, 800, 1600, 3200, 2000, 4000, 8000, 16000};
   const Potential u = sine_potential(kappa);
   p.grad_u = u.grad_u, p.potential = u.potential, p.hessian_u = u.hessian_u;
+  p.hessian_vector_u = u.hessian_vector_u;
   p.force_ld = [n, dx, kappa](const VecLD& q, VecLD& f) {
     const long double s = 1.0L / ((long double)dx * dx);
     for (int i = 0; i < n; ++i) {
@@ -71,6 +72,7 @@ Problem duffing(double k) {
   p.paper_steps = {2000, 4000, 6000, 8000, 400, 800, 1200, 1600};
   const Potential u = duffing_potential(k);
   p.grad_u = u.grad_u, p.potential = u.potential, p.hessian_u = u.hessian_u;
+  p.hessian_vector_u = u.hessian_vector_u;
   p.force_ld = [k2](const VecLD& q, VecLD& f) {
     f[0] = -100 * q[0] + (long double)k2 * (2 * q[0] * q[0] * q[0] - q[0]);
   };
@@ -99,6 +101,11 @@ Problem stellar_orbits(double eps) {
     h << 0, -2 * eps * q[1], -2 * eps * q[1], -2 * eps * q[0];
     return h;
   };
+  p.hessian_vector_u = [eps](const Vec& q, const Vec& v, Vec& hv) {
+    hv.resize(2);
+    hv[0] = -2 * eps * q[1] * v[1];
+    hv[1] = -2 * eps * (q[1] * v[0] + q[0] * v[1]);
+  };
   p.force_ld = [eps](const VecLD& q, VecLD& f) {
     const long double e = eps;
     f[0] = -4 * q[0] + e * q[1] * q[1];
@@ -124,6 +131,9 @@ Problem sine_gordon_2d(int n) {
   p.t_error = 1;
   p.grad_u = [](const Vec& q, Vec& g) { g = q.array().sin(); };
   p.potential = [](const Vec& q) { return -q.array().cos().sum(); };
+  p.hessian_vector_u = [](const Vec& q, const Vec& v, Vec& hv) {
+    hv = q.array().cos() * v.array();
+  };
   return p;
 }
 
@@ -164,6 +174,11 @@ Problem henon_heiles(double energy) {
     Eigen::MatrixXd h(2, 2);
     h << 2 * q[1], 2 * q[0], 2 * q[0], -2 * q[1];
     return h;
+  };
+  p.hessian_vector_u = [](const Vec& q, const Vec& v, Vec& hv) {
+    hv.resize(2);
+    hv[0] = 2 * (q[1] * v[0] + q[0] * v[1]);
+    hv[1] = 2 * (q[0] * v[0] - q[1] * v[1]);
   };
   p.force_ld = [](const VecLD& q, VecLD& f) {
     f[0] = -q[0] - 2 * q[0] * q[1];
@@ -216,6 +231,7 @@ System system(const Problem& p) {
   s.potential = p.potential;
   if (p.hessian_u)  // (the grid problems have none: no d x d matrix there)
     s.hessian = [h = p.hessian_u](const Vec& q, Eigen::MatrixXd& hess) { hess = h(q); };
+  s.hessian_vector_product = p.hessian_vector_u;
   return s;
 }
 

@@ -141,12 +141,12 @@ def _writes_into(f, name):
     return len(params) == 2
 
 
-def system(M, grad, d, potential=None, hessian=None):
+def system(M, grad, d, potential=None, hessian=None, hessian_vector_product=None):
     """The erkn.System solve and Integrator build (for evaluating U, its gradient and Hessian)."""
-    return _system(M, grad, d, potential, hessian)
+    return _system(M, grad, d, potential, hessian, hessian_vector_product)
 
 
-def _system(M, grad, d, potential_fn, hessian):
+def _system(M, grad, d, potential_fn, hessian, hessian_vector_product=None):
     M = _stiffness(M)
     if isinstance(grad, System):  # (a problem's: its U in C++, with this M)
         if potential_fn is not None or hessian is not None:
@@ -155,13 +155,16 @@ def _system(M, grad, d, potential_fn, hessian):
     if isinstance(grad, str):
         grad = potential(grad)
     if isinstance(grad, potential):
-        if potential_fn is not None or hessian is not None:
+        if potential_fn is not None or hessian is not None or hessian_vector_product is not None:
             raise Error("a built-in potential brings its own potential and Hessian")
         return _erkn._builtin_system(M, grad.name, grad.params, d)
     if not callable(grad):
         raise Error("grad must be a built-in potential's name, an erkn.potential, or a callable")
+    if hessian_vector_product is not None and not callable(hessian_vector_product):
+        raise Error("hessian_vector_product must be a callable (q, v) -> Hess U(q) v")
     return _erkn._python_system(M, grad, _writes_into(grad, "grad"), potential_fn, hessian,
-                                hessian is not None and _writes_into(hessian, "hessian"), d)
+                                hessian is not None and _writes_into(hessian, "hessian"),
+                                hessian_vector_product, d)
 
 
 def _state(x, name):
@@ -205,12 +208,13 @@ class Integrator(_erkn._Integrator):
     leaves the integrator unchanged."""
 
     def __init__(self, M, grad, *, q0, p0, h, method=_DEFAULT_METHOD, t0=0.0, potential=None,
-                 hessian=None, options=None, energy_tolerance=None, check_stability=None):
+                 hessian=None, options=None, energy_tolerance=None, check_stability=None,
+                 hessian_vector_product=None):
         q0, p0 = _state(q0, "q0"), _state(p0, "p0")
         options = Options._of(options, energy_tolerance=energy_tolerance,
                               check_stability=check_stability)
-        super().__init__(method, _system(M, grad, q0.size, potential, hessian), _real(h, "h"), q0, p0,
-                         _real(t0, "t0"), options)
+        system = _system(M, grad, q0.size, potential, hessian, hessian_vector_product)
+        super().__init__(method, system, _real(h, "h"), q0, p0, _real(t0, "t0"), options)
 
     @property
     def options(self):
@@ -316,7 +320,7 @@ class Solution:
 def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None, every=1,
           potential=None, hessian=None, options=None, energy_tolerance=None,
           check_stability=None, pilot_fraction=1.0 / 32, safety=1.0, events=None,
-          progress=None):
+          progress=None, hessian_vector_product=None):
     """Integrates q'' + M q = -grad U(q) over t_span = (t0, t1) with step h, or to a tolerance.
 
     tol: the requested global error (max norm of q's error at t1). With tol, method "auto"
@@ -329,7 +333,9 @@ def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None
     Output at t_eval (any ascending times in t_span), else at t0, every `every`-th step and
     t1. The energy H = p.p/2 + q.M q/2 + U(q) is reported when U is known (a built-in, or the
     `potential` callable); `hessian(q)` (or hessian(q, out)) helps the stage solver's Newton
-    fallback. options: an erkn.Options (or a dict of its fields); energy_tolerance= and
+    fallback. Methods with modified kicks (a non-empty "modified" in erkn.methods()) need
+    `hessian_vector_product(q, v)` -> Hess U(q) v (or `hessian`); the built-ins have it.
+    options: an erkn.Options (or a dict of its fields); energy_tolerance= and
     check_stability= set those fields.
 
     events: event functions g(t, q, p) -> float (or one), as SciPy's solve_ivp takes them, with
@@ -353,7 +359,8 @@ def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None
         q0, p0 = _state(q0, "q0"), _state(p0, "p0")
         opts = Options._of(options, energy_tolerance=energy_tolerance,
                            check_stability=check_stability)
-        choice = _erkn._choose(_system(M, grad, q0.size, potential, hessian), q0, p0, t0, t1,
+        choice = _erkn._choose(_system(M, grad, q0.size, potential, hessian,
+                                       hessian_vector_product), q0, p0, t0, t1,
                                _real(tol, "tol"), method or "auto", float(h or 0.0),
                                float(pilot_fraction), float(safety), opts)
         method, h = choice["method"], choice["h"]
@@ -361,7 +368,8 @@ def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None
         raise Error("solve: give h (and a method), or tol= to let erkn choose them")
     run = Integrator(M, grad, q0=q0, p0=p0, h=h, method=method or _DEFAULT_METHOD, t0=t0,
                      potential=potential, hessian=hessian, options=options,
-                     energy_tolerance=energy_tolerance, check_stability=check_stability)
+                     energy_tolerance=energy_tolerance, check_stability=check_stability,
+                     hessian_vector_product=hessian_vector_product)
     if t_eval is not None:
         t_eval = np.ascontiguousarray(t_eval, dtype=float)
     try:
@@ -469,7 +477,7 @@ class Ensemble:
     others: its error and its last completed state are in the result."""
 
     def __init__(self, M=None, grad=None, *, q0, p0, h, method=_DEFAULT_METHOD, options=None,
-                 systems=None, potential=None, hessian=None):
+                 systems=None, potential=None, hessian=None, hessian_vector_product=None):
         q0 = np.atleast_2d(np.asarray(q0, dtype=float))
         p0 = np.atleast_2d(np.asarray(p0, dtype=float))
         if q0.ndim != 2 or q0.shape != p0.shape:
@@ -478,7 +486,7 @@ class Ensemble:
         if (systems is None) == (grad is None):
             raise Error("give either M and grad, or systems (one per trajectory)")
         if systems is None:
-            systems = [_system(M, grad, q0.shape[1], potential, hessian)]
+            systems = [_system(M, grad, q0.shape[1], potential, hessian, hessian_vector_product)]
         self._ensemble = _erkn._Ensemble(method, float(h), list(systems), q0, p0,
                                          Options._of(options))
 

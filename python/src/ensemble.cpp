@@ -46,6 +46,11 @@ System thread_safe(const PySystem& s) {
     out.hessian = [shared](const Eigen::VectorXd& q, Eigen::MatrixXd& H) {
       with_gil("hessian", [&] { shared->hessian(q, H); });
     };
+  if (shared->hessian_vector_product)
+    out.hessian_vector_product = [shared](const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                          Eigen::VectorXd& hv) {
+      with_gil("hessian_vector_product", [&] { shared->hessian_vector_product(q, v, hv); });
+    };
   return out;
 }
 

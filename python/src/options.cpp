@@ -34,6 +34,7 @@ py::dict statistics_dict(const Statistics& s) {
   d["steps"] = s.steps;
   d["gradient_evaluations"] = s.gradient_evaluations;
   d["hessian_evaluations"] = s.hessian_evaluations;
+  d["hessian_vector_products"] = s.hessian_vector_products;
   d["stage_iterations"] = s.stage_iterations;
   d["newton_fallbacks"] = s.newton_fallbacks;
   d["newton_iterations"] = s.newton_iterations;

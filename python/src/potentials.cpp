@@ -18,6 +18,7 @@ System from(problems::Potential u) {
   s.gradient = std::move(u.grad_u);
   s.potential = std::move(u.potential);
   s.hessian = [h = std::move(u.hessian_u)](const Vector& q, Eigen::MatrixXd& H) { H = h(q); };
+  s.hessian_vector_product = std::move(u.hessian_vector_u);
   return s;
 }
 
@@ -36,6 +37,10 @@ System fpu(Eigen::Index d) {
   s.gradient = [g = s.gradient, check](const Vector& q, Vector& out) { check(q), g(q, out); };
   s.potential = [u = s.potential, check](const Vector& q) { return check(q), u(q); };
   s.hessian = [h = s.hessian, check](const Vector& q, Eigen::MatrixXd& H) { check(q), h(q, H); };
+  s.hessian_vector_product = [hv = s.hessian_vector_product, check](
+                                 const Vector& q, const Vector& v, Vector& out) {
+    check(q), hv(q, v, out);
+  };
   return s;
 }
 

@@ -9,7 +9,8 @@
 
 namespace erkn::python {
 
-/// A System's U with its gradient and Hessian for dimension d (M is set by the caller).
+/// A System's U with its gradient, Hessian and Hessian-vector product (closed forms) for
+/// dimension d (M is set by the caller).
 System builtin_potential(const std::string& name, const std::map<std::string, double>& params,
                          Eigen::Index d);
 

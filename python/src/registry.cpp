@@ -31,6 +31,7 @@ py::dict describe(const Method& m) {
   for (double x : m.generalized_error_constant()) generalized_constants.append(constant(x));
   d["generalized_error_constant"] = generalized_constants;
   d["poles"] = std::vector<double>(m.poles().begin(), m.poles().end());
+  d["modified"] = std::vector<double>(m.modified().begin(), m.modified().end());
   d["source"] = std::string(m.reference());
   d["paper"] = m.from_paper();
   d["id"] = std::string(m.id_name());
@@ -54,6 +55,8 @@ py::dict tableau(const std::string& name, double v) {
   t["order"] = m.order();
   t["v"] = v;
   t["c"] = c, t["d"] = d, t["b"] = b, t["bbar"] = bbar, t["abar"] = abar;
+  if (m.has_modified_kicks())
+    t["modified"] = std::vector<double>(m.modified().begin(), m.modified().end());
   return t;
 }
 
@@ -92,7 +95,8 @@ void bind_registry(py::module_& m) {
       },
       "every generated method as a dict with the fields of `erkn list --json`: name, kind "
       "(explicit, erkn, rkn), stages, order, generalized_order, error_constant, "
-      "generalized_error_constant (None: no failing condition checked), poles, source, paper, id");
+      "generalized_error_constant (None: no failing condition checked), poles, modified (the "
+      "modified-kick coefficients e_i; empty for plain kicks), source, paper, id");
   m.def(
       "load_methods",
       [](const std::string& path) {

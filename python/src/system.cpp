@@ -72,7 +72,8 @@ double potential_value(const py::object& potential, const Eigen::VectorXd& q) {
 }
 
 System python_callbacks(const py::object& grad, bool grad_writes, const py::object& potential,
-                        const py::object& hessian, bool hessian_writes) {
+                        const py::object& hessian, bool hessian_writes,
+                        const py::object& hessian_vector_product) {
   System s;
   s.gradient = [grad, grad_writes](const Eigen::VectorXd& q, Eigen::VectorXd& g) {
     if (grad_writes) return call_writing("grad(q, out)", grad, q, g);
@@ -84,6 +85,13 @@ System python_callbacks(const py::object& grad, bool grad_writes, const py::obje
     s.hessian = [hessian, hessian_writes](const Eigen::VectorXd& q, Eigen::MatrixXd& H) {
       if (hessian_writes) return call_writing("hessian(q, out)", hessian, q, H);
       copy_result("hessian(q)", hessian(view(q, false)), H);
+    };
+  if (!hessian_vector_product.is_none())
+    s.hessian_vector_product = [f = hessian_vector_product](const Eigen::VectorXd& q,
+                                                            const Eigen::VectorXd& v,
+                                                            Eigen::VectorXd& hv) {
+      hv.resize(q.size());
+      copy_result("hessian_vector_product(q, v)", f(view(q, false), view(v, false)), hv);
     };
   return s;
 }
@@ -169,7 +177,19 @@ void bind_system(py::module_& m) {
             s.system.hessian(q, H);
             return H;
           },
-          py::arg("q"), "the Hessian of U at q");
+          py::arg("q"), "the Hessian of U at q")
+      .def(
+          "hessian_vector_product",
+          [](const PySystem& s, const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
+            if (!s.system.hessian_vector_product)
+              throw Error("this system has no Hessian-vector product");
+            if (v.size() != q.size()) throw Error("q and v must have the same size");
+            Eigen::VectorXd hv(q.size());
+            s.system.hessian_vector_product(q, v, hv);
+            return hv;
+          },
+          py::arg("q"), py::arg("v"),
+          "Hess U(q) v (modified kicks form grad(|grad U|^2) = 2 Hess U grad U from it)");
   m.def(
       "_builtin_system",
       [](const Stiffness& M, const std::string& name, const std::map<std::string, double>& params,
@@ -182,14 +202,17 @@ void bind_system(py::module_& m) {
   m.def(
       "_python_system",
       [](const Stiffness& M, const py::object& grad, bool grad_writes, const py::object& potential,
-         const py::object& hessian, bool hessian_writes, Eigen::Index d) {
-        PySystem s{python_callbacks(grad, grad_writes, potential, hessian, hessian_writes), d, true,
-                   "Python callbacks"};
+         const py::object& hessian, bool hessian_writes, const py::object& hessian_vector_product,
+         Eigen::Index d) {
+        PySystem s{python_callbacks(grad, grad_writes, potential, hessian, hessian_writes,
+                                    hessian_vector_product),
+                   d, true, "Python callbacks"};
         s.system.M = M;
         return s;
       },
       py::arg("M"), py::arg("grad"), py::arg("grad_writes"), py::arg("potential"),
-      py::arg("hessian"), py::arg("hessian_writes"), py::arg("d"));
+      py::arg("hessian"), py::arg("hessian_writes"), py::arg("hessian_vector_product"),
+      py::arg("d"));
   m.def("builtin_potentials", &builtin_potentials,
         "the built-in potentials: {name: {parameter: default}}");
 }

@@ -34,6 +34,22 @@ def method():
     return next(m["name"] for m in erkn.methods() if m["kind"] == "explicit")
 
 
+def interrupted(proc, after):
+    """Sends SIGINT `after` seconds into the run; (stdout, seconds from SIGINT to exit). The
+    child is killed if it does not stop (a failing test leaves no 1e9-step run behind)."""
+    try:
+        assert proc.stdout.readline().strip() == "started"
+        time.sleep(after)
+        sent = time.monotonic()
+        proc.send_signal(signal.SIGINT)
+        out, _ = proc.communicate(timeout=60)
+        return out, time.monotonic() - sent
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+
+
 # With output times the last state joins those reached (t_eval's second time, 1e8, is far beyond
 # the interrupted run: without it the output would end at t = 0).
 BUILTIN, EVERY = 'erkn.potential("phi4")', "every=10**6"
@@ -46,12 +62,7 @@ def test_sigint_stops_a_long_solve_and_keeps_the_output(grad, output):
     code = LONG_SOLVE.format(grad=grad, method=method(), output=output)
     proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True,
                             env=dict(os.environ))
-    assert proc.stdout.readline().strip() == "started"
-    time.sleep(1.5)  # (well into the run, past several chunks)
-    sent = time.monotonic()
-    proc.send_signal(signal.SIGINT)
-    out, _ = proc.communicate(timeout=60)
-    latency = time.monotonic() - sent
+    out, latency = interrupted(proc, after=1.5)  # (well into the run, past several chunks)
     assert proc.returncode == 0, out
     fields = out.split()
     assert fields[0] == "interrupted" and fields[-1] == "True", out
@@ -141,10 +152,7 @@ LONG_INTEGRATOR = textwrap.dedent("""
 def test_sigint_stops_integrator_calls_without_output_at_their_last_step(call):
     code = LONG_INTEGRATOR.format(method=method(), call=call)
     proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
-    assert proc.stdout.readline().strip() == "started"
-    time.sleep(1.0)
-    proc.send_signal(signal.SIGINT)
-    out, _ = proc.communicate(timeout=60)
+    out, _ = interrupted(proc, after=1.0)
     assert proc.returncode == 0 and out.split()[-1] == "True", out
 
 

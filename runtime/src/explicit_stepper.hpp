@@ -3,10 +3,12 @@
 // the explicit family) and steps as one: exact flows of q'' + M q = 0 over tau_k =
 // h (c_k - c_{k-1}) (c_0 = 0 before the first node, c_{s+1} = 1 after the last) alternated with
 // kicks p -= h d_k g_k, g_k = grad U(Q_k) (+ M Q_k for RKN methods), passes over the eigen
-// coordinates (explicit_passes.hpp: a kick and the flow after it make one pass). With c_1 = 0
-// and c_s = 1 the first kick reuses the previous step's last gradient (FSAL). The first pass
-// reads the state and writes a second copy of it, which replaces the state once every gradient
-// has been evaluated and the result is finite: a failed step leaves the state unchanged.
+// coordinates (explicit_passes.hpp: a kick and the flow after it make one pass); a modified kick
+// (modified_force.hpp) kicks by h with the stage force d_k g_k + h^2 e_k G(Q_k). With c_1 = 0 and
+// c_s = 1 the first kick reuses the previous step's last force (FSAL) when the two kicks mix g and
+// G alike. The first pass reads the state and writes a second copy of it, which replaces the state
+// once every gradient has been evaluated and the result is finite: a failed step leaves the state
+// unchanged.
 //
 // The last flow of a step and the first of the next are one exact flow (over tau_s + tau_0), so the
 // stored state stays one flow behind: after a step it is the state before flow s, which is
@@ -38,6 +40,7 @@
 #include "explicit_passes.hpp"
 #include "flow_coefficients.hpp"
 #include "m_operator.hpp"
+#include "modified_force.hpp"
 #include "stage_checks.hpp"
 #include "stepper_base.hpp"
 
@@ -85,7 +88,8 @@ class ExplicitStepper final : public StepperBase {
         kahan_(options.compensated_summation),
         rkn_(method.kind() == Kind::rkn),
         s_(method.stages()),
-        fsal_(s_ > 1 && method.table().c[0] == 0 && method.table().c[s_ - 1] == 1),
+        kicks_(method, h),
+        fsal_(kicks_.fsal_factor(method)),
         d_(d),
         h_(h),
         flows_(method, h, lambda),
@@ -99,7 +103,8 @@ class ExplicitStepper final : public StepperBase {
         G_last_(slot(5)),
         work_{slot(6), slot(7), slot(8), slot(9)},
         Q_(Eigen::VectorXd::Zero(d)),
-        g_(Eigen::VectorXd::Zero(d)) {
+        g_(Eigen::VectorXd::Zero(d)),
+        modified_(method.has_modified_kicks() ? d : 0) {
     if (rkn_) Mq_.resize(d);
   }
 
@@ -125,23 +130,29 @@ class ExplicitStepper final : public StepperBase {
   void step(long step_number, double t, Statistics& stats) override {
     place_.step = step_number;
     place_.t = t;
-    long evaluations = 0;  // (counted into stats once the step has succeeded)
+    Counts counts;  // (counted into stats once the step has succeeded)
     if (kahan_)
-      passes<true>(evaluations);
+      passes<true>(counts);
     else
-      passes<false>(evaluations);
+      passes<false>(counts);
     std::swap(G_, G_last_);  // (FSAL: the last stage's gradient)
     have_history_ = true;
     pending_ = flows_.moves(s_);
     ++stats.steps;
-    stats.gradient_evaluations += evaluations;
-    stats.stage_iterations += evaluations;
+    stats.gradient_evaluations += counts.gradients;
+    stats.stage_iterations += counts.gradients;
+    stats.hessian_vector_products += counts.products;
+    if (!system_.hessian_vector_product) stats.hessian_evaluations += counts.products;
   }
 
   void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) override { M_.apply(x, y); }
   System& system() override { return system_; }
 
  private:
+  struct Counts {
+    long gradients = 0, products = 0;  // calls of System::gradient, modified forces formed
+  };
+
   // (Uninitialised with a dynamic dimension: set_state writes the state, every pass what it
   // reads later.)
   static Storage storage(Eigen::Index stride) {
@@ -162,7 +173,7 @@ class ExplicitStepper final : public StepperBase {
   // all of its outputs). Every stage's physical Q is checked before the gradient is called, so q
   // after the step is finite (the last stage's, or the state's); p is the last kick's.
   template <bool kKahan>
-  void passes(long& evaluations) {
+  void passes(Counts& evaluations) {
     if constexpr (kFixed) {
       Values v{Fixed(state_.q), Fixed(state_.p), Fixed::Zero(), Fixed::Zero()};
       if (kKahan) v.eq = Fixed(state_.eq), v.ep = Fixed(state_.ep);
@@ -183,7 +194,7 @@ class ExplicitStepper final : public StepperBase {
   // G_ for FSAL: no pass reloads what the last one stored. Returns the non-finite bits of the
   // last kick's p (arrays; with Values 0: they are checked whole).
   template <bool kKahan, class S>
-  EIGEN_ALWAYS_INLINE std::uint64_t stages(const S& start, S& to, long& evaluations) {
+  EIGEN_ALWAYS_INLINE std::uint64_t stages(const S& start, S& to, Counts& evaluations) {
     const S* from = &start;
     const bool reuse = fsal_ && have_history_;  // (stage 1's force; its flow never moves)
     const int first = pending_ ? flows_.merged(method_) : 0;
@@ -196,7 +207,7 @@ class ExplicitStepper final : public StepperBase {
     PassBits bits;
     for (int i = 0; i < s_; ++i) {
       const bool reused = i == 0 && reuse;
-      const double hd = h_ * method_.table().d[i];  // (reused: d_1 on the last gradient)
+      const double hd = h_ * (reused ? *fsal_ : kicks_.weight(i));
       const Scalar* g = reused ? G_last_ : evaluate(&from->q[0], staged, i, evaluations);
       staged = i + 1 < s_ && flows_.moves(i + 1);
       if (staged)
@@ -313,9 +324,10 @@ class ExplicitStepper final : public StepperBase {
   }
 
   // The force at the stage q (eigen coordinates; already in Q_ when have_Q), evaluated in
-  // physical coordinates: in eigen coordinates in G_, or (identity basis) in g_.
+  // physical coordinates: in eigen coordinates in G_, or (identity basis) in g_. A modified
+  // kick's force is d_i g + h^2 e_i G.
   EIGEN_ALWAYS_INLINE const Scalar* evaluate(const Scalar* q, bool have_Q, int i,
-                                             long& evaluations) {
+                                             Counts& evaluations) {
     if constexpr (kIdentity) {
       if (!have_Q) std::copy_n(q, n(), Q_.data());
     } else if constexpr (kStaged) {
@@ -326,12 +338,16 @@ class ExplicitStepper final : public StepperBase {
     } else {
       transform_.inverse(ConstMap(q, m_), Q_);
     }
-    checked_gradient<D>(system_, Q_, g_, d_, i, place_, evaluations, kFixed);  // (arrays: the
-                                                                               // kick checks g)
+    // (With arrays the kick checks the force; a modified one's g is checked before G(Q, g).)
+    checked_gradient<D>(system_, Q_, g_, d_, i, place_, evaluations.gradients,
+                        kFixed || kicks_.h2e(i) != 0);
     if (rkn_) {
       M_.apply(Q_, Mq_);
       g_ += Mq_;
     }
+    if (kicks_.h2e(i) != 0)
+      modified_.apply<D>(system_, Q_, method_.table().d[i], kicks_.h2e(i), g_, i, place_,
+                         evaluations.products);
     if constexpr (kIdentity) {
       return g_.data();
     } else {
@@ -379,7 +395,8 @@ class ExplicitStepper final : public StepperBase {
   System system_;
   bool kahan_, rkn_;
   int s_;
-  bool fsal_;
+  KickWeights kicks_;
+  std::optional<double> fsal_;  // the first kick's weight on the last force (FSAL), if reused
   Eigen::Index d_;
   double h_;  // (the kicks' h d_i are formed as they are used)
   FlowCoefficients<Coef> flows_;
@@ -393,6 +410,7 @@ class ExplicitStepper final : public StepperBase {
   Scalar *G_, *G_last_;
   State work_;                  // (dynamic dimension only)
   Eigen::VectorXd Q_, g_, Mq_;  // physical coordinates (Q_, g_ go to the callback)
+  ModifiedForce modified_;
   bool have_history_ = false;
   bool pending_ = false;  // the stored state awaits flow s (the last of the step)
   StepPlace place_{&method_, 0, 0};

@@ -12,6 +12,7 @@
 #include "erkn/error.hpp"
 #include "explicit_stepper.hpp"
 #include "format.hpp"
+#include "modified_force.hpp"
 #include "step_size_check.hpp"
 #include "stepper.hpp"
 #include "transforms.hpp"
@@ -78,6 +79,8 @@ std::unique_ptr<detail::StepperBase> make_stepper(const Method& method, System s
   const Stiffness M = system.M;  // (system is moved into the stepper)
   const Eigen::VectorXd& lambda = M.eigenvalues();
   const bool x = explicit_stages(method);
+  if (method.has_modified_kicks() && !x)  // (Method::add refuses such tables)
+    throw Error(std::string(method.name()) + ": modified kicks in an implicit method");
   if (method.kind() == Kind::rkn)
     return stepper_of<IdentityTransform, double>(x, d, method, std::move(system), h, options,
                                                  IdentityTransform{}, Eigen::VectorXd::Zero(1));
@@ -131,13 +134,14 @@ Integrator::Integrator(const Method& method, System system, double h, const Eige
   validate(options);
   require_state(system, q0, p0);
   if (!system.gradient) throw Error("System::gradient is not set");
+  detail::require_modified_force(method, system);
   if (options.energy_tolerance > 0 && !system.potential)
     throw Error("Options::energy_tolerance (the energy monitor) needs System::potential");
   if (options.check_stability) require_advised(method, system, h, q0, p0);
   stepper_ = make_stepper(method, std::move(system), h, options, q0.size());
   q_ = q0;
   p_ = p0;
-  energy_0_ = monitored_energy(q0, p0);
+  monitor_.H_0 = monitored_energy(q0, p0);
   guard_->start(options.blowup_guard);  // (its reference, at the checkpoint: when first needed)
   stepper_->set_state(q_, p_);
   save_checkpoint();
@@ -204,15 +208,15 @@ void Integrator::checked_step(detail::StepperBase& stepper) {
     stepper.step(statistics_.steps + 1, t(), statistics_);
     return;
   }
-  saved_q_ = q(), saved_p_ = p();
+  monitor_.saved_q = q(), monitor_.saved_p = p();
   const Statistics before = statistics_;
   stepper.step(statistics_.steps + 1, t(), statistics_);
   try {
     check_energy(stepper);
   } catch (...) {  // (also an exception from System::potential: the step did not happen)
     statistics_ = before;
-    stepper.set_state(saved_q_, saved_p_);
-    q_.swap(saved_q_), p_.swap(saved_p_);
+    stepper.set_state(monitor_.saved_q, monitor_.saved_p);
+    q_.swap(monitor_.saved_q), p_.swap(monitor_.saved_p);
     stale_ = false;
     throw;
   }
@@ -231,14 +235,14 @@ double Integrator::monitored_energy(const Eigen::VectorXd& q, const Eigen::Vecto
 void Integrator::check_energy(detail::StepperBase& stepper) {
   stepper.get_state(q_, p_);
   stale_ = false;
-  const double H = energy(q_, p_), scale = energy_0_ == 0 ? 1.0 : std::abs(energy_0_);
-  const double drift = std::abs(H - energy_0_) / scale;
+  const double H = energy(q_, p_), scale = monitor_.H_0 == 0 ? 1.0 : std::abs(monitor_.H_0);
+  const double drift = std::abs(H - monitor_.H_0) / scale;
   if (drift <= options_.energy_tolerance) return;  // (false for NaN)
   throw Error("energy monitor: step " + std::to_string(statistics_.steps) +
               " (from t = " + format(t()) + ") gives H = " + format(H) + ", |H - H_0| " +
-              (energy_0_ == 0 ? "= " : "/ |H_0| = ") + format(drift, 3) +
+              (monitor_.H_0 == 0 ? "= " : "/ |H_0| = ") + format(drift, 3) +
               " > Options::energy_tolerance = " + format(options_.energy_tolerance, 3) +
-              " (H_0 = " + format(energy_0_) + "); the state before the step is kept");
+              " (H_0 = " + format(monitor_.H_0) + "); the state before the step is kept");
 }
 
 void Integrator::load_state() const {
@@ -253,7 +257,7 @@ void Integrator::set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p, d
     throw Error("dimension mismatch: the integrator was built for dimension " +
                 std::to_string(q_.size()) + ", the new q has size " + std::to_string(q.size()));
   const TimeGrid grid = grid_.with_start(t);  // (validates t)
-  energy_0_ = monitored_energy(q, p);
+  monitor_.H_0 = monitored_energy(q, p);
   guard_->start(options_.blowup_guard);
   stepper_->set_state(q, p);
   q_ = q;
@@ -286,18 +290,18 @@ TimeGrid::Plan Integrator::prepare_end(double t_end, long every) {
 }
 
 detail::StepperBase& Integrator::stepper_of_size(double h) {
-  if (!short_stepper_ || short_h_ != h) {
+  if (!short_.stepper || short_.h != h) {
     try {
-      short_stepper_ = make_stepper(method_, system(), h, options_, q_.size());
+      short_.stepper = make_stepper(method_, system(), h, options_, q_.size());
     } catch (const Error& e) {
-      short_stepper_.reset();
+      short_.stepper.reset();
       throw Error("a step of size " + format(h, 17) + " (to a time off the grid of h = " +
                   format(grid_.h(), 17) + ") is refused: " + e.what());
     }
-    short_h_ = h;
+    short_.h = h;
   }
-  short_stepper_->set_state(q(), p());  // (its last use started from another state)
-  return *short_stepper_;
+  short_.stepper->set_state(q(), p());  // (its last use started from another state)
+  return *short_.stepper;
 }
 
 void Integrator::step_to(double t_end) {

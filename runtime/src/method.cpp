@@ -44,16 +44,15 @@ const Method& Method::by_name(std::string_view name) {
   throw Error("unknown method '" + std::string(name) + "'; known methods: " + known);
 }
 
-void detail::check_addable(const generated::Table& table, std::span<const double> modified) {
+void detail::check_addable(const generated::Table& table) {
   const std::string name = table.name ? table.name : "";
   if (name.empty() || !table.id || !table.c || !table.d)
     throw Error("method table '" + name + "' lacks its name, id, nodes c or weights d");
-  for (double e : modified)
-    if (e != 0)
-      throw Error(name +
-                  ": modified kicks (e_i != 0, a force-gradient term) are not supported by "
-                  "this runtime: erkn::generated::Table has no modified-kick field and the "
-                  "steppers no kick with grad(|grad U|^2); use a method with plain kicks");
+  if (table.modified && (!table.explicit_method || table.rkn))
+    throw Error(name +
+                ": modified kicks (grad(|grad U|^2)) are integrated by the explicit stepper "
+                "only; this table is " +
+                (table.rkn ? "an RKN limit" : "implicit"));
   if (table.stages < 1 || table.stages > kMaxStages)
     throw Error(name + ": " + std::to_string(table.stages) + " stages; this runtime takes 1.." +
                 std::to_string(kMaxStages) + " (kMaxStages, from erkn's own largest method)");
@@ -65,8 +64,8 @@ void detail::check_addable(const generated::Table& table, std::span<const double
                   std::string(m.name()) + "' is already listed under that name or id");
 }
 
-const Method& Method::add(const generated::Table& table, std::span<const double> modified) {
-  detail::check_addable(table, modified);
+const Method& Method::add(const generated::Table& table) {
+  detail::check_addable(table);
   registry().emplace_back(MethodId(registry().size()), &table);
   return registry().back();
 }
@@ -87,19 +86,24 @@ double Method::pole_within(double v, double tolerance) const {
   return p > 0 && std::abs(v - p) <= tolerance * p ? p : -1.0;
 }
 
-void Method::evaluate(double v, double* b, double* bbar, double* abar) const {
-  if (table_->coefficients) return table_->coefficients(v, b, bbar, abar);
+void detail::explicit_family(const double* c, const double* d, int s, double v, double* b,
+                             double* bbar, double* abar) {
   // The explicit family (docs/design.md): b_i = d_i phi0((1-c_i)^2 v), bbar_i = d_i (1-c_i)
   // phi1((1-c_i)^2 v), abar_ij = d_j (c_i-c_j) phi1((c_i-c_j)^2 v), abar_ii = 0; phi0(w^2 v) =
   // cos(w x), phi1(w^2 v) = sinc(w x), x = sqrt(v), as the emitted functions evaluate them.
-  const double x = std::sqrt(v), *c = table_->c, *d = table_->d;
-  for (int i = 0; i < stages(); ++i) {
+  const double x = std::sqrt(v);
+  for (int i = 0; i < s; ++i) {
     b[i] = d[i] * std::cos(std::abs(1 - c[i]) * x);
     bbar[i] = d[i] * (1 - c[i]) * sinc(std::abs(1 - c[i]) * x);
     for (int j = 0; j < i; ++j)
       abar[i * (i + 1) / 2 + j] = d[j] * (c[i] - c[j]) * sinc(std::abs(c[i] - c[j]) * x);
     abar[i * (i + 1) / 2 + i] = 0.0;
   }
+}
+
+void Method::evaluate(double v, double* b, double* bbar, double* abar) const {
+  if (table_->coefficients) return table_->coefficients(v, b, bbar, abar);
+  detail::explicit_family(table_->c, table_->d, stages(), v, b, bbar, abar);
 }
 
 Coefficients Method::at(double v, double pole_tolerance) const {

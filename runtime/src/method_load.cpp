@@ -26,7 +26,7 @@ struct OwnedTable {
   std::string name, id, reference;
   std::vector<int> generalized;
   std::vector<double> generalized_error_constant;
-  std::vector<double> c, d, modified, series;
+  std::vector<double> c, d, series;
   std::vector<long double> c_long, d_long;  // for the validation
   std::vector<std::string> c_text, d_text, forms;
   std::vector<const char*> c_exact, d_exact, form_ptrs;
@@ -152,10 +152,11 @@ std::unique_ptr<OwnedTable> read_method(const JsonValue& m, const std::string& p
   const int s = integer(m, "stages", where), order = integer(m, "order", where);
   read_numbers(m, "c", where, s, t->c, t->c_long);
   read_numbers(m, "d", where, s, t->d, t->d_long);
-  if (m.has("modified")) {
-    std::vector<long double> ignored;
-    read_numbers(m, "modified", where, s, t->modified, ignored);
-  }
+  if (m.has("modified"))
+    throw Error(where +
+                ": modified kicks: the order check of a method file covers plain kicks only; "
+                "compile a modified-kick method with erkn_add_methods (its order is then the "
+                "generator's certificate)");
   for (const JsonValue& g : m.at("generalized_order", where).items)
     t->generalized.push_back(std::atoi(g.text.c_str()));
   t->c_text = strings(m, "c_exact"), t->d_text = strings(m, "d_exact");
@@ -187,7 +188,7 @@ std::vector<Method> Method::load(const std::string& path) {
   std::set<std::string> names;
   for (const JsonValue& m : list.items) {
     tables.push_back(read_method(m, path));
-    detail::check_addable(tables.back()->table, tables.back()->modified);
+    detail::check_addable(tables.back()->table);
     const OwnedTable& t = *tables.back();
     if (names.count(t.name) || names.count(t.id))
       throw Error(path + ": method '" + t.name + "' is listed twice");
@@ -196,7 +197,7 @@ std::vector<Method> Method::load(const std::string& path) {
   std::vector<Method> out;
   for (auto& t : tables) {
     owned.push_back(std::move(t));
-    out.push_back(add(owned.back()->table, owned.back()->modified));
+    out.push_back(add(owned.back()->table));
   }
   return out;
 }

@@ -5,6 +5,7 @@
 
 #include "erkn/error.hpp"
 #include "format.hpp"
+#include "method_registry.hpp"
 #include "phi.hpp"
 #include "stage_phases.hpp"
 
@@ -39,11 +40,34 @@ StagePhases stage_phases(const Method& method, const Coefficients& k, double V) 
     ph.x0[i] = detail::phi0(c * c * ph.v), ph.y0[i] = c * detail::phi1(c * c * ph.v);
   }
   ph.p0 = detail::phi0(ph.v), ph.p1 = detail::phi1(ph.v);
+  if (method.has_modified_kicks()) {
+    ph.modified = true, ph.unit.s = k.s;
+    const std::array<double, kMaxStages> ones = [] {
+      std::array<double, kMaxStages> x;
+      x.fill(1.0);
+      return x;
+    }();
+    explicit_family(k.c.data(), ones.data(), k.s, ph.v, ph.unit.b.data(), ph.unit.bbar.data(),
+                    ph.unit.abar_packed.data());
+    for (int i = 0; i < k.s; ++i) ph.d[i] = method.table().d[i], ph.e[i] = method.modified()[i];
+  }
   return ph;
 }
 
+// The coefficients of a modified-kick method at z: column j's per-unit values times d_j + 2 z e_j.
+Coefficients modified_coefficients(const StagePhases& ph, double z) {
+  Coefficients k = ph.unit;
+  for (int j = 0; j < k.s; ++j) {
+    const double w = ph.d[j] + 2 * z * ph.e[j];
+    k.b[j] *= w, k.bbar[j] *= w;
+    for (int i = j; i < k.s; ++i) k.abar_packed[i * (i + 1) / 2 + j] *= w;
+  }
+  return k;
+}
+
 StabilityMatrix stability_matrix(const StagePhases& ph, double z) {
-  const Coefficients& k = *ph.k;
+  const Coefficients modified = ph.modified ? modified_coefficients(ph, z) : Coefficients{};
+  const Coefficients& k = ph.modified ? modified : *ph.k;
   const double v = ph.v, w = ph.rkn ? ph.V + z : z;
   const int s = k.s;
   // x = N^-1 phi0(c^2 v), y = N^-1 (c phi1(c^2 v)), N = I + w Abar lower triangular.

@@ -14,16 +14,18 @@ void non_finite_stage(int i, const StepPlace& at) {
               "state is unchanged");
 }
 
-void gradient_of_wrong_size(Eigen::VectorXd& g, Eigen::Index d, int i, const StepPlace& at) {
+void gradient_of_wrong_size(Eigen::VectorXd& g, Eigen::Index d, int i, const StepPlace& at,
+                            const char* callback) {
   const Eigen::Index got = g.size();
   g.resize(d);
-  throw Error("the gradient callback returned a vector of size " + std::to_string(got) +
-              " for q of size " + std::to_string(d) + " (step " + std::to_string(at.step) +
-              ", stage " + std::to_string(i + 1) + "); the state is unchanged");
+  throw Error("the " + std::string(callback) + " callback returned a vector of size " +
+              std::to_string(got) + " for q of size " + std::to_string(d) + " (step " +
+              std::to_string(at.step) + ", stage " + std::to_string(i + 1) +
+              "); the state is unchanged");
 }
 
-void non_finite_gradient(int i, const StepPlace& at) {
-  throw Error("the gradient callback returned a non-finite value at step " +
+void non_finite_gradient(int i, const StepPlace& at, const char* callback) {
+  throw Error("the " + std::string(callback) + " callback returned a non-finite value at step " +
               std::to_string(at.step) + " (t = " + format(at.t) + "), stage " +
               std::to_string(i + 1) + "; the state is unchanged");
 }

@@ -40,9 +40,11 @@ inline bool all_finite(const std::complex<double>* x, Eigen::Index n) {
 
 // The errors (stage_checks.cpp: out of line, so the checks inline into the step).
 [[noreturn]] void non_finite_stage(int i, const StepPlace& at);
+// (callback: the System member that returned g.)
 [[noreturn]] void gradient_of_wrong_size(Eigen::VectorXd& g, Eigen::Index d, int i,
-                                         const StepPlace& at);
-[[noreturn]] void non_finite_gradient(int i, const StepPlace& at);
+                                         const StepPlace& at, const char* callback = "gradient");
+[[noreturn]] void non_finite_gradient(int i, const StepPlace& at,
+                                      const char* callback = "gradient");
 /// A step whose q_{n+1} (or else p_{n+1}) is not finite.
 [[noreturn]] void non_finite_result(bool q_ok, const StepPlace& at);
 

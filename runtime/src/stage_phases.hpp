@@ -15,6 +15,12 @@ struct StagePhases {
   bool rkn = false;
   std::array<double, kMaxStages> x0{}, y0{};  // phi0(c_i^2 v), c_i phi1(c_i^2 v)
   double p0 = 1, p1 = 1;                      // phi0(v), phi1(v)
+  // Modified kicks: for U = eps q^2/2, G = 2 eps^2 q, so stage j kicks with the weight
+  // d_j + 2 z e_j (z = h^2 eps) where a plain kick has d_j; every coefficient of column j is
+  // d_j times its value per unit weight (`unit`, the explicit family with d = 1).
+  bool modified = false;
+  Coefficients unit;
+  std::array<double, kMaxStages> d{}, e{};
 };
 
 /// The phi values of S(V, .) for a method whose coefficients `k` are evaluated at V (ERKN) or 0

@@ -120,6 +120,8 @@ struct WaveGrid {
     const double dx = 1.0 / (n + 1);
     s.M = Stiffness::grid({{n, dx, B::dirichlet}});
     s.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = q.array().cube(); };
+    s.hessian_vector_product = [](const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                  Eigen::VectorXd& hv) { hv = 3 * q.array().square() * v.array(); };
     s.potential = [](const Eigen::VectorXd& q) { return 0.25 * q.array().pow(4).sum(); };
     q0.resize(n), p0 = Eigen::VectorXd::Zero(n);
     for (int i = 0; i < n; ++i)

@@ -21,6 +21,7 @@ Integrator oscillator(const Method& m, double h) {
   System s;
   s.M = Stiffness::scalar(4);
   s.gradient = [](const Vec&, Vec& g) { g.setZero(); };
+  s.hessian_vector_product = [](const Vec&, const Vec& v, Vec& hv) { hv.setZero(v.size()); };
   return Integrator(m, s, h, Vec::Constant(1, 1.0), Vec::Zero(1));
 }
 

@@ -10,6 +10,8 @@ System free_system(const Stiffness& M) {
   System s;
   s.M = M;
   s.gradient = [](const Eigen::VectorXd&, Eigen::VectorXd& g) { g.setZero(); };
+  s.hessian_vector_product = [](const Eigen::VectorXd&, const Eigen::VectorXd& v,
+                                Eigen::VectorXd& hv) { hv.setZero(v.size()); };
   return s;
 }
 

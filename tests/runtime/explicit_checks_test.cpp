@@ -51,7 +51,7 @@ std::vector<Method> explicit_methods() {
 }
 
 // sin q, whose `fault` replaces entry 0 of the gradient at call number `at` (1-based, counted
-// from `counting` on).
+// from `counting` on); hessian-vector products for the modified kicks.
 struct Faulty {
   double fault = 0;
   long at = 0, calls = 0;
@@ -62,6 +62,10 @@ struct Faulty {
     s.gradient = [this](const Eigen::VectorXd& q, Eigen::VectorXd& g) {
       g = q.array().sin().matrix();
       if (counting && ++calls == at) g[0] = fault;
+    };
+    s.hessian_vector_product = [](const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                  Eigen::VectorXd& hv) {
+      hv = (q.array().cos() * v.array()).matrix();
     };
     return s;
   }
@@ -154,6 +158,8 @@ TEST(ExplicitChecks, OverflowingStageIsRefusedBeforeTheGradient) {
         if (!q.allFinite()) throw Error("the gradient was called with a non-finite q");
         g.setZero(q.size());
       };
+      s.hessian_vector_product = [](const Eigen::VectorXd&, const Eigen::VectorXd& v,
+                                    Eigen::VectorXd& hv) { hv.setZero(v.size()); };
       const Eigen::VectorXd big = Eigen::VectorXd::Constant(d, 1.79e308);
       Options unguarded;  // (the guard would stop first: the state's energy overflows)
       unguarded.blowup_guard = false;

@@ -87,6 +87,12 @@ System quartic(const Stiffness& M) {
     g = q.array().cube();
     for (Eigen::Index i = 0; i + 1 < q.size(); ++i) g[i] += 0.3 * q[i + 1], g[i + 1] += 0.3 * q[i];
   };
+  s.hessian_vector_product = [](const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                Eigen::VectorXd& hv) {
+    hv = 3 * q.array().square() * v.array();
+    for (Eigen::Index i = 0; i + 1 < q.size(); ++i)
+      hv[i] += 0.3 * v[i + 1], hv[i + 1] += 0.3 * v[i];
+  };
   s.potential = [](const Eigen::VectorXd& q) {
     double u = 0.25 * q.array().pow(4).sum();
     for (Eigen::Index i = 0; i + 1 < q.size(); ++i) u += 0.3 * q[i] * q[i + 1];

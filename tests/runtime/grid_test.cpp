@@ -161,6 +161,8 @@ TEST(Grid, ErknMethodsAreExactForUZeroAtLargeStepsAndRknLimitsAreNot) {
     System s;
     s.M = M;
     s.gradient = [](const Eigen::VectorXd&, Eigen::VectorXd& g) { g.setZero(); };
+    s.hessian_vector_product = [](const Eigen::VectorXd&, const Eigen::VectorXd& v,
+                                  Eigen::VectorXd& hv) { hv.setZero(v.size()); };
     if (m.kind() == Kind::rkn) {  // negative control: not exact (unstable at h = 0.7), even at
       Integrator run(m, s, 0.01, q0, p0);  // h = 0.01 1e3 times above the ERKN bound below
       for (int n = 0; n < 700; ++n) run.step();
@@ -188,17 +190,24 @@ TEST(Grid, ObservedOrderOfEveryMethodOnAGridIsItsClaimedOrder) {
   const Eigen::VectorXd q0 = random_vector(6, 5), p0 = random_vector(6, 6);
   const Reference ref = long_double_reference(
       M.to_dense(6), [](const VectorLD& x) -> VectorLD { return x.array().sin(); }, q0, p0, {T});
-  EXPECT_LT(ref.accuracy, 1e-15);
+  // A floor 10x below kOrderFloor: on this small grid OMF8(11F11G)'s error falls from 6e-11 to
+  // 2e-13 between T/16 and T/32, before its asymptotic range (local slopes 8.25, 8.13; 8.05 at
+  // T/23..T/45 with this floor). The reference (accuracy 1.5e-16) stays 50 times below it: a
+  // relative error of 2 % at the floor, about 0.03 in a slope fitted over a factor 2 in h.
+  constexpr double floor = kOrderFloor / 10;
+  EXPECT_LT(ref.accuracy, floor / 50);
   Options solved_to_round_off;
   solved_to_round_off.tolerance = 0;
   for (const Method& m : Method::all()) {
     SCOPED_TRACE(std::string(m.name()));
-    const ObservedOrder o = observed_order([&](long n) {
-      Integrator run(m, s, T / double(n), q0, p0, solved_to_round_off);
-      run.integrate(T);
-      return (run.q() - ref.q[0]).norm();
-    });
-    ASSERT_EQ(o.n.size(), 4u);
+    const ObservedOrder o = observed_order(
+        [&](long n) {
+          Integrator run(m, s, T / double(n), q0, p0, solved_to_round_off);
+          run.integrate(T);
+          return (run.q() - ref.q[0]).norm();
+        },
+        floor);
+    ASSERT_GE(o.n.size(), 3u);
     std::printf("%-14s certified order %d: observed on a grid %.3f (h = T/%ld..T/%ld)\n",
                 std::string(m.name()).c_str(), m.order(), o.slope, o.n.front(), o.n.back());
     EXPECT_NEAR(o.slope, m.order(), 0.15);

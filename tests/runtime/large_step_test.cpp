@@ -95,6 +95,8 @@ System free_system(const Eigen::VectorXd& lambda) {
   System s;
   s.M = Stiffness::diagonal(lambda);
   s.gradient = [](const Eigen::VectorXd&, Eigen::VectorXd& g) { g.setZero(); };
+  s.hessian_vector_product = [](const Eigen::VectorXd&, const Eigen::VectorXd& v,
+                                Eigen::VectorXd& hv) { hv.setZero(v.size()); };
   return s;
 }
 

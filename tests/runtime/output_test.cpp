@@ -155,7 +155,7 @@ TEST(Output, OutputBetweenGridPointsHasTheOrderOfTheMethod) {
       return err;
     };
     const ObservedOrder o = observed_order(error_at);
-    ASSERT_EQ(o.n.size(), 4u);
+    ASSERT_GE(o.n.size(), 3u);
     std::vector<double> y_hold;
     for (long n : o.n) y_hold.push_back(hold.at(n));
     std::printf(

@@ -136,6 +136,8 @@ TEST(Reliability, NonFiniteResultIsAnErrorNamingTheStep) {
       g.setConstant(huge ? std::numeric_limits<double>::max() : 0.0);
       g += 0 * q;
     };
+    s.hessian_vector_product = [](const Eigen::VectorXd&, const Eigen::VectorXd& v,
+                                  Eigen::VectorXd& hv) { hv.setZero(v.size()); };
     Integrator run(m, s, 1.0, kQ, kP);
     run.step();
     const Eigen::VectorXd q = run.q(), p = run.p();
@@ -159,6 +161,8 @@ TEST(Reliability, NonFiniteStageIsAnErrorNamingTheStep) {
     System s;
     s.M = Stiffness::scalar(1.0);
     s.gradient = [](const Eigen::VectorXd&, Eigen::VectorXd& g) { g.setZero(); };
+    s.hessian_vector_product = [](const Eigen::VectorXd&, const Eigen::VectorXd& v,
+                                  Eigen::VectorXd& hv) { hv.setZero(v.size()); };
     const Eigen::VectorXd big = Eigen::VectorXd::Constant(2, 1.5e308);
     Integrator run(m, s, 1.0, big, big);
     const std::string message = error_of([&] { run.step(); });

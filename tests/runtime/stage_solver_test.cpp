@@ -246,6 +246,8 @@ TEST(StageSolver, CompensatedSummationRemovesTheRoundOffOfManySmallIncrements) {
   System s;
   s.M = Stiffness::scalar(0);
   s.gradient = [](const Eigen::VectorXd&, Eigen::VectorXd& g) { g.setZero(); };
+  s.hessian_vector_product = [](const Eigen::VectorXd&, const Eigen::VectorXd& v,
+                                Eigen::VectorXd& hv) { hv.setZero(v.size()); };
   const long n = 200000;
   const double h = 1e-3, q0 = 1, p0 = 0.1234567;
   const long double exact = (long double)q0 + (long double)n * h * p0;

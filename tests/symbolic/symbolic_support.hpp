@@ -74,8 +74,10 @@ struct Method {
   bool negligible(const Qs& r) const;
 };
 std::vector<std::string> coefficient_names(int s);
-/// Every method of the tables that is not an RKN limit (implicit and explicit ERKN), in table
-/// order.
+/// Every method of the tables that is not an RKN limit (implicit and explicit ERKN) and has plain
+/// kicks, in table order. The conditions here are the paper's, whose stages kick with grad U
+/// alone; the modified kicks' trees are certified by the generator (certify.hpp) and tested in
+/// tests/generator/modified_kick_test.cpp.
 std::vector<Method> erkn_methods();
 /// Any method of the table (ERKN or RKN limit) by name.
 Method find_method(const std::string& name);

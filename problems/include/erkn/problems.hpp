@@ -35,6 +35,8 @@ struct Potential {
   std::function<void(const Vec& q, Vec& grad)> grad_u;
   std::function<double(const Vec& q)> potential;
   std::function<Eigen::MatrixXd(const Vec& q)> hessian_u;
+  /// hv = Hess U(q) v in closed form (modified kicks form grad(|grad U|^2) = 2 Hess U grad U).
+  std::function<void(const Vec& q, const Vec& v, Vec& hv)> hessian_vector_u;
 };
 
 /// U = -kappa sum_i cos q_i (sine-Gordon: grad U = kappa sin q).
@@ -58,6 +60,9 @@ struct Problem {
   std::function<void(const Vec& q, Vec& grad)> grad_u;
   std::function<double(const Vec& q)> potential;
   std::function<Eigen::MatrixXd(const Vec& q)> hessian_u;
+  /// hv = Hess U(q) v in closed form (every problem has one: the grids too), for the modified
+  /// force grad(|grad U|^2) = 2 Hess U grad U of modified-kick methods.
+  std::function<void(const Vec& q, const Vec& v, Vec& hv)> hessian_vector_u;
   /// Full force -Mq - grad U(q) in long double, for the reference solution.
   std::function<void(const VecLD& q, VecLD& force)> force_ld;
   /// Exact q(t), where known.
@@ -109,7 +114,8 @@ std::vector<Invariant> invariants(const Problem& p);
 
 /// M in the runtime's form (scalar, diagonal, circulant).
 Stiffness stiffness(const LinearPart& m);
-/// The problem as the runtime's System: M, gradient, potential and Hessian.
+/// The problem as the runtime's System: M, gradient, potential, Hessian (where the problem has
+/// one) and Hessian-vector product.
 System system(const Problem& p);
 
 }  // namespace erkn::problems

@@ -1,10 +1,10 @@
 // erkn: diagonal implicit symplectic extended RKN (ERKN) integrators for q'' + M q = -grad U(q).
 //
 // One header for everything: methods (erkn/method.hpp), the matrix M in its cheapest exact form
-// (erkn/stiffness.hpp), the system (erkn/system.hpp), the integrator (erkn/integrator.hpp), many
-// trajectories on threads (erkn/ensemble.hpp) and the one exception type erkn::Error
-// (erkn/error.hpp). A complete program (sine-Gordon, problem 1 of the paper; link with
-// erkn::runtime):
+// (erkn/stiffness.hpp), the system (erkn/system.hpp), the integrator (erkn/integrator.hpp), events
+// along a run (erkn/events.hpp), many trajectories on threads (erkn/ensemble.hpp) and the one
+// exception type erkn::Error (erkn/error.hpp). A complete program (sine-Gordon, problem 1 of the
+// paper; link with erkn::runtime):
 //
 //   #include <cmath>
 //   #include <cstdio>
@@ -37,6 +37,7 @@
 #include "erkn/advisor.hpp"
 #include "erkn/ensemble.hpp"
 #include "erkn/error.hpp"
+#include "erkn/events.hpp"
 #include "erkn/integrator.hpp"
 #include "erkn/method.hpp"
 #include "erkn/stiffness.hpp"

@@ -80,11 +80,14 @@ struct Statistics {
   long steps = 0;                 ///< accepted steps
   long gradient_evaluations = 0;  ///< calls of System::gradient (incl. finite differences)
   long hessian_evaluations = 0;   ///< calls of System::hessian
-  long stage_iterations = 0;      ///< fixed-point plus Newton iterations, over all stages
-  long newton_fallbacks = 0;      ///< stages that fixed point could not solve
-  long newton_iterations = 0;     ///< Newton iterations, over all fallbacks
-  long state_loads = 0;  ///< transforms of the state back to physical coordinates after steps
-  double wall_time = 0;  ///< seconds (steady clock) spent in integrate() and step(n) calls
+  /// modified forces grad(|grad U|^2) formed (modified kicks): calls of
+  /// System::hessian_vector_product (or of System::hessian, also counted there, without it)
+  long hessian_vector_products = 0;
+  long stage_iterations = 0;   ///< fixed-point plus Newton iterations, over all stages
+  long newton_fallbacks = 0;   ///< stages that fixed point could not solve
+  long newton_iterations = 0;  ///< Newton iterations, over all fallbacks
+  long state_loads = 0;        ///< transforms of the state back to physical coordinates after steps
+  double wall_time = 0;        ///< seconds (steady clock) spent in integrate() and step(n) calls
   /// CPU seconds of the calling thread there (callbacks included). A call of less than
   /// Integrator::kCpuClockWork steps x dimension counts its wall time instead until it has lasted
   /// Integrator::kCpuClockDelay (0.1 ms) at an observer call, and reads the thread CPU clock from
@@ -213,8 +216,10 @@ class Integrator {
   std::unique_ptr<detail::StepperBase> stepper_;
   // The stepper of the last step size other than h (a shorter last step, state_at), reused
   // while that size recurs.
-  std::unique_ptr<detail::StepperBase> short_stepper_;
-  double short_h_ = 0;
+  struct ShortStepper {
+    std::unique_ptr<detail::StepperBase> stepper;
+    double h = 0;
+  } short_;
 
   // Adds the wall and CPU time of its lifetime to statistics_ unless an outer Timer (a nested
   // integrate call) already does; a nested one reads no clock. A call of `steps` steps reads the
@@ -244,8 +249,10 @@ class Integrator {
   detail::StepperBase& stepper_of_size(double h);
   void step_to(double t_end);
   // Energy monitor (Options::energy_tolerance > 0): H_0 and the state before the current step.
-  double energy_0_ = 0;
-  Eigen::VectorXd saved_q_, saved_p_;
+  struct EnergyMonitor {
+    double H_0 = 0;
+    Eigen::VectorXd saved_q, saved_p;
+  } monitor_;
   void checked_step(detail::StepperBase& stepper);  // rolls back statistics, energy monitor
   double monitored_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& p) const;
   void check_energy(detail::StepperBase& stepper);

@@ -46,17 +46,17 @@ class Method {
   static const std::deque<Method>& all();
 
   /// Adds a method defined outside erkn's tables (the source erkn_add_methods compiles calls it
-  /// at program start). `table` and what it points to must outlive the program. `modified`: the
-  /// modified-kick coefficients e_1..e_s (empty: plain kicks). Throws erkn::Error, adding
-  /// nothing, for a name or id already listed, stages outside 1..kMaxStages, an implicit table
-  /// without its coefficient function, or modified kicks (the runtime has no modified force).
+  /// at program start). `table` and what it points to must outlive the program. Throws
+  /// erkn::Error, adding nothing, for a name or id already listed, stages outside 1..kMaxStages,
+  /// an implicit table without its coefficient function, or modified kicks in an implicit table.
   /// Not thread-safe: add methods before other threads look methods up.
-  static const Method& add(const generated::Table& table, std::span<const double> modified = {});
+  static const Method& add(const generated::Table& table);
   /// Reads a method file written by `erkn-generate --json` (explicit methods: constant
   /// coefficients), checks the orders each method claims against the order conditions
   /// (order_conditions.hpp, long double) and adds the methods. Throws erkn::Error, adding none
   /// of the file's methods, for an unreadable or malformed file, a failing condition (named, with
-  /// its residual), modified kicks, a kind other than explicit, or a name already listed.
+  /// its residual), modified kicks (their order conditions are the generator's: compile such
+  /// methods with erkn_add_methods), a kind other than explicit, or a name already listed.
   static std::vector<Method> load(const std::string& path);
 
   MethodId id() const { return id_; }
@@ -68,6 +68,14 @@ class Method {
   Kind kind() const { return table_->rkn ? Kind::rkn : Kind::erkn; }
   /// abar_ii = 0: every stage is explicit (a splitting method: exact linear flow and kicks).
   bool is_explicit() const { return table_->explicit_method; }
+  /// Some stage kicks with grad(|grad U|^2) too (modified kicks, e.g. force-gradient methods
+  /// and correctors): the System needs hessian_vector_product or hessian (erkn/system.hpp).
+  bool has_modified_kicks() const { return table_->modified != nullptr; }
+  /// e_1..e_s: stage i kicks p -= h (d_i grad U + h^2 e_i grad(|grad U|^2)); empty for plain
+  /// kicks.
+  std::span<const double> modified() const {
+    return {table_->modified, has_modified_kicks() ? size_t(stages()) : 0};
+  }
   /// A method of the source paper (Shi, Zhang & Wang) or its V -> 0 limit: the spec's `section`.
   bool from_paper() const { return table_->paper; }
   /// "erkn", "explicit" or "rkn" (the spec's kind; explicit methods are erkn methods).

@@ -40,6 +40,10 @@ struct Table {
   const char* const* closed_forms;  ///< [ncoef] closed forms, GiNaC syntax in v and phi(j,w*v)
   const double* poles;              ///< real poles in (0, kPoleSearchMax], ascending
   int npoles;
+  /// Modified kicks (explicit methods only): e_1..e_s, stage i kicks
+  /// p -= h (d_i grad U + h^2 e_i G), G = grad(|grad U|^2) = 2 Hess(U) grad U (methods.spec's
+  /// `modified`); nullptr for plain kicks.
+  const double* modified = nullptr;
 };
 
 /// All methods, in the order of methods.def.
