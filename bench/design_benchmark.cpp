@@ -75,7 +75,7 @@ Way peer_way(const Scene& s, const erkn::Method& m, std::shared_ptr<Basis> basis
 template <class Basis, class Gradient>
 void add_peers(std::vector<Way>& ways, const Scene& s, std::shared_ptr<Basis> basis, Gradient g) {
   for (const erkn::Method& m : erkn::Method::all())
-    if (m.is_explicit() && !m.has_modified_kicks())  // (the loop kicks with grad U only)
+    if (m.is_explicit() && !m.has_modified_kicks() && !m.is_processed())  // (grad U kicks)
       ways.push_back(peer_way(s, m, basis, g));
 }
 

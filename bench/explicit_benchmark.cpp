@@ -43,7 +43,8 @@ using bench::time_batches;
 std::vector<erkn::Method> explicit_methods() {
   std::vector<erkn::Method> out;
   for (const erkn::Method& m : erkn::Method::all())
-    if (m.is_explicit() && !m.has_modified_kicks()) out.push_back(m);  // (the peer's kicks)
+    if (m.is_explicit() && !m.has_modified_kicks() && !m.is_processed())
+      out.push_back(m);  // (the peer's kicks, no processor)
   return out;
 }
 

@@ -41,8 +41,9 @@ std::vector<erkn::Method> implicit_methods() {
 erkn::Method peer_method() {
   const erkn::Method* best = nullptr;
   for (const erkn::Method& m : erkn::Method::all())
-    if (m.is_explicit() && !m.has_modified_kicks() && (!best || m.stages() > best->stages()))
-      best = &m;  // (the peer kicks with grad U only)
+    if (m.is_explicit() && !m.has_modified_kicks() && !m.is_processed() &&
+        (!best || m.stages() > best->stages()))
+      best = &m;  // (the peer kicks with grad U only, without a processor)
   if (!best) throw erkn::Error("the registry has no explicit method for the peer");
   return *best;
 }

@@ -122,8 +122,9 @@ void measure_scene(const Scene& s, const Basis& basis, Gradient g, const Config&
                    Results& out) {
   const erkn::System sys = erkn::problems::system(s.problem);
   for (const erkn::Method& m : erkn::Method::all())
-    // (The peer kicks with grad U only: methods with modified kicks have no peer here.)
-    if (m.is_explicit() && !m.has_modified_kicks() &&
+    // (The peer kicks with grad U only and has no processor: methods with modified kicks or a
+    // processor have no peer here.)
+    if (m.is_explicit() && !m.has_modified_kicks() && !m.is_processed() &&
         (cfg.method.empty() || cfg.method == m.name())) {
       out.cells.push_back(measure_cell(s, m, basis, g, sys, cfg.plan()));
       std::fprintf(stderr, ".");

@@ -44,7 +44,8 @@ inline StepsCheck steps_to_target() {
   out.reference_accuracy = (peer_q(best, 2048) - ref).lpNorm<Eigen::Infinity>();
   const erkn::System sys = erkn::problems::system(p);
   for (const erkn::Method& m : erkn::Method::all()) {
-    if (!m.is_explicit() || m.has_modified_kicks()) continue;  // (the peer's kicks: grad U)
+    if (!m.is_explicit() || m.has_modified_kicks() || m.is_processed())
+      continue;  // (the peer's kicks: grad U, no processor)
     StepsCell c{std::string(m.name())};
     for (int k = 0; c.peer_steps == 0; ++k) {
       const long n = std::lround(8 * std::pow(2.0, k / 2.0));

@@ -21,7 +21,8 @@ namespace problems = erkn::problems;
 std::vector<Method> explicit_methods() {
   std::vector<Method> out;
   for (const Method& m : Method::all())
-    if (m.is_explicit() && !m.has_modified_kicks()) out.push_back(m);  // (the peer: grad U kicks)
+    if (m.is_explicit() && !m.has_modified_kicks() && !m.is_processed())
+      out.push_back(m);  // (the peer: grad U kicks, no processor)
   return out;
 }
 

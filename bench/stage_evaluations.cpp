@@ -1,10 +1,10 @@
-// Gradient evaluations per implicit stage solve on the paper's problems P1-P3 (docs/design.md section
-// 4), for every implicit method of the registry, at the step sizes that reach the errors 1e-6 and
-// 1e-9 at t_error: the step count is doubled from the paper's smallest until the max-norm error of
-// q(t_error) against the experiments' reference is below the tolerance. Default Options (stage
-// tolerance near round-off); "newton" counts the stages the fixed-point iteration left to Newton;
-// "vs tol 0" is max |q - q'| with q' from the same run with Options::tolerance = 0 (every stage
-// iterated to round-off): what the stage solver's stopping adds to the error. The last two
+// Gradient evaluations per implicit stage solve on the paper's problems P1-P3 (docs/design.md
+// section 4), for every implicit method of the registry, at the step sizes that reach the errors
+// 1e-6 and 1e-9 at t_error: the step count is doubled from the paper's smallest until the max-norm
+// error of q(t_error) against the experiments' reference is below the tolerance. Default Options
+// (stage tolerance near round-off); "newton" counts the stages the fixed-point iteration left to
+// Newton; "vs tol 0" is max |q - q'| with q' from the same run with Options::tolerance = 0 (every
+// stage iterated to round-off): what the stage solver's stopping adds to the error. The last two
 // columns repeat both with the stage tolerance a run of n steps may spend on the target e,
 // Options::tolerance = 1e-2 e / n: a first-iteration stop is proved per stage, and its error is
 // systematic, so it adds up over the steps. The means are over the ERKN methods (Kind::erkn).

@@ -68,7 +68,8 @@ std::string json_constants(std::span<const double> xs) {
 }
 
 // One JSON object per method: name, kind, stages, certified order, generalized order, the
-// error constants, poles, modified-kick coefficients e_i (empty: plain kicks), source, whether
+// error constants, poles, modified-kick coefficients e_i (empty: plain kicks), whether it is
+// processed (psi = pi o K o pi^-1; order is psi's) and its kernel's order, source, whether
 // it is one of the paper's methods, and the id
 // (erkn.methods() has the same).
 void list_json() {
@@ -86,6 +87,8 @@ void list_json() {
               << ", \"generalized_error_constant\": "
               << json_constants(m.generalized_error_constant())
               << ", \"poles\": " << json_list(poles) << ", \"modified\": " << json_list(modified)
+              << ", \"processed\": " << (m.is_processed() ? "true" : "false")
+              << ", \"kernel_order\": " << m.kernel_order()
               << ", \"source\": " << json_string(std::string(m.reference()))
               << ", \"paper\": " << (m.from_paper() ? "true" : "false")
               << ", \"id\": " << json_string(std::string(m.id_name())) << "}";

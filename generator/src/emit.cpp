@@ -101,13 +101,28 @@ std::string closed_form(const Derived& m, int k, bool rkn) {
                              : "(" + r.num.to_string() + ")/(" + r.den.to_string() + ")";
 }
 
+// A processed method's pre-processor pi^-1 (erkn/table.hpp: Table::pre_drift, ...).
+std::string processor_arrays(const Derived& m) {
+  if (m.pre.empty()) return "";
+  auto dbl = [](const Qs& q) { return num(q.to_double()); };
+  std::vector<Qs> modified = m.pre.modified;
+  if (modified.empty()) modified.assign(m.pre.kick.size(), Qs(0));
+  std::vector<Qs> drift = m.pre.drift;
+  if (drift.size() == m.pre.kick.size()) drift.push_back(Qs(0));  // (no last drift)
+  return "// pi^-1: drift pre_drift[k] h, kick pre_kick[k], pre_modified[k], ..., "
+         "drift pre_drift[npre] h\nconstexpr double pre_drift[] = {" +
+         joined(drift, dbl) + "};\nconstexpr double pre_kick[] = {" + joined(m.pre.kick, dbl) +
+         "};\nconstexpr double pre_modified[] = {" + joined(modified, dbl) + "};\n";
+}
+
 std::string node_arrays(const Derived& m) {
   auto dbl = [](const Qs& q) { return num(q.to_double()); };
   auto str = [](const Qs& q) { return quoted(q.to_string()); };
   return "constexpr double c[] = {" + joined(m.c, dbl) + "};\nconstexpr double d[] = {" +
          joined(m.d, dbl) + "};\nconstexpr const char* c_exact[] = {" + joined(m.c, str) +
          "};\nconstexpr const char* d_exact[] = {" + joined(m.d, str) + "};\n" +
-         (m.e.empty() ? "" : "constexpr double modified[] = {" + joined(m.e, dbl) + "};\n") + "\n";
+         (m.e.empty() ? "" : "constexpr double modified[] = {" + joined(m.e, dbl) + "};\n") +
+         processor_arrays(m) + "\n";
 }
 
 std::string closed_forms_array(const Derived& m, bool rkn) {
@@ -236,6 +251,15 @@ std::string method_cpp(const Derived& m, bool rkn) {
          coefficients_function(m, rkn) + "}  // namespace " + id + "\n\n";
 }
 
+// The entries after the poles: modified kicks, then a processed method's processor.
+std::string table_tail(const Derived& m, const std::string& id) {
+  std::string out = m.e.empty() ? "" : ", " + id + "::modified";
+  if (m.pre.empty()) return out;
+  return (m.e.empty() ? ", nullptr" : out) + ",\n     " + id + "::pre_drift, " + id +
+         "::pre_kick, " + id + "::pre_modified, " + std::to_string(m.pre.kick.size()) + ", " +
+         std::to_string(m.kernel_certificate.order);
+}
+
 std::string table_entry(const Derived& m, bool rkn) {
   const std::string name = name_of(m, rkn), id = identifier(name);
   const bool has_poles = !rkn && !all_poles(m).empty();
@@ -253,18 +277,17 @@ std::string table_entry(const Derived& m, bool rkn) {
      << ",\n     " << id << "::c, " << id << "::d, " << id << "::c_exact, " << id << "::d_exact, "
      << id << "::coefficients, " << id << "::series,\n     " << id << "::closed_forms, "
      << (has_poles ? id + "::poles, std::size(" + id + "::poles)" : std::string("nullptr, 0"))
-     << (m.e.empty() ? "" : ", " + id + "::modified") << "},\n";
+     << table_tail(m, id) << "},\n";
   return os.str();
 }
 
 // Every (method, rkn) pair that is emitted, in registry order: the methods, then their limits
-// (methods with modified kicks have none). Processed methods (no processor in the runtime yet)
-// are certified and derived, not emitted.
+// (methods with modified kicks or a processor have none).
 std::vector<std::pair<const Derived*, bool>> registry(const std::vector<Derived>& methods) {
   std::vector<std::pair<const Derived*, bool>> out;
   for (bool rkn : {false, true})
     for (const Derived& m : methods)
-      if ((!rkn || !m.spec.rkn.empty()) && m.pre.empty()) out.emplace_back(&m, rkn);
+      if (!rkn || !m.spec.rkn.empty()) out.emplace_back(&m, rkn);
   return out;
 }
 

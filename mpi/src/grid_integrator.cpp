@@ -194,6 +194,11 @@ GridIntegrator::GridIntegrator(MPI_Comm comm, const Method& method, System syste
                   " has modified kicks (grad(|grad U|^2)), which the distributed integrator "
                   "does not form: use a method with plain kicks (Method::has_modified_kicks() "
                   "false), or erkn::Integrator on one process");
+    if (method.is_processed())
+      throw Error(std::string(method.name()) +
+                  " is processed (psi = pi o K o pi^-1), and the distributed integrator has no "
+                  "processor: use an unprocessed method (Method::is_processed() false), or "
+                  "erkn::Integrator on one process");
     const TimeGrid grid(0, h);  // (validates h, the same on every rank)
     erkn::detail::check_step_size(method, h, system.M.eigenvalues(), options.pole_tolerance);
   });

@@ -39,6 +39,7 @@ py::dict statistics_dict(const Statistics& s) {
   d["newton_fallbacks"] = s.newton_fallbacks;
   d["newton_iterations"] = s.newton_iterations;
   d["state_loads"] = s.state_loads;
+  d["processor_applications"] = s.processor_applications;
   d["wall_time"] = s.wall_time;
   d["cpu_time"] = s.cpu_time;
   return d;

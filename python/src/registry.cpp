@@ -32,6 +32,8 @@ py::dict describe(const Method& m) {
   d["generalized_error_constant"] = generalized_constants;
   d["poles"] = std::vector<double>(m.poles().begin(), m.poles().end());
   d["modified"] = std::vector<double>(m.modified().begin(), m.modified().end());
+  d["processed"] = m.is_processed();  // (psi = pi o K o pi^-1: order is psi's)
+  d["kernel_order"] = m.kernel_order();
   d["source"] = std::string(m.reference());
   d["paper"] = m.from_paper();
   d["id"] = std::string(m.id_name());

@@ -10,6 +10,10 @@
 // once every gradient has been evaluated and the result is finite: a failed step leaves the state
 // unchanged.
 //
+// A processed method (Method::is_processed, processor.hpp) steps its kernel K: set_state applies
+// pi^-1 to the user's state and get_state pi to a copy of the kernel's, each counted in the
+// statistics (Statistics::processor_applications, and their gradients).
+//
 // The last flow of a step and the first of the next are one exact flow (over tau_s + tau_0), so the
 // stored state stays one flow behind: after a step it is the state before flow s, which is
 // pending (pending_). The next step starts with the merged flow; get_state applies the pending
@@ -33,14 +37,17 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <string>
 #include <type_traits>
 #include <utility>
 
+#include "erkn/error.hpp"
 #include "erkn/integrator.hpp"
 #include "explicit_passes.hpp"
 #include "flow_coefficients.hpp"
 #include "m_operator.hpp"
 #include "modified_force.hpp"
+#include "processor.hpp"
 #include "stage_checks.hpp"
 #include "stepper_base.hpp"
 
@@ -104,27 +111,46 @@ class ExplicitStepper final : public StepperBase {
         work_{slot(6), slot(7), slot(8), slot(9)},
         Q_(Eigen::VectorXd::Zero(d)),
         g_(Eigen::VectorXd::Zero(d)),
-        modified_(method.has_modified_kicks() ? d : 0) {
+        modified_(method.has_modified_kicks() || method.is_processed() ? d : 0),
+        processor_(method, h, lambda) {
     if (rkn_) Mq_.resize(d);
+    if (method.is_processed()) pq_.resize(m_), pp_.resize(m_);
   }
 
   ExplicitStepper(const ExplicitStepper&) = delete;  // (the pointers view its own buffer)
   ExplicitStepper& operator=(const ExplicitStepper&) = delete;
 
-  void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p) override {
-    transform_.forward(q, map(state_.q));
-    transform_.forward(p, map(state_.p));
+  void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p, Statistics& stats) override {
+    if (method_.is_processed()) {  // (pi^-1 on a copy: a refused state changes nothing)
+      Counts counts;
+      transform_.forward(q, pq_);
+      transform_.forward(p, pp_);
+      process(pq_.data(), pp_.data(), false, counts);
+      map(state_.q) = pq_, map(state_.p) = pp_;
+      count(counts, stats);
+    } else {
+      transform_.forward(q, map(state_.q));
+      transform_.forward(p, map(state_.p));
+    }
     map(state_.eq).setZero();
     map(state_.ep).setZero();
     have_history_ = false;
     pending_ = false;
   }
 
-  void get_state(Eigen::VectorXd& q, Eigen::VectorXd& p) override {
+  void get_state(Eigen::VectorXd& q, Eigen::VectorXd& p, Statistics& stats) override {
     if (kahan_)
       load<true>(q, p);
     else
       load<false>(q, p);
+    if (!method_.is_processed()) return;
+    Counts counts;  // pi of the kernel's state, in eigen coordinates
+    transform_.forward(q, pq_);
+    transform_.forward(p, pp_);
+    process(pq_.data(), pp_.data(), true, counts);
+    transform_.inverse(pq_, q);
+    transform_.inverse(pp_, p);
+    count(counts, stats);
   }
 
   void step(long step_number, double t, Statistics& stats) override {
@@ -139,10 +165,8 @@ class ExplicitStepper final : public StepperBase {
     have_history_ = true;
     pending_ = flows_.moves(s_);
     ++stats.steps;
-    stats.gradient_evaluations += counts.gradients;
     stats.stage_iterations += counts.gradients;
-    stats.hessian_vector_products += counts.products;
-    if (!system_.hessian_vector_product) stats.hessian_evaluations += counts.products;
+    count(counts, stats);
   }
 
   void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) override { M_.apply(x, y); }
@@ -151,7 +175,63 @@ class ExplicitStepper final : public StepperBase {
  private:
   struct Counts {
     long gradients = 0, products = 0;  // calls of System::gradient, modified forces formed
+    long applications = 0;             // of the processor (pi or pi^-1)
   };
+
+  void count(const Counts& counts, Statistics& stats) const {
+    stats.gradient_evaluations += counts.gradients;
+    stats.hessian_vector_products += counts.products;
+    if (!system_.hessian_vector_product) stats.hessian_evaluations += counts.products;
+    stats.processor_applications += counts.applications;
+  }
+
+  // pi^-1 (backwards = false: the table's pre-sequence drift, kick, ..., drift) or pi (its
+  // exact inverse: the same operations reversed, each negated) on eigen coordinates q, p.
+  void process(Scalar* q, Scalar* p, bool backwards, Counts& counts) {
+    const int m = processor_.kicks();
+    const double sign = backwards ? -1 : 1;
+    try {
+      for (int j = 0; j <= 2 * m; ++j) {
+        const int k = backwards ? 2 * m - j : j;  // (even: drift k/2, odd: kick k/2)
+        if (k % 2 == 0)
+          processor_drift(processor_.drift(k / 2), sign, lanes(q), lanes(p));
+        else
+          processor_kick(k / 2, sign, q, p, counts);
+      }
+    } catch (const Error& e) {
+      std::string what = e.what();  // (without its "erkn: ")
+      if (what.starts_with("erkn: ")) what.erase(0, 6);
+      throw Error(std::string("the processor ") + (backwards ? "pi" : "pi^-1") + " of " +
+                  std::string(method_.name()) + ": " + what);
+    }
+    ++counts.applications;
+  }
+
+  // The exact flow over sign tau of one processor drift (a scalar M: one coefficient for all).
+  void processor_drift(const ProcessorCoefficients::Drift& f, double sign, double* q, double* p) {
+    const bool one = f.cos.size() == 1;
+    for (Eigen::Index e = 0; e < n(); ++e) {
+      const Eigen::Index j = one ? 0 : e;
+      const double c = f.cos[j], sc = sign * f.sinc[j], ms = sign * f.msinc[j];
+      for (int l = 0; l < kLanes; ++l) {
+        const Eigen::Index x = kLanes * e + l;
+        const double q0 = q[x], p0 = p[x];
+        q[x] = c * q0 + sc * p0, p[x] = ms * q0 + c * p0;
+      }
+    }
+  }
+
+  // Processor kick k (sign -1: undone): p -= sign h (y grad U + h^2 v G), or p -= sign h y grad
+  // U when v = 0.
+  void processor_kick(int k, double sign, const Scalar* q, Scalar* p, Counts& counts) {
+    const ProcessorCoefficients::Kick& w = processor_.kick(k);
+    const bool modified = w.h2v != 0;
+    const Scalar* g = force(q, false, k, w.y, w.h2v, counts, true);  // (no pass checks it)
+    const double weight = sign * h_ * (modified ? 1.0 : w.y);
+    double* pl = lanes(p);
+    const double* gl = lanes(g);
+    for (Eigen::Index x = 0; x < kLanes * n(); ++x) pl[x] -= weight * gl[x];
+  }
 
   // (Uninitialised with a dynamic dimension: set_state writes the state, every pass what it
   // reads later.)
@@ -328,6 +408,14 @@ class ExplicitStepper final : public StepperBase {
   // kick's force is d_i g + h^2 e_i G.
   EIGEN_ALWAYS_INLINE const Scalar* evaluate(const Scalar* q, bool have_Q, int i,
                                              Counts& evaluations) {
+    // (With arrays the kick checks the force; a modified one's g is checked before G(Q, g).)
+    return force(q, have_Q, i, method_.table().d[i], kicks_.h2e(i), evaluations,
+                 kFixed || kicks_.h2e(i) != 0);
+  }
+  // The force d_i g + h2e G at q (d_i unused for a plain kick, h2e = 0), as evaluate; g checked
+  // finite when check_g.
+  EIGEN_ALWAYS_INLINE const Scalar* force(const Scalar* q, bool have_Q, int i, double d_i,
+                                          double h2e, Counts& evaluations, bool check_g) {
     if constexpr (kIdentity) {
       if (!have_Q) std::copy_n(q, n(), Q_.data());
     } else if constexpr (kStaged) {
@@ -338,16 +426,12 @@ class ExplicitStepper final : public StepperBase {
     } else {
       transform_.inverse(ConstMap(q, m_), Q_);
     }
-    // (With arrays the kick checks the force; a modified one's g is checked before G(Q, g).)
-    checked_gradient<D>(system_, Q_, g_, d_, i, place_, evaluations.gradients,
-                        kFixed || kicks_.h2e(i) != 0);
+    checked_gradient<D>(system_, Q_, g_, d_, i, place_, evaluations.gradients, check_g);
     if (rkn_) {
       M_.apply(Q_, Mq_);
       g_ += Mq_;
     }
-    if (kicks_.h2e(i) != 0)
-      modified_.apply<D>(system_, Q_, method_.table().d[i], kicks_.h2e(i), g_, i, place_,
-                         evaluations.products);
+    if (h2e != 0) modified_.apply<D>(system_, Q_, d_i, h2e, g_, i, place_, evaluations.products);
     if constexpr (kIdentity) {
       return g_.data();
     } else {
@@ -411,6 +495,8 @@ class ExplicitStepper final : public StepperBase {
   State work_;                  // (dynamic dimension only)
   Eigen::VectorXd Q_, g_, Mq_;  // physical coordinates (Q_, g_ go to the callback)
   ModifiedForce modified_;
+  ProcessorCoefficients processor_;
+  Spectral pq_, pp_;  // the state pi or pi^-1 works on (processed methods)
   bool have_history_ = false;
   bool pending_ = false;  // the stored state awaits flow s (the last of the step)
   StepPlace place_{&method_, 0, 0};

@@ -143,7 +143,7 @@ Integrator::Integrator(const Method& method, System system, double h, const Eige
   p_ = p0;
   monitor_.H_0 = monitored_energy(q0, p0);
   guard_->start(options.blowup_guard);  // (its reference, at the checkpoint: when first needed)
-  stepper_->set_state(q_, p_);
+  stepper_->set_state(q_, p_, statistics_);
   save_checkpoint();
 }
 
@@ -215,7 +215,7 @@ void Integrator::checked_step(detail::StepperBase& stepper) {
     check_energy(stepper);
   } catch (...) {  // (also an exception from System::potential: the step did not happen)
     statistics_ = before;
-    stepper.set_state(monitor_.saved_q, monitor_.saved_p);
+    stepper.set_state(monitor_.saved_q, monitor_.saved_p, statistics_);
     q_.swap(monitor_.saved_q), p_.swap(monitor_.saved_p);
     stale_ = false;
     throw;
@@ -233,7 +233,7 @@ double Integrator::monitored_energy(const Eigen::VectorXd& q, const Eigen::Vecto
 // The energy monitor after a step of `stepper`: beyond the tolerance the step is an error (and
 // checked_step restores the state before it, dropping its compensated-summation errors).
 void Integrator::check_energy(detail::StepperBase& stepper) {
-  stepper.get_state(q_, p_);
+  stepper.get_state(q_, p_, statistics_);
   stale_ = false;
   const double H = energy(q_, p_), scale = monitor_.H_0 == 0 ? 1.0 : std::abs(monitor_.H_0);
   const double drift = std::abs(H - monitor_.H_0) / scale;
@@ -246,7 +246,7 @@ void Integrator::check_energy(detail::StepperBase& stepper) {
 }
 
 void Integrator::load_state() const {
-  stepper_->get_state(q_, p_);
+  stepper_->get_state(q_, p_, statistics_);
   ++statistics_.state_loads;
   stale_ = false;
 }
@@ -259,7 +259,7 @@ void Integrator::set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p, d
   const TimeGrid grid = grid_.with_start(t);  // (validates t)
   monitor_.H_0 = monitored_energy(q, p);
   guard_->start(options_.blowup_guard);
-  stepper_->set_state(q, p);
+  stepper_->set_state(q, p, statistics_);
   q_ = q;
   p_ = p;
   stale_ = false;
@@ -271,7 +271,7 @@ void Integrator::set_step_size(double h) {
   const TimeGrid grid = grid_.with_step(h);  // (validates h)
   if (options_.check_stability) require_advised(method_, system(), h, q(), p());
   auto fresh = make_stepper(method_, system(), h, options_, q_.size());
-  fresh->set_state(q(), p());  // (the summation errors are dropped)
+  fresh->set_state(q(), p(), statistics_);  // (the summation errors are dropped)
   grid_ = grid;
   stepper_ = std::move(fresh);
   if (guard_->pending()) start_guard(guard_->checkpoint().q, guard_->checkpoint().p);
@@ -300,15 +300,15 @@ detail::StepperBase& Integrator::stepper_of_size(double h) {
     }
     short_.h = h;
   }
-  short_.stepper->set_state(q(), p());  // (its last use started from another state)
+  short_.stepper->set_state(q(), p(), statistics_);  // (its last use started from another state)
   return *short_.stepper;
 }
 
 void Integrator::step_to(double t_end) {
   detail::StepperBase& s = stepper_of_size(t_end - t());
   checked_step(s);
-  s.get_state(q_, p_);
-  stepper_->set_state(q_, p_);  // (the next step of h does not follow a step of h)
+  s.get_state(q_, p_, statistics_);
+  stepper_->set_state(q_, p_, statistics_);  // (the next step of h does not follow a step of h)
   grid_.restart(t_end);
   time_resolved_ = grid_.resolved();
   if (guard_->due()) check_guard();
@@ -326,7 +326,7 @@ void Integrator::state_at(double t_out, Eigen::VectorXd& q, Eigen::VectorXd& p) 
   detail::StepperBase& s = stepper_of_size(t_out - t0);
   const long steps = statistics_.steps;
   s.step(steps + 1, t0, statistics_);
-  s.get_state(q, p);
+  s.get_state(q, p, statistics_);
   statistics_.steps = steps;  // (not a step of the trajectory)
 }
 
@@ -403,7 +403,7 @@ void Integrator::check_guard(const char* failure) {
   const double t_now = t();
   const long step_now = statistics_.steps;
   const detail::BlowupGuard::Checkpoint& c = guard_->checkpoint();
-  stepper_->set_state(c.q, c.p);
+  stepper_->set_state(c.q, c.p, statistics_);
   q_ = c.q, p_ = c.p, stale_ = false;
   grid_ = c.grid, statistics_.steps = c.steps;
   std::string message = guard_->message(measure, t_now, step_now, t(), likely_cause());

@@ -53,6 +53,11 @@ void detail::check_addable(const generated::Table& table) {
                 ": modified kicks (grad(|grad U|^2)) are integrated by the explicit stepper "
                 "only; this table is " +
                 (table.rkn ? "an RKN limit" : "implicit"));
+  if (table.npre < 0 ||
+      (table.npre > 0 && (!table.explicit_method || table.rkn || !table.pre_drift ||
+                          !table.pre_kick || !table.pre_modified)))
+    throw Error(name + ": a processor (npre = " + std::to_string(table.npre) +
+                ") needs an explicit table with pre_drift, pre_kick and pre_modified");
   if (table.stages < 1 || table.stages > kMaxStages)
     throw Error(name + ": " + std::to_string(table.stages) + " stages; this runtime takes 1.." +
                 std::to_string(kMaxStages) + " (kMaxStages, from erkn's own largest method)");

@@ -44,7 +44,7 @@ class Stepper final : public StepperBase {
   Stepper(const Stepper&) = delete;  // (the maps view its own buffers)
   Stepper& operator=(const Stepper&) = delete;
 
-  void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p) override {
+  void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p, Statistics&) override {
     space_.forward(q, q_hat_);
     space_.forward(p, p_hat_);
     eq_hat_.setZero();
@@ -52,7 +52,7 @@ class Stepper final : public StepperBase {
     solver_.reset();
   }
 
-  void get_state(Eigen::VectorXd& q, Eigen::VectorXd& p) override {
+  void get_state(Eigen::VectorXd& q, Eigen::VectorXd& p, Statistics&) override {
     space_.inverse(q_hat_, q);
     space_.inverse(p_hat_, p);
   }

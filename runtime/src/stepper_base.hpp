@@ -29,10 +29,12 @@ inline bool explicit_stages(const Method& method) {
 class StepperBase {
  public:
   virtual ~StepperBase() = default;
-  /// Replaces the state; forgets the stage history and the summation errors.
-  virtual void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p) = 0;
-  /// Writes the state in physical coordinates.
-  virtual void get_state(Eigen::VectorXd& q, Eigen::VectorXd& p) = 0;
+  /// Replaces the state; forgets the stage history and the summation errors. A processed method
+  /// applies pi^-1 here (its evaluations counted in stats); on error nothing changes.
+  virtual void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p, Statistics& stats) = 0;
+  /// Writes the state in physical coordinates (a processed method's: pi of the kernel's state,
+  /// counted in stats).
+  virtual void get_state(Eigen::VectorXd& q, Eigen::VectorXd& p, Statistics& stats) = 0;
   /// One step (step_number 1-based and t at its start, for messages), counted into stats; on
   /// error the state and stats are unchanged.
   virtual void step(long step_number, double t, Statistics& stats) = 0;

@@ -145,10 +145,36 @@ TEST(GridMpi, RefusesMethodsWithModifiedKicksNamingThem) {
   EXPECT_GT(refused, 0);
 }
 
+// Processed methods (psi = pi o K o pi^-1): the grid integrator has no processor and refuses
+// them on every rank, naming the method (those with plain kicks: the test above has the others).
+TEST(GridMpi, RefusesProcessedMethodsNamingThem) {
+  const Grid g = grids()[0];
+  const Stiffness M = Stiffness::grid(g.axes, g.shift);
+  Eigen::VectorXd q0, p0;
+  initial(M.dim(), q0, p0);
+  const mpi::Slab slab = mpi::slab(MPI_COMM_WORLD, M);
+  const Eigen::Index offset = slab.size == 0 ? 0 : slab.first * (M.dim() / g.axes[0].n);
+  int refused = 0;
+  for (const Method& method : Method::all()) {
+    if (!method.is_processed() || method.has_modified_kicks()) continue;
+    try {
+      mpi::GridIntegrator run(MPI_COMM_WORLD, method, sine_gordon(M), 0.1,
+                              q0.segment(offset, slab.size), p0.segment(offset, slab.size));
+      ADD_FAILURE() << method.name() << " not refused";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string(method.name()) + " is processed"),
+                std::string::npos)
+          << e.what();
+      ++refused;
+    }
+  }
+  EXPECT_GT(refused, 0);
+}
+
 TEST(GridMpi, AgreesWithTheSingleProcessIntegratorForEveryMethodAndBoundary) {
   for (const Method& method : Method::all())
     for (const Grid& g : grids()) {
-      if (method.has_modified_kicks()) continue;  // (refused: the test above)
+      if (method.has_modified_kicks() || method.is_processed()) continue;  // (refused: above)
       SCOPED_TRACE(std::string(method.name()) + ", grid of " + std::to_string(g.axes.size()) +
                    " axes, " + std::to_string(ranks()) + " ranks");
       const Runs r = run_both(method, g, 0.1, 12);

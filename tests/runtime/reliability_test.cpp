@@ -142,13 +142,17 @@ TEST(Reliability, NonFiniteResultIsAnErrorNamingTheStep) {
     run.step();
     const Eigen::VectorXd q = run.q(), p = run.p();
     huge = true;
-    const std::string message = error_of([&] {
+    std::string message = error_of([&] {
       for (int n = 0; n < 4; ++n) run.step();  // (overflows at once for most methods)
     });
+    // (A processed method's kernel can stay finite where pi, which kicks harder, overflows:
+    // then the state cannot be shown, and q() is the error.)
+    if (message.empty() && m.is_processed()) message = error_of([&] { run.q(); });
     // (Depending on the method the overflow shows in q_{n+1}, in a stage, or in Newton's
     // residual; each names the step.)
     EXPECT_TRUE(std::regex_search(message, std::regex("step [0-9]+.*(finite|residual inf)")))
         << message;
+    if (message.find("the processor pi of") != std::string::npos) continue;
     EXPECT_TRUE(run.q().allFinite());
     EXPECT_TRUE(run.p().allFinite());
   }
@@ -164,6 +168,13 @@ TEST(Reliability, NonFiniteStageIsAnErrorNamingTheStep) {
     s.hessian_vector_product = [](const Eigen::VectorXd&, const Eigen::VectorXd& v,
                                   Eigen::VectorXd& hv) { hv.setZero(v.size()); };
     const Eigen::VectorXd big = Eigen::VectorXd::Constant(2, 1.5e308);
+    if (m.is_processed()) {  // (pi^-1 runs at construction: the state is refused there)
+      const std::string message = error_of([&] { Integrator run(m, s, 1.0, big, big); });
+      EXPECT_CONTAINS(message, "the processor pi^-1 of");
+      EXPECT_CONTAINS(message, "not finite");
+      EXPECT_NO_THROW(Integrator(m, s, 1.0, big / 10, big / 10).step());
+      continue;
+    }
     Integrator run(m, s, 1.0, big, big);
     const std::string message = error_of([&] { run.step(); });
     EXPECT_CONTAINS(message, "step 1");

@@ -87,7 +87,11 @@ struct Statistics {
   long newton_fallbacks = 0;   ///< stages that fixed point could not solve
   long newton_iterations = 0;  ///< Newton iterations, over all fallbacks
   long state_loads = 0;        ///< transforms of the state back to physical coordinates after steps
-  double wall_time = 0;        ///< seconds (steady clock) spent in integrate() and step(n) calls
+  /// Processed methods (Method::is_processed): applications of the processor, pi^-1 when a
+  /// state is set and pi when one is looked at (their gradients and Hessian-vector products are
+  /// in the counts above).
+  long processor_applications = 0;
+  double wall_time = 0;  ///< seconds (steady clock) spent in integrate() and step(n) calls
   /// CPU seconds of the calling thread there (callbacks included). A call of less than
   /// Integrator::kCpuClockWork steps x dimension counts its wall time instead until it has lasted
   /// Integrator::kCpuClockDelay (0.1 ms) at an observer call, and reads the thread CPU clock from

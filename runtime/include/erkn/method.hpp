@@ -76,6 +76,12 @@ class Method {
   std::span<const double> modified() const {
     return {table_->modified, has_modified_kicks() ? size_t(stages()) : 0};
   }
+  /// psi = pi o K o pi^-1 (erkn/table.hpp, Table::pre_drift): the stepper steps the kernel K
+  /// and applies pi^-1 when a state is set, pi to every state it gives out (q(), p(), output
+  /// times, observers, energy()); order() is psi's effective order.
+  bool is_processed() const { return table_->npre > 0; }
+  /// The kernel K's own order (processed methods; else order()).
+  int kernel_order() const { return is_processed() ? table_->kernel_order : order(); }
   /// A method of the source paper (Shi, Zhang & Wang) or its V -> 0 limit: the spec's `section`.
   bool from_paper() const { return table_->paper; }
   /// "erkn", "explicit" or "rkn" (the spec's kind; explicit methods are erkn methods).

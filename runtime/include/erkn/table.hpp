@@ -44,6 +44,17 @@ struct Table {
   /// p -= h (d_i grad U + h^2 e_i G), G = grad(|grad U|^2) = 2 Hess(U) grad U (methods.spec's
   /// `modified`); nullptr for plain kicks.
   const double* modified = nullptr;
+  /// Processed methods psi = pi o K o pi^-1 (explicit; the fields above are the kernel K, order
+  /// and the error constants psi's): the pre-processor pi^-1, which the runtime applies to a
+  /// user's state before the kernel steps: for k = 0 .. npre-1, drift pre_drift[k] h (the exact
+  /// flow of q'' + Mq = 0), then kick p -= h (pre_kick[k] grad U + h^2 pre_modified[k] G);
+  /// then drift pre_drift[npre] h. pi (reversed, every coefficient negated) maps the kernel's
+  /// state to every state a user sees. nullptr and npre = 0: not processed.
+  const double* pre_drift = nullptr;     ///< [npre + 1]
+  const double* pre_kick = nullptr;      ///< [npre]
+  const double* pre_modified = nullptr;  ///< [npre]
+  int npre = 0;
+  int kernel_order = 0;  ///< the kernel K's own classical order (processed methods)
 };
 
 /// All methods, in the order of methods.def.
