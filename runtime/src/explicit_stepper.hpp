@@ -207,6 +207,10 @@ class ExplicitStepper final : public StepperBase {
     ++counts.applications;
   }
 
+  // A state array as its kLanes * n() doubles.
+  static double* lanes(Scalar* x) { return reinterpret_cast<double*>(x); }
+  static const double* lanes(const Scalar* x) { return reinterpret_cast<const double*>(x); }
+
   // The exact flow over sign tau of one processor drift (a scalar M: one coefficient for all).
   void processor_drift(const ProcessorCoefficients::Drift& f, double sign, double* q, double* p) {
     const bool one = f.cos.size() == 1;
