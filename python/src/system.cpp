@@ -112,9 +112,8 @@ std::string structure_name(Stiffness::Structure s) {
   return "?";
 }
 
-}  // namespace
-
-void bind_system(py::module_& m) {
+// Stiffness and its factories (scalar, diagonal, circulant, dense, grid).
+void bind_stiffness(py::module_& m) {
   py::class_<Stiffness>(m, "Stiffness", "The matrix M in the cheapest form that is exact.")
       .def_property_readonly("structure",
                              [](const Stiffness& M) { return structure_name(M.structure()); })
@@ -148,7 +147,10 @@ void bind_system(py::module_& m) {
       py::arg("axes"), py::arg("shift") = 0.0,
       "M = shift I - sum_a D2_a on a tensor grid; axes: [(n, spacing, 'periodic'|'dirichlet'|"
       "'neumann'), ...], unknowns in C order");
+}
 
+// System: its dimension, description and callbacks, callable from Python.
+void bind_system_class(py::module_& m) {
   py::class_<PySystem>(m, "System")
       .def_readonly("dim", &PySystem::d)
       .def_readonly("description", &PySystem::description)
@@ -190,6 +192,10 @@ void bind_system(py::module_& m) {
           },
           py::arg("q"), py::arg("v"),
           "Hess U(q) v (modified kicks form grad(|grad U|^2) = 2 Hess U grad U from it)");
+}
+
+// The Systems erkn.solve builds: a built-in potential or Python callbacks.
+void bind_system_factories(py::module_& m) {
   m.def(
       "_builtin_system",
       [](const Stiffness& M, const std::string& name, const std::map<std::string, double>& params,
@@ -215,6 +221,14 @@ void bind_system(py::module_& m) {
       py::arg("d"));
   m.def("builtin_potentials", &builtin_potentials,
         "the built-in potentials: {name: {parameter: default}}");
+}
+
+}  // namespace
+
+void bind_system(py::module_& m) {
+  bind_stiffness(m);
+  bind_system_class(m);
+  bind_system_factories(m);
 }
 
 }  // namespace erkn::python

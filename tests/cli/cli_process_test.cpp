@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <erkn/advisor.hpp>
 #include <erkn/method.hpp>
 #include <erkn/process.hpp>
 #include <filesystem>
@@ -102,15 +103,19 @@ TEST(Cli, AdviseFlagsPolesAndResonancesAndAcceptsTheRest) {
     EXPECT_EQ(ok.exit_code, 0) << name << ok.out << ok.err;
     EXPECT_NE(ok.out.find("no eigenvalue of M"), std::string::npos) << ok.out;
     if (m.kind() != erkn::Kind::erkn) continue;
-    // h sqrt(lambda) = pi exactly: the resonance band (or, for a method whose stability
-    // polynomial leaves [-2, 2] there, such as SABAC1's corrector, the instability the advisor
-    // reports first), with a suggestion.
+    // h sqrt(lambda) = pi exactly: the library's advisor flags h (the resonance band, or for a
+    // method whose stability polynomial leaves [-2, 2] there, such as SABAC1's corrector, an
+    // instability); the CLI reports each of its findings, with a suggestion.
+    const double h = 0.06283185307179587;
+    const erkn::StepSizeAdvice advice =
+        erkn::advise_step_size(m, Eigen::Vector2d(0, 2500), h, {0, 12});
+    ASSERT_FALSE(advice.findings.empty()) << name;
     const erkn::process::Result r = erkn_cli({"advise", name, "--h", "0.06283185307179587",
                                               "--spectrum", "0,2500", "--hessian", "0,12"});
     EXPECT_EQ(r.exit_code, 3) << name << r.out << r.err;
-    EXPECT_TRUE(r.out.find("resonance") != std::string::npos ||
-                r.out.find("unstable") != std::string::npos)
-        << r.out;
+    for (const erkn::AdvisorFinding& f : advice.findings)
+      EXPECT_NE(r.out.find(std::string(erkn::to_string(f.hazard))), std::string::npos)
+          << name << ": " << r.out;
     EXPECT_NE(r.out.find("nearest step size without findings"), std::string::npos) << r.out;
   }
   const erkn::process::Result p = erkn_cli({"advise", "SERKN2s4", "--h", "0.1", "--problem", "P2"});
