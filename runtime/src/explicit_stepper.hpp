@@ -190,6 +190,7 @@ class ExplicitStepper final : public StepperBase {
   void process(Scalar* q, Scalar* p, bool backwards, Counts& counts) {
     const int m = processor_.kicks();
     const double sign = backwards ? -1 : 1;
+    place_.processor = backwards ? "pi" : "pi^-1";  // (messages name the processor's kick)
     try {
       for (int j = 0; j <= 2 * m; ++j) {
         const int k = backwards ? 2 * m - j : j;  // (even: drift k/2, odd: kick k/2)
@@ -198,12 +199,17 @@ class ExplicitStepper final : public StepperBase {
         else
           processor_kick(k / 2, sign, q, p, counts);
       }
-    } catch (const Error& e) {
-      std::string what = e.what();  // (without its "erkn: ")
-      if (what.starts_with("erkn: ")) what.erase(0, 6);
-      throw Error(std::string("the processor ") + (backwards ? "pi" : "pi^-1") + " of " +
-                  std::string(method_.name()) + ": " + what);
+      // (a finite force can still overflow p, and the last drift then q)
+      if (!all_finite(lanes(q), kLanes * n()) || !all_finite(lanes(p), kLanes * n()))
+        throw Error(std::string("the processor ") + place_.processor + " of " +
+                    std::string(method_.name()) + " (on the state at step " +
+                    std::to_string(place_.step) +
+                    ") gives a non-finite state; the state is unchanged");
+    } catch (...) {
+      place_.processor = nullptr;
+      throw;
     }
+    place_.processor = nullptr;
     ++counts.applications;
   }
 

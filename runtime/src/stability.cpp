@@ -89,8 +89,39 @@ StabilityMatrix stability_matrix(const StagePhases& ph, double z) {
 
 }  // namespace detail
 
+namespace {
+
+StabilityMatrix product(const StabilityMatrix& a, const StabilityMatrix& b) {
+  return {a.s11 * b.s11 + a.s12 * b.s21, a.s11 * b.s12 + a.s12 * b.s22,
+          a.s21 * b.s11 + a.s22 * b.s21, a.s21 * b.s12 + a.s22 * b.s22};
+}
+
+// The exact flow of y'' + omega^2 y = 0 over tau h on (y, h y'): theta = tau sqrt(V).
+StabilityMatrix drift(double tau, double V) {
+  const double w = std::sqrt(V), th = tau * w;
+  const double sinc = w == 0 ? tau : std::sin(th) / w;
+  return {std::cos(th), sinc, -V * sinc, std::cos(th)};
+}
+
+// The processor pi = pi^-1 reversed with every coefficient negated (erkn/table.hpp); a kick
+// p -= h (y grad U + h^2 v G) on the test equation adds -(y z + 2 v z^2) y to h y'.
+StabilityMatrix processor_matrix(const generated::Table& t, double V, double z) {
+  StabilityMatrix P = drift(-t.pre_drift[t.npre], V);
+  for (int k = t.npre - 1; k >= 0; --k) {
+    const double y = -t.pre_kick[k], v = -t.pre_modified[k];
+    P = product(drift(-t.pre_drift[k], V), product({1, 0, -(y * z + 2 * v * z * z), 1}, P));
+  }
+  return P;
+}
+
+}  // namespace
+
 StabilityMatrix stability_matrix(const Method& method, const Coefficients& k, double V, double z) {
-  return detail::stability_matrix(detail::stage_phases(method, k, V), z);
+  const StabilityMatrix S = detail::stability_matrix(detail::stage_phases(method, k, V), z);
+  if (!method.is_processed()) return S;
+  const StabilityMatrix P = processor_matrix(method.table(), V, z);
+  const double d = P.det();  // 1 up to round-off (symplectic)
+  return product(product(P, S), {P.s22 / d, -P.s12 / d, -P.s21 / d, P.s11 / d});
 }
 
 StabilityMatrix stability_matrix(const Method& method, double V, double z) {

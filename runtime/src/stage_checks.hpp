@@ -18,6 +18,9 @@ struct StepPlace {
   const Method* method = nullptr;
   long step = 0;
   double t = 0;
+  /// "pi" or "pi^-1" while a processed method's processor runs on the state at step `step` (the
+  /// stage index i of a message is then the processor's kick).
+  const char* processor = nullptr;
 };
 
 /// The bits of x - x: 0 exactly when x is finite (else a NaN's). OR-ed over an array they say

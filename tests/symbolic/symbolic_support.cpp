@@ -320,7 +320,8 @@ Method load(const generated::Table& t) {
 std::vector<Method> erkn_methods() {
   std::vector<Method> out;
   for (int k = 0; k < generated::kNumTables; ++k)
-    if (!generated::kTables[k].rkn && generated::kTables[k].modified == nullptr)
+    if (!generated::kTables[k].rkn && generated::kTables[k].modified == nullptr &&
+        generated::kTables[k].pre_drift == nullptr)
       out.push_back(load(generated::kTables[k]));
   return out;
 }

@@ -27,6 +27,11 @@
 // The region rho(S) <= 1 is periodic + marginal. A matrix whose relative |det S - 1| exceeds
 // kDetTolerance is classified by rho(S) alone (contractive if rho < 1 - tau), so a loss of
 // symplecticity can never hide as "periodic".
+//
+// Processed methods psi = pi o K o pi^-1: one step the integrator shows is P S_K P^-1, P the
+// processor pi's matrix on the test equation (its drifts the exact flow over pre_drift h, its
+// kicks [1 0; -(y z + 2 v z^2) 1], since grad U = eps y and G = 2 eps^2 y). stability_matrix
+// returns that conjugate; its trace and det, and so every class and region, are the kernel's.
 #pragma once
 
 #include <string_view>
@@ -50,7 +55,8 @@ struct StabilityMatrix {
 /// S(V, z) for any method (see the header comment; RKN methods: the V = 0 formula at V + z).
 /// V >= 0; throws erkn::Error (from Method::at) at or near a pole.
 StabilityMatrix stability_matrix(const Method& method, double V, double z);
-/// The same with the method's coefficients already evaluated at V (ERKN) or at 0 (RKN).
+/// The same with the method's coefficients already evaluated at V (ERKN) or at 0 (RKN);
+/// processed methods: conjugated by pi's matrix (see the header comment).
 StabilityMatrix stability_matrix(const Method& method, const Coefficients& coefficients, double V,
                                  double z);
 
