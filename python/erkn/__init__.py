@@ -24,6 +24,7 @@ the state of one step of the method itself, of the shorter size, from the grid p
 is reached by a last shorter step. See the README's "Python" section.
 """
 
+import functools
 import inspect
 import numbers
 import sys
@@ -86,7 +87,11 @@ class Options(_erkn._Options):
 
     @staticmethod
     def _of(options, **shortcuts):
-        """A new Options from None, an Options or a dict, with the shortcuts not None set."""
+        """A new Options from None, an Options or a dict, with the shortcuts not None set (the
+        shared defaults for None and no shortcut: callers hand the result to C++, which copies
+        it, and never change it)."""
+        if options is None and all(value is None for value in shortcuts.values()):
+            return _DEFAULT_OPTIONS
         if options is None:
             out = Options()
         elif isinstance(options, _erkn._Options):
@@ -102,18 +107,27 @@ class Options(_erkn._Options):
         return out
 
 
+_DEFAULT_OPTIONS = Options()
+
+
 class potential:
     """A built-in potential with parameters, e.g. erkn.potential("duffing", k=0.03)."""
 
     def __init__(self, name, **params):
-        if name not in builtin_potentials():
+        if name not in _builtin_names():
             raise Error(f"unknown built-in potential '{name}'; known: "
-                        + ", ".join(sorted(builtin_potentials())))
+                        + ", ".join(sorted(_builtin_names())))
         self.name, self.params = name, {k: float(v) for k, v in params.items()}
 
     def __repr__(self):
         args = "".join(f", {k}={v!r}" for k, v in self.params.items())
         return f"erkn.potential({self.name!r}{args})"
+
+
+@functools.cache
+def _builtin_names():
+    """The built-in potentials' names (fixed for the module's life; asked once)."""
+    return frozenset(builtin_potentials())
 
 
 def _stiffness(M):
@@ -168,6 +182,8 @@ def _system(M, grad, d, potential_fn, hessian, hessian_vector_product=None):
 
 
 def _state(x, name):
+    if type(x) is np.ndarray and x.dtype == np.float64 and x.ndim == 1 and x.flags.c_contiguous:
+        return x  # (the common case, as it is: C++ copies it)
     a = np.ascontiguousarray(np.atleast_1d(np.asarray(x, dtype=float)))
     if a.ndim != 1:
         raise Error(f"{name} must be a 1-D array; got shape {a.shape}")
@@ -177,6 +193,8 @@ def _state(x, name):
 def _real(x, name):
     """x as a float if it is a real number (int, float, NumPy real); else erkn.Error ("0.1",
     None and True are not step sizes or times)."""
+    if type(x) is float:
+        return x
     if isinstance(x, np.ndarray) and x.ndim == 0 and x.dtype.kind in "fiu":
         return float(x)
     if not isinstance(x, numbers.Real) or isinstance(x, (bool, np.bool_)):
@@ -303,13 +321,22 @@ class Solution:
     them; status 1 if a terminal event stopped the run, else 0."""
 
     def __init__(self, t, q, p, energy, stats, method, choice=None, events=None, stopped=False):
-        self.t, self.q, self.p, self.energy, self.stats, self.method = t, q, p, energy, stats, method
+        self.t, self.q, self.p, self.stats, self.method = t, q, p, stats, method
+        self._energy = energy  # (or a callable computing it on first access)
         self.choice = choice
         self.status = 1 if stopped else 0
         self.t_events = self.q_events = self.p_events = self.y_events = None
         if events is not None:
             self.t_events, self.q_events, self.p_events, self.stats["events"] = events
             self.y_events = [np.hstack([q, p]) for q, p in zip(self.q_events, self.p_events)]
+
+    @property
+    def energy(self):
+        """H at each output time, or None without a potential (a built-in potential's is
+        computed on first access: solve does not pay for it unless it is looked at)."""
+        if callable(self._energy):
+            self._energy = self._energy()
+        return self._energy
 
     def __repr__(self):
         span = f" in [{self.t[0]:g}, {self.t[-1]:g}]" if self.t.size else ""
@@ -372,15 +399,23 @@ def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None
                      hessian_vector_product=hessian_vector_product)
     if t_eval is not None:
         t_eval = np.ascontiguousarray(t_eval, dtype=float)
+    later = run._energy_can_wait
     try:
-        t, q, p, energy, found, stopped = run.run(t1, t_eval, every, events=events,
-                                                  progress=progress)
+        t, q, p, energy, found, stopped = run.run(t1, t_eval, every, energy=not later,
+                                                  events=events, progress=progress)
     except BaseException as e:  # keep the output up to the last completed step (if one began)
         if run._partial is not None:
             t, q, p, energy, found, _ = run._partial
-            e.solution = Solution(t, q, p, energy, run.statistics, run.method, choice, found)
+            e.solution = Solution(t, q, p, _energies(run, q, p) if later else energy,
+                                  run.statistics, run.method, choice, found)
         raise
-    return Solution(t, q, p, energy, run.statistics, run.method, choice, found, stopped)
+    return Solution(t, q, p, _energies(run, q, p) if later else energy, run.statistics,
+                    run.method, choice, found, stopped)
+
+
+def _energies(run, q, p):
+    """H of each output row, computed when first asked for (a built-in U only)."""
+    return lambda: run._energies(q, p)
 
 
 def stability(name, V, z=0.0):

@@ -48,6 +48,8 @@ struct Output {
   }
 };
 
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
 template <class Times>
 Eigen::Map<const Eigen::VectorXd> at_all(const Times& times) {
   return Eigen::Map<const Eigen::VectorXd>(times.data(), times.size());
@@ -65,6 +67,20 @@ class PyIntegrator {
     if (n < 0) throw Error("step(n): n must be >= 0; got " + std::to_string(n));
     LongRun(py::none()).steps(run_, n, [&](long k) { stepping([&] { run_.step(k); }); });
   }
+
+  // H(q_k, p_k) of each row (n, d) of q and p: the energies of a run's output, on demand.
+  py::object energies(const Eigen::Ref<const RowMatrix>& q, const Eigen::Ref<const RowMatrix>& p) {
+    if (!run_.system().potential) return py::none();
+    if (q.rows() != p.rows() || q.cols() != p.cols() || q.cols() != run_.q().size())
+      throw Error("energies: q and p must be (n, d) arrays of the run's dimension");
+    std::vector<double> H;
+    for (Eigen::Index k = 0; k < q.rows(); ++k)
+      H.push_back(run_.energy(q.row(k).transpose(), p.row(k).transpose()));
+    return to_numpy(std::move(H), py::ssize_t(q.rows()), -1);
+  }
+  /// Energies may wait until asked for: U is C++ (a built-in), so computing them later cannot
+  /// fail where the run did not.
+  bool energy_can_wait() const { return !calls_python_; }
 
   // Steps to t_end; output at `t_eval` (ascending, in [t, t_end]) or else at the start, every
   // `every`-th step and t_end; with `events` (a sequence of (g, direction, terminal)), their zeros.
@@ -236,7 +252,9 @@ void bind_integrator(py::module_& m) {
                              "counters and wall_time, cpu_time (seconds in integrate and step)")
       .def_property_readonly(
           "_options", [](PyIntegrator& r) { return r.get().options(); }, "a copy")
-      .def_property_readonly("_partial", &PyIntegrator::partial);
+      .def_property_readonly("_partial", &PyIntegrator::partial)
+      .def("_energies", &PyIntegrator::energies, py::arg("q"), py::arg("p"))
+      .def_property_readonly("_energy_can_wait", &PyIntegrator::energy_can_wait);
 }
 
 }  // namespace erkn::python

@@ -58,6 +58,29 @@ def test_builtin_and_python_gradients_agree_in_both_calling_conventions(chain):
     assert seen and a.stats["gradient_evaluations"] == b.stats["gradient_evaluations"]
 
 
+def test_builtin_energies_wait_until_asked_for_and_equal_the_runs_own():
+    # A built-in U: solve leaves the energies to the first access of sol.energy (the run does
+    # not pay for them); they equal those the integrator computes at its outputs. A failed run's
+    # partial solution has them too.
+    M = erkn.circulant(np.array([2.0, -1.0, 0.0, -1.0]))
+    q0, p0 = np.array([0.3, -0.2, 0.1, 0.4]), np.array([0.1, 0.0, -0.3, 0.2])
+    sol = erkn.solve(M, "sine", q0=q0, p0=p0, t_span=(0, 2), h=0.05, method="Strang", every=8)
+    assert callable(sol._energy)
+    run = erkn.Integrator(M, "sine", q0=q0, p0=p0, h=0.05, method="Strang")
+    t, q, p, energy, _, _ = run.run(2.0, every=8)
+    assert np.array_equal(sol.t, t) and np.array_equal(sol.q, q)
+    assert np.array_equal(sol.energy, energy) and sol.energy is sol.energy
+    # Negative control: another run's energies differ.
+    other = erkn.solve(M, "sine", q0=2 * q0, p0=p0, t_span=(0, 2), h=0.05, method="Strang",
+                       every=8)
+    assert np.abs(other.energy - energy).max() > 1e-3
+    with pytest.raises(erkn.Error) as failure:
+        erkn.solve(M, "sine", q0=q0, p0=p0, t_span=(0, 2), h=0.05, method="Strang",
+                   energy_tolerance=1e-12)
+    partial = failure.value.solution
+    assert partial.energy.shape == partial.t.shape and np.isfinite(partial.energy).all()
+
+
 @pytest.mark.parametrize("name,d,params", [("sine", 3, {}), ("duffing", 3, {"k": 0.3}),
                                            ("phi4", 3, {"beta": 2.0}), ("fpu", 6, {})])
 def test_builtin_gradient_and_hessian_are_derivatives_of_the_potential(name, d, params):
