@@ -43,6 +43,9 @@ fi
 # The best modified-kick method against the best plain-kick one, CPU to a tolerance (issue 18).
 if [ -x "$build"/bench/erkn_modified_kick_benchmark ]; then
   "$build"/bench/erkn_modified_kick_benchmark --markdown docs/modified_kicks.md > /dev/null 2>&1
+  # Processed methods against the best unprocessed one, and what output costs them.
+  "$build"/bench/erkn_modified_kick_benchmark --processing docs/processing.md \
+    --against "SRKN14a,OMF6(5F3G)" > /dev/null 2>&1
 fi
 if [ -x "$build"/mpi/erkn-mpi ]; then  # MPI scaling on 1, 2 and 4 ranks (erkn::mpi built)
   [ "$(id -u)" -ne 0 ] || export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
