@@ -7,16 +7,17 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
 
 #include "collective.hpp"
 #include "compensated_sum.hpp"  // (runtime/src)
+#include "distributed_transform.hpp"
 #include "erkn/mpi.hpp"
 #include "erkn/time_grid.hpp"
 #include "slab_space.hpp"
-#include "slab_transform.hpp"
 #include "stage_solver.hpp"       // (runtime/src)
 #include "step_coefficients.hpp"  // (runtime/src)
 #include "step_size_check.hpp"    // (runtime/src)
@@ -67,7 +68,8 @@ class GridStepper {
         system_(std::move(system)),
         options_(options),
         grid_(0, h),
-        T_(comm_, system_.M),
+        transform_(distributed_transform(comm_, system_.M)),
+        T_(*transform_),
         space_(comm_, T_, method.kind() == Kind::rkn),
         // (RKN methods: V = 0, their force includes M Q)
         lambda_(method.kind() == Kind::rkn ? Eigen::VectorXd::Zero(T_.spectral_size()).eval()
@@ -127,7 +129,8 @@ class GridStepper {
   System system_;
   Options options_;
   TimeGrid grid_;  // (validates h)
-  SlabTransform T_;
+  std::unique_ptr<DistributedTransform> transform_;
+  DistributedTransform& T_;
   SlabSpace space_;
   Eigen::VectorXd lambda_;  // where the coefficients are evaluated
   Stages stages_;
@@ -178,8 +181,8 @@ std::string check_input(const System& system, const Eigen::VectorXd& q0, const E
 }  // namespace
 
 Slab slab(MPI_Comm comm, const Stiffness& M) {
-  const detail::SlabLayout l = detail::slab_layout(comm, M);
-  return {l.first0, l.rows0, l.physical_size};
+  const detail::LocalPart part = detail::local_part(comm, M);
+  return {part.first, part.rows, part.size};
 }
 
 GridIntegrator::GridIntegrator(MPI_Comm comm, const Method& method, System system, double h,
@@ -187,8 +190,9 @@ GridIntegrator::GridIntegrator(MPI_Comm comm, const Method& method, System syste
                                const Options& options) {
   // The same checks on every rank; the size check differs per rank, so it is made collective.
   detail::collectively(comm, [&] {
-    if (system.M.structure() != Stiffness::Structure::grid)
-      throw Error("the distributed integrator needs M = Stiffness::grid");
+    if (system.M.structure() != Stiffness::Structure::grid &&
+        system.M.structure() != Stiffness::Structure::circulant)
+      throw Error("the distributed integrator needs M = Stiffness::grid or Stiffness::circulant");
     if (method.has_modified_kicks())
       throw Error(std::string(method.name()) +
                   " has modified kicks (grad(|grad U|^2)), which the distributed integrator "

@@ -1,8 +1,9 @@
-// The stage solver's space (runtime/src/serial_space.hpp describes the concept) for a grid
-// distributed in slabs over MPI ranks: the arrays are this rank's part of the eigen coordinates
-// and of the physical vectors; reduce sums every rank's parts in one MPI_Allreduce, which also
-// carries the check that every rank's gradient since the last reduce was good, so all ranks take
-// every decision together and an error on one rank is an error on all of them.
+// The stage solver's space (runtime/src/serial_space.hpp describes the concept) for an M
+// distributed over MPI ranks (a grid in slabs, a circulant M in blocks: distributed_transform.hpp):
+// the arrays are this rank's part of the eigen coordinates and of the physical vectors; reduce sums
+// every rank's parts in one MPI_Allreduce, which also carries the check that every rank's gradient
+// since the last reduce was good, so all ranks take every decision together and an error on one
+// rank is an error on all of them.
 #pragma once
 
 #include <mpi.h>
@@ -12,8 +13,8 @@
 #include <string>
 
 #include "collective.hpp"
+#include "distributed_transform.hpp"
 #include "erkn/system.hpp"
-#include "slab_transform.hpp"
 #include "stage_checks.hpp"       // (runtime/src)
 #include "step_coefficients.hpp"  // (runtime/src)
 
@@ -30,7 +31,7 @@ class SlabSpace {
   static constexpr bool kDenseNewton = false;  // (no rank holds a d x d Jacobian)
 
   /// rkn: add_MQ adds M Q (the force of RKN methods).
-  SlabSpace(MPI_Comm comm, SlabTransform& T, bool rkn)
+  SlabSpace(MPI_Comm comm, DistributedTransform& T, bool rkn)
       : comm_(comm),
         T_(T),
         stride_(erkn::detail::aligned_stride<double>(T.spectral_size())),
@@ -125,7 +126,7 @@ class SlabSpace {
   [[noreturn]] void gradient_failed() const;
 
   MPI_Comm comm_;
-  SlabTransform& T_;
+  DistributedTransform& T_;
   Eigen::Index stride_;
   bool rkn_;
   // (mutable: a reduce, which reads only sums, also reports and clears the pending failures)

@@ -1,6 +1,5 @@
 #include "slab_transform.hpp"
 
-#include <mutex>
 #include <string>
 
 #include "erkn/error.hpp"
@@ -42,18 +41,14 @@ Eigen::ArrayXd outer(const std::vector<Eigen::ArrayXd>& factors, bool product) {
   return acc;
 }
 
-void init_fftw_mpi() {
-  static std::once_flag once;
-  std::call_once(once, [] { fftw_mpi_init(); });
-}
-
 }  // namespace
 
 SlabLayout slab_layout(MPI_Comm comm, const Stiffness& M) {
   if (M.structure() != Stiffness::Structure::grid || M.axes().size() < 2)
     throw Error(
         "the distributed integrator needs M = Stiffness::grid with at least two axes (FFTW-MPI "
-        "distributes slabs of axis 0); use erkn::Integrator for other forms of M");
+        "distributes slabs of axis 0) or Stiffness::circulant; use erkn::Integrator for other "
+        "forms of M");
   init_fftw_mpi();
   SlabLayout l;
   ptrdiff_t rest = 1;  // prod of n_2.. n_{K-1}
@@ -78,8 +73,7 @@ SlabTransform::SlabTransform(MPI_Comm comm, const Stiffness& M) {
     forward_kinds.push_back(k.forward), inverse_kinds.push_back(k.inverse);
     scale_ /= k.logical_size;
   }
-  first0_ = l.first0, rows0_ = l.rows0;
-  physical_size_ = l.physical_size, spectral_size_ = l.spectral_size;
+  part_ = {Eigen::Index(l.first0), Eigen::Index(l.rows0), l.physical_size};
   in_ = fftw_alloc_real(std::max<ptrdiff_t>(l.buffer, 1));
   out_ = fftw_alloc_real(std::max<ptrdiff_t>(l.buffer, 1));
   const int rank = int(axes.size());
@@ -108,24 +102,18 @@ SlabTransform::~SlabTransform() {
   fftw_free(out_);
 }
 
-void SlabTransform::forward(const Eigen::Ref<const Eigen::VectorXd>& x,
-                            Eigen::Ref<Eigen::ArrayXd> y) {
-  const double start = MPI_Wtime();
-  Eigen::Map<Eigen::VectorXd>(in_, physical_size_) = x;
+void SlabTransform::execute_forward(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                    Eigen::Ref<Eigen::ArrayXd> y) {
+  Eigen::Map<Eigen::VectorXd>(in_, physical_size()) = x;
   fftw_execute(forward_);
-  y = Eigen::Map<const Eigen::ArrayXd>(out_, spectral_size_);
-  ++count_;
-  seconds_ += MPI_Wtime() - start;
+  y = Eigen::Map<const Eigen::ArrayXd>(out_, spectral_size());
 }
 
-void SlabTransform::inverse(const Eigen::Ref<const Eigen::ArrayXd>& y,
-                            Eigen::Ref<Eigen::VectorXd> x) {
-  const double start = MPI_Wtime();
-  Eigen::Map<Eigen::ArrayXd>(in_, spectral_size_) = y;
+void SlabTransform::execute_inverse(const Eigen::Ref<const Eigen::ArrayXd>& y,
+                                    Eigen::Ref<Eigen::VectorXd> x) {
+  Eigen::Map<Eigen::ArrayXd>(in_, spectral_size()) = y;
   fftw_execute(inverse_);
-  x = scale_ * Eigen::Map<const Eigen::VectorXd>(out_, physical_size_);
-  ++count_;
-  seconds_ += MPI_Wtime() - start;
+  x = scale_ * Eigen::Map<const Eigen::VectorXd>(out_, physical_size());
 }
 
 }  // namespace erkn::mpi::detail

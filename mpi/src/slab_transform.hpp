@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "distributed_transform.hpp"
 #include "erkn/stiffness.hpp"
 
 namespace erkn::mpi::detail {
@@ -32,42 +33,24 @@ struct SlabLayout {
 /// least two axes).
 SlabLayout slab_layout(MPI_Comm comm, const Stiffness& M);
 
-class SlabTransform {
+class SlabTransform final : public DistributedTransform {
  public:
   /// M must be a grid with at least two axes (collective over comm; throws erkn::Error on every
   /// rank otherwise).
   SlabTransform(MPI_Comm comm, const Stiffness& M);
-  ~SlabTransform();
+  ~SlabTransform() override;
   SlabTransform(const SlabTransform&) = delete;
   SlabTransform& operator=(const SlabTransform&) = delete;
 
-  Eigen::Index physical_size() const { return physical_size_; }
-  Eigen::Index spectral_size() const { return spectral_size_; }
-  Eigen::Index first_row() const { return first0_; }  ///< first local index along axis 0
-  Eigen::Index rows() const { return rows0_; }        ///< local extent along axis 0
-  /// Eigenvalue of M and norm weight of each local spectral coordinate.
-  const Eigen::ArrayXd& eigenvalues() const { return lambda_; }
-  const Eigen::ArrayXd& weights() const { return weights_; }
-  /// Collective: y = forward(x), x = inverse(y) (normalised so inverse(forward(x)) = x).
-  void forward(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::ArrayXd> y);
-  void inverse(const Eigen::Ref<const Eigen::ArrayXd>& y, Eigen::Ref<Eigen::VectorXd> x);
-  /// Transforms executed by this rank (each one all-to-all over comm).
-  long count() const { return count_; }
-  /// Wall time spent in them (MPI_Wtime).
-  double seconds() const { return seconds_; }
-  /// Local partial sum of W y^2 (allreduce it for |x|^2).
-  double local_squared_norm(const Eigen::Ref<const Eigen::ArrayXd>& y) const {
-    return (weights_ * y.square()).sum();
-  }
-
  private:
-  Eigen::Index physical_size_ = 0, spectral_size_ = 0, first0_ = 0, rows0_ = 0;
-  Eigen::ArrayXd lambda_, weights_;
+  void execute_forward(const Eigen::Ref<const Eigen::VectorXd>& x,
+                       Eigen::Ref<Eigen::ArrayXd> y) override;
+  void execute_inverse(const Eigen::Ref<const Eigen::ArrayXd>& y,
+                       Eigen::Ref<Eigen::VectorXd> x) override;
+
   double scale_ = 1;                       // 1 / prod of FFTW's logical sizes
   double *in_ = nullptr, *out_ = nullptr;  // FFTW-MPI buffers (local size incl. transpose room)
   fftw_plan forward_ = nullptr, inverse_ = nullptr;
-  long count_ = 0;
-  double seconds_ = 0;
 };
 
 }  // namespace erkn::mpi::detail

@@ -2,7 +2,8 @@
 //
 // GridIntegrator integrates q'' + M q = -grad U(q) for M = Stiffness::grid (two or more axes)
 // with the state distributed in slabs along axis 0 over the ranks of a communicator (FFTW-MPI's
-// layout). Per step the only communication is the transforms into M's eigenbasis (FFTW-MPI,
+// layout), or for M = Stiffness::circulant (a 1-D periodic operator) with the vector distributed
+// in contiguous blocks (FFTW-MPI's 1-D DFT; slab() says which entries a rank owns). Per step the only communication is the transforms into M's eigenbasis (FFTW-MPI,
 // transposed output: one all-to-all per transform) and one MPI_Allreduce per stage iteration
 // (the stage solver's norms); the coefficients act on each rank's spectral rows and grad U on
 // each rank's slab. The step is eq. (d) of the paper with erkn::Integrator's stage solver
@@ -68,12 +69,13 @@
 namespace erkn::mpi {
 
 /// The part of a grid one rank owns: rows first..first+rows-1 of axis 0 with all of the other
-/// axes, `size` unknowns in row-major order (rows may be 0 when there are more ranks than rows).
+/// axes, `size` unknowns in row-major order (rows may be 0 when there are more ranks than rows);
+/// of a circulant M's vector: entries first..first+size-1 (rows = size).
 struct Slab {
   Eigen::Index first = 0, rows = 0, size = 0;
 };
 
-/// This rank's slab of the grid M (collective).
+/// This rank's slab of the grid or circulant M (collective).
 Slab slab(MPI_Comm comm, const Stiffness& M);
 
 namespace detail {

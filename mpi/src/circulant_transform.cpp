@@ -1,0 +1,76 @@
+#include "circulant_transform.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "erkn/error.hpp"
+
+namespace erkn::mpi::detail {
+namespace {
+
+CirculantLayout layout(MPI_Comm comm, ptrdiff_t n, int sign) {
+  CirculantLayout l;
+  l.buffer = fftw_mpi_local_size_1d(n, comm, sign, FFTW_ESTIMATE, &l.count_in, &l.first_in,
+                                    &l.count_out, &l.first_out);
+  return l;
+}
+
+}  // namespace
+
+// The inverse DFT must read the forward's output distribution and write its input distribution.
+CirculantLayout circulant_layout(MPI_Comm comm, ptrdiff_t n) {
+  init_fftw_mpi();
+  const CirculantLayout f = layout(comm, n, FFTW_FORWARD), b = layout(comm, n, FFTW_BACKWARD);
+  if (b.count_in != f.count_out || b.first_in != f.first_out || b.count_out != f.count_in ||
+      b.first_out != f.first_in)
+    throw Error("FFTW-MPI distributes the inverse DFT of size " + std::to_string(n) +
+                " differently from the forward one: use erkn::Integrator on one process");
+  CirculantLayout l = f;
+  l.buffer = std::max<ptrdiff_t>({f.buffer, b.buffer, 1});
+  return l;
+}
+
+CirculantTransform::CirculantTransform(MPI_Comm comm, const Stiffness& M) {
+  const ptrdiff_t n = ptrdiff_t(M.dim());
+  const CirculantLayout l = circulant_layout(comm, n);
+  part_ = {Eigen::Index(l.first_in), Eigen::Index(l.count_in), Eigen::Index(l.count_in)};
+  scale_ = 1.0 / double(n);
+  in_ = fftw_alloc_complex(size_t(l.buffer));
+  out_ = fftw_alloc_complex(size_t(l.buffer));
+  forward_ = fftw_mpi_plan_dft_1d(n, in_, out_, comm, FFTW_FORWARD, FFTW_ESTIMATE);
+  inverse_ = fftw_mpi_plan_dft_1d(n, in_, out_, comm, FFTW_BACKWARD, FFTW_ESTIMATE);
+  if (!forward_ || !inverse_)
+    throw Error("FFTW-MPI cannot plan a distributed DFT of size " + std::to_string(n) +
+                " on this many ranks (its 1-D transforms need n to factor over the ranks): use "
+                "another size or erkn::Integrator on one process");
+  const Eigen::VectorXd& half = M.eigenvalues();  // lambda_0 .. lambda_{n/2}
+  lambda_.resize(2 * l.count_out);
+  for (ptrdiff_t j = 0; j < l.count_out; ++j) {
+    const ptrdiff_t k = l.first_out + j;
+    lambda_[2 * j] = lambda_[2 * j + 1] = half[std::min(k, n - k)];
+  }
+  weights_ = Eigen::ArrayXd::Constant(lambda_.size(), scale_);
+}
+
+CirculantTransform::~CirculantTransform() {
+  if (forward_) fftw_destroy_plan(forward_);
+  if (inverse_) fftw_destroy_plan(inverse_);
+  fftw_free(in_);
+  fftw_free(out_);
+}
+
+void CirculantTransform::execute_forward(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                         Eigen::Ref<Eigen::ArrayXd> y) {
+  for (Eigen::Index j = 0; j < physical_size(); ++j) in_[j][0] = x[j], in_[j][1] = 0;
+  fftw_execute(forward_);
+  y = Eigen::Map<const Eigen::ArrayXd>(&out_[0][0], spectral_size());
+}
+
+void CirculantTransform::execute_inverse(const Eigen::Ref<const Eigen::ArrayXd>& y,
+                                         Eigen::Ref<Eigen::VectorXd> x) {
+  Eigen::Map<Eigen::ArrayXd>(&in_[0][0], spectral_size()) = y;
+  fftw_execute(inverse_);
+  for (Eigen::Index j = 0; j < physical_size(); ++j) x[j] = scale_ * out_[j][0];
+}
+
+}  // namespace erkn::mpi::detail

@@ -1,0 +1,37 @@
+#include "distributed_transform.hpp"
+
+#include <fftw3-mpi.h>
+
+#include <mutex>
+
+#include "circulant_transform.hpp"
+#include "erkn/error.hpp"
+#include "slab_transform.hpp"
+
+namespace erkn::mpi::detail {
+namespace {
+
+bool circulant(const Stiffness& M) { return M.structure() == Stiffness::Structure::circulant; }
+
+}  // namespace
+
+void init_fftw_mpi() {
+  static std::once_flag once;
+  std::call_once(once, [] { fftw_mpi_init(); });
+}
+
+LocalPart local_part(MPI_Comm comm, const Stiffness& M) {
+  if (circulant(M)) {
+    const CirculantLayout l = circulant_layout(comm, ptrdiff_t(M.dim()));
+    return {Eigen::Index(l.first_in), Eigen::Index(l.count_in), Eigen::Index(l.count_in)};
+  }
+  const SlabLayout l = slab_layout(comm, M);  // (refuses other forms of M)
+  return {Eigen::Index(l.first0), Eigen::Index(l.rows0), l.physical_size};
+}
+
+std::unique_ptr<DistributedTransform> distributed_transform(MPI_Comm comm, const Stiffness& M) {
+  if (circulant(M)) return std::make_unique<CirculantTransform>(comm, M);
+  return std::make_unique<SlabTransform>(comm, M);
+}
+
+}  // namespace erkn::mpi::detail

@@ -1,0 +1,76 @@
+// The transform into M's eigenbasis for an M distributed over MPI ranks: the one dependency of
+// the slab space (slab_space.hpp) on the form of M. A rank owns a contiguous part of the
+// unknowns (rows first_row() .. of axis 0 of a grid, entries first_row() .. of a circulant
+// vector; physical_size() unknowns) and a part of the eigen coordinates (spectral_size(), each
+// with its eigenvalue of M and its norm weight: |x|^2 = the sum over every rank of W y^2).
+// Implementations: SlabTransform (grids of two or more axes, slab_transform.hpp) and
+// CirculantTransform (circulant M, circulant_transform.hpp); a new form of M is one more.
+#pragma once
+
+#include <mpi.h>
+
+#include <Eigen/Core>
+#include <memory>
+
+#include "erkn/stiffness.hpp"
+
+namespace erkn::mpi::detail {
+
+/// The unknowns a rank owns: entries first .. first + size - 1 of the vector in row-major order,
+/// `rows` rows of axis 0 (rows = size for a vector).
+struct LocalPart {
+  Eigen::Index first = 0, rows = 0, size = 0;
+};
+
+class DistributedTransform {
+ public:
+  virtual ~DistributedTransform() = default;
+
+  Eigen::Index physical_size() const { return part_.size; }
+  Eigen::Index spectral_size() const { return lambda_.size(); }
+  Eigen::Index first_row() const { return part_.first; }  ///< first local index along axis 0
+  Eigen::Index rows() const { return part_.rows; }        ///< local extent along axis 0
+  /// Eigenvalue of M and norm weight of each local spectral coordinate.
+  const Eigen::ArrayXd& eigenvalues() const { return lambda_; }
+  const Eigen::ArrayXd& weights() const { return weights_; }
+  /// Collective: y = forward(x), x = inverse(y) (normalised so inverse(forward(x)) = x).
+  void forward(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::ArrayXd> y) {
+    const double start = MPI_Wtime();
+    execute_forward(x, y);
+    ++count_, seconds_ += MPI_Wtime() - start;
+  }
+  void inverse(const Eigen::Ref<const Eigen::ArrayXd>& y, Eigen::Ref<Eigen::VectorXd> x) {
+    const double start = MPI_Wtime();
+    execute_inverse(y, x);
+    ++count_, seconds_ += MPI_Wtime() - start;
+  }
+  /// Transforms executed by this rank (each one all-to-all over comm).
+  long count() const { return count_; }
+  /// Wall time spent in them (MPI_Wtime).
+  double seconds() const { return seconds_; }
+
+ protected:
+  virtual void execute_forward(const Eigen::Ref<const Eigen::VectorXd>& x,
+                               Eigen::Ref<Eigen::ArrayXd> y) = 0;
+  virtual void execute_inverse(const Eigen::Ref<const Eigen::ArrayXd>& y,
+                               Eigen::Ref<Eigen::VectorXd> x) = 0;
+
+  LocalPart part_;
+  Eigen::ArrayXd lambda_, weights_;
+
+ private:
+  long count_ = 0;
+  double seconds_ = 0;
+};
+
+/// The part of M's unknowns this rank owns (collective; erkn::Error on every rank unless M is a
+/// grid with at least two axes or circulant).
+LocalPart local_part(MPI_Comm comm, const Stiffness& M);
+
+/// The transform for M (collective; the same errors as local_part).
+std::unique_ptr<DistributedTransform> distributed_transform(MPI_Comm comm, const Stiffness& M);
+
+/// fftw_mpi_init, once per process.
+void init_fftw_mpi();
+
+}  // namespace erkn::mpi::detail
