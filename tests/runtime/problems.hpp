@@ -115,11 +115,11 @@ inline Reference polynomial_reference(const Eigen::Vector3d& q0, const Eigen::Ve
 /// Observed order of convergence: the least-squares slope of log(error) against log(h) over the
 /// four (three when they span more than kOrderSpan in error) finest step sizes h = T/n whose
 /// error is at least kOrderFloor, for n = 4, 6, 8, 11, 16,
-/// 23, ... (ratio sqrt 2) up to kOrderMaxSteps. `error_at(n)` runs with n steps. Coarse steps can
-/// still be dominated by the next order's term, so the fit takes the finest steps the floor
-/// allows: order-6 methods reach 1e-13 at n ~ 30 on polynomial_system, order-2 ones not before
-/// n = 16384 (the last step count tried). The floor is 1e4 times the reference's accuracy, and
-/// the runs' round-off (compensated summation) does not show in the slopes above it.
+/// 23, ... (ratio sqrt 2) up to kOrderMaxSteps (or `max_steps`). `error_at(n)` runs with n steps.
+/// Coarse steps can still be dominated by the next order's term, so the fit takes the finest steps
+/// the floor allows: order-6 methods reach 1e-13 at n ~ 30 on polynomial_system, order-2 ones not
+/// before n = 16384 (the last step count tried). The floor is 1e4 times the reference's accuracy,
+/// and the runs' round-off (compensated summation) does not show in the slopes above it.
 inline constexpr double kOrderFloor = 1e-13;
 inline constexpr long kOrderMaxSteps = 16384;
 inline constexpr double kOrderSpan = 1e3;  // the widest error ratio of the fitted points
@@ -138,11 +138,12 @@ inline double fitted_slope(const std::vector<long>& n, const std::vector<double>
   return (k * sxy - sx * sy) / (k * sxx - sx * sx);
 }
 template <class F>
-ObservedOrder observed_order(F&& error_at, double floor = kOrderFloor) {
+ObservedOrder observed_order(F&& error_at, double floor = kOrderFloor,
+                             long max_steps = kOrderMaxSteps) {
   ObservedOrder o;
   for (int k = 0;; ++k) {
     const long n = std::lround(4 * std::pow(2.0, k / 2.0));
-    if (n > kOrderMaxSteps) break;
+    if (n > max_steps) break;
     const double err = error_at(n);
     if (err < floor) break;
     o.n.push_back(n), o.error.push_back(err);
