@@ -27,30 +27,6 @@ int gradients_per_step(const Method& m) {
   return m.stages() - (fsal ? 1 : 0) + products;
 }
 
-// The a priori error model without F (t_end - t0): sum_K r^K C_K h^(g_K); the classical
-// C h^p where the generalized constants are unknown.
-double model(const Method& m, double r, double h) {
-  const auto g = m.generalized_order();
-  const auto C = m.generalized_error_constant();
-  double sum = 0;
-  for (size_t K = 0; K < g.size(); ++K)
-    if (std::isfinite(C[K])) sum += std::pow(r, double(K + 1)) * C[K] * std::pow(h, g[K]);
-  if (sum == 0 && std::isfinite(m.error_constant()))
-    sum = m.error_constant() * std::pow(h, m.order());
-  return sum;
-}
-
-// The h <= h_max with model(h) = level (model grows with h): bisection in log h.
-double model_step(const Method& m, double r, double level, double h_max) {
-  if (model(m, r, h_max) <= level) return h_max;
-  double lo = h_max * 1e-12, hi = h_max;
-  for (int k = 0; k < 60; ++k) {
-    const double mid = std::sqrt(lo * hi);
-    (model(m, r, mid) > level ? hi : lo) = mid;
-  }
-  return lo;
-}
-
 // r = min(1, max |eigenvalue of U's Hessian at q0| / smallest eigenvalue of M): the size of the
 // perturbation against the linear part (1 where M has a zero eigenvalue or no bounds).
 double perturbation(const System& s, const HessianBounds& b) {
@@ -114,8 +90,7 @@ const Pilot* pilot_of(const Search& s, const Method* m) {
 // The pilot request with m's error shape.
 detail::PilotRequest shaped(const Search& s, const Method& m) {
   detail::PilotRequest r = s.pilot;
-  const double rr = s.r;
-  r.shape = [&m, rr](double h) { return model(m, rr, h); };
+  r.shape = detail::error_shape(m, s.r);
   return r;
 }
 
@@ -131,7 +106,7 @@ Candidate predict(const Method& m, const Search& s) {
     c.predicted_cpu = pl->cpu_per_gradient * gradients_per_step(m) * std::ceil(span / c.h);
     return c;
   }
-  c.h = model_step(m, s.r, s.target / (span * s.F), span);
+  c.h = detail::error_shape(m, s.r).step_at(s.target / (span * s.F), span);
   c.predicted_cpu = s.cpu_per_gradient * gradients_per_step(m) * std::ceil(span / c.h);
   return c;
 }
@@ -146,7 +121,7 @@ bool run_pilot(Search& s, const Method& m, double h_start, std::string& failures
     return false;
   }
   if (s.piloted.empty()) {
-    const double base = model(m, s.r, pl.h) * s.pilot.span;
+    const double base = detail::error_shape(m, s.r)(pl.h) * s.pilot.span;
     s.F = base > 0 && pl.error > 0 ? pl.error / base : 1;
     s.cpu_per_gradient = pl.cpu_per_gradient;
   }
@@ -169,7 +144,8 @@ void first_pilot(Search& s) {
   std::vector<std::pair<double, const Method*>> order;
   const double span = s.pilot.span;
   for (const Method* m : s.methods)
-    order.emplace_back(gradients_per_step(*m) / model_step(*m, s.r, s.target / span, span), m);
+    order.emplace_back(
+        gradients_per_step(*m) / detail::error_shape(*m, s.r).step_at(s.target / span, span), m);
   std::stable_sort(order.begin(), order.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   std::string failures;
@@ -201,8 +177,8 @@ Candidate with_given_step(const Search& s, double h) {
     const Method& m = Method::by_name(c.method);
     const Pilot* pl = pilot_of(s, &m);
     c.h = h;
-    c.estimated_error =
-        pl ? pl->error * std::pow(h / pl->h, m.order()) : s.F * s.pilot.span * model(m, s.r, h);
+    c.estimated_error = pl ? pl->error * std::pow(h / pl->h, m.order())
+                           : s.F * s.pilot.span * detail::error_shape(m, s.r)(h);
     c.predicted_cpu = s.cpu_per_gradient * gradients_per_step(m) * std::ceil(s.pilot.span / h);
   }
   const auto reaches = [&](const Candidate& c) { return c.estimated_error <= s.target; };
@@ -284,7 +260,8 @@ Choice choose_method_and_step(const System& system, const Eigen::VectorXd& q0,
   if (request.h == 0) {
     const double h = advised(m, system, s.bounds, best.h, advice);
     c.h = s.pilot.span / std::ceil(s.pilot.span / h * (1 - 1e-12));  // whole steps to t_end
-    c.estimated_error *= model(m, s.r, c.h) / model(m, s.r, best.h);
+    const detail::ErrorShape shape = detail::error_shape(m, s.r);
+    c.estimated_error *= shape(c.h) / shape(best.h);
   }
   c.reason = reason_of(c, s, advice);
   c.pilot_gradient_evaluations = s.gradients;

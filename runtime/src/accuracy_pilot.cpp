@@ -104,14 +104,44 @@ double order_at(const PilotRequest& r, double h) {
 double step_for(const PilotRequest& r, const Pilot& pilot, double target) {
   if (pilot.error <= 0) return r.span;  // exact (e.g. U = 0): one step
   const double level = r.shape(pilot.h) * target / pilot.error;
-  const double h_max = pilot.at_roundoff ? std::min(r.span, 4 * pilot.h) : r.span;
-  if (r.shape(h_max) <= level) return h_max;
-  double lo = pilot.h * 1e-6, hi = h_max;  // bisection in log h
-  for (int k = 0; k < 60; ++k) {
-    const double mid = std::sqrt(lo * hi);
-    (r.shape(mid) > level ? hi : lo) = mid;
+  return r.shape.step_at(level, pilot.at_roundoff ? std::min(r.span, 4 * pilot.h) : r.span);
+}
+
+// The a priori error model without F (t_end - t0) and r^K: sum_K r^K C_K h^(g_K); the classical
+// C h^p where the generalized constants are unknown.
+ErrorShape error_shape(const Method& m, double r) {
+  const auto g = m.generalized_order();
+  const auto C = m.generalized_error_constant();
+  ErrorShape out;
+  for (size_t K = 0; K < g.size(); ++K)
+    if (std::isfinite(C[K]) && C[K] > 0)
+      out.c.push_back(std::pow(r, double(K + 1)) * C[K]), out.g.push_back(g[K]);
+  if (out.c.empty() && std::isfinite(m.error_constant()) && m.error_constant() > 0)
+    out.c.push_back(m.error_constant()), out.g.push_back(m.order());
+  return out;
+}
+
+double ErrorShape::operator()(double h) const {
+  double sum = 0;
+  for (size_t k = 0; k < c.size(); ++k) sum += c[k] * std::pow(h, g[k]);
+  return sum;
+}
+
+double ErrorShape::step_at(double level, double h_max) const {
+  double x = std::log(h_max);
+  for (int it = 0; it < 100; ++it) {
+    double sum = 0, slope = 0;  // shape and d shape / d ln h at h = e^x
+    for (size_t k = 0; k < c.size(); ++k) {
+      const double term = c[k] * std::exp(g[k] * x);
+      sum += term, slope += g[k] * term;
+    }
+    if (sum <= level && it == 0) return h_max;
+    const double dx = (std::log(sum) - std::log(level)) * sum / slope;
+    if (!std::isfinite(dx)) break;
+    x -= dx;
+    if (std::abs(dx) < 1e-10) break;
   }
-  return lo;
+  return std::exp(x);
 }
 
 }  // namespace erkn::detail

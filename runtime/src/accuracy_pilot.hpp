@@ -4,12 +4,26 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <functional>
 #include <string>
+#include <vector>
 
 #include "erkn/integrator.hpp"
 
 namespace erkn::detail {
+
+/// The shape of a method's global error in h, sum_k c_k h^(g_k) with c_k > 0 (the a priori
+/// model up to a factor): increasing in h, and ln shape is convex in ln h.
+struct ErrorShape {
+  std::vector<double> c, g;
+  double operator()(double h) const;
+  /// The h <= h_max with shape(h) = level (h_max when shape(h_max) <= level): Newton's method
+  /// on ln shape in ln h, which from h_max converges monotonically (convexity) in a few steps.
+  double step_at(double level, double h_max) const;
+};
+
+/// Method m's shape, sum_K r^K C_K h^(g_K) from the certified generalized orders g_K and the
+/// generator's error constants C_K; C h^p where those are unknown; empty when no constant is.
+ErrorShape error_shape(const Method& m, double r);
 
 struct PilotRequest {
   const System* system = nullptr;
@@ -18,9 +32,9 @@ struct PilotRequest {
   Options options;
   double span = 0;   ///< t_end - t0
   double pilot = 0;  ///< the pilot interval, <= span
-  /// The shape of the method's global error in h (the a priori model up to a factor, growing
-  /// with h): its slope is the order the step doubling and the extrapolation in h assume.
-  std::function<double(double h)> shape;
+  /// The method's error shape: its slope is the order the step doubling and the extrapolation
+  /// in h assume.
+  ErrorShape shape;
 };
 
 struct Pilot {

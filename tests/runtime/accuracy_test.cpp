@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "accuracy_pilot.hpp"  // runtime/src: the error shape the choice solves
 #include "erkn/error.hpp"
 #include "erkn/problems.hpp"
 
@@ -50,6 +51,31 @@ TEST(Accuracy, AutoReachesTheToleranceWithinTheWindow) {
       EXPECT_GT(loose.h, s.h) << p.key << " tol " << tol;
       EXPECT_GT(error_of(loose, ref), e) << p.key << " tol " << tol;
     }
+}
+
+// The step solve (Newton in ln h) lands on the level for every registry method's shape, at
+// levels from 1e-14 to above shape(h_max), and for several perturbation sizes r.
+TEST(Accuracy, ErrorShapeStepReachesTheLevel) {
+  int solved = 0;
+  for (const Method& m : Method::all())
+    for (double r : {1.0, 1e-3}) {
+      const detail::ErrorShape shape = detail::error_shape(m, r);
+      if (shape.c.empty()) continue;
+      for (double level : {1e-14, 1e-10, 1e-6, 1e-2}) {
+        const double h_max = 10, h = shape.step_at(level, h_max);
+        ASSERT_GT(h, 0) << m.name();
+        ASSERT_LE(h, h_max) << m.name();
+        if (shape(h_max) <= level) {
+          EXPECT_EQ(h, h_max) << m.name();
+          continue;
+        }
+        EXPECT_NEAR(shape(h) / level, 1, 1e-9) << m.name() << " r " << r << " level " << level;
+        // Negative control: a step 1 % longer misses the level by more than the tolerance.
+        EXPECT_GT(std::abs(shape(1.01 * h) / level - 1), 1e-3) << m.name();
+        ++solved;
+      }
+    }
+  EXPECT_GT(solved, 0);
 }
 
 TEST(Accuracy, KeepsAGivenMethodAndAGivenStep) {
