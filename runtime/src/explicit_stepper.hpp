@@ -58,7 +58,7 @@ class ExplicitStepper final : public StepperBase {
   using Spectral = typename Transform::Spectral;
   using Scalar = typename Spectral::Scalar;
   static constexpr bool kFixed = D != Eigen::Dynamic;
-  // (Aligned when stride_ keeps the arrays aligned: in the dynamic-size storage.)
+  // (Aligned when Arrays::stride keeps the arrays aligned: in the dynamic-size storage.)
   static constexpr int kAlignment = kFixed ? Eigen::Unaligned : Eigen::AlignedMax;
   using SpectralMap = Eigen::Map<Spectral, kAlignment>;
   using ConstMap = Eigen::Map<const Spectral, kAlignment>;
@@ -84,6 +84,49 @@ class ExplicitStepper final : public StepperBase {
   struct Values {
     Fixed q, p, eq, ep;
   };
+  // The kArrays arrays in eigen coordinates, m entries each and stride apart, in one allocation
+  // (a fixed dimension: inside the stepper; uninitialised with a dynamic dimension: set_state
+  // writes the state, every pass what it reads later), and the views a step swaps.
+  struct Arrays {
+    explicit Arrays(Eigen::Index m)
+        : m(m),
+          stride(kFixed ? D : aligned_stride<Scalar>(m)),
+          storage(allocate(stride)),
+          state{slot(0), slot(1), slot(2), slot(3)},
+          G(slot(4)),
+          G_last(slot(5)),
+          work{slot(6), slot(7), slot(8), slot(9)} {}
+    Arrays(const Arrays&) = delete;  // (the views point into storage)
+    Arrays& operator=(const Arrays&) = delete;
+    static Storage allocate(Eigen::Index stride) {
+      if constexpr (kFixed)
+        return Storage{};
+      else
+        return Spectral(kArrays * stride);
+    }
+    // Slot k (the second copy's slots 6..9 exist with a dynamic dimension only).
+    Scalar* slot(int k) { return k < kArrays ? storage.data() + k * stride : nullptr; }
+    Eigen::Index m, stride;
+    Storage storage;
+    State state;         // q, p, eq, ep
+    Scalar *G, *G_last;  // the current stage's force; the last stage's of the previous step
+    State work;          // the state's second copy (dynamic dimension only)
+  };
+  // Physical coordinates: the stage Q and its gradient g (the callback's arguments), and M Q for
+  // RKN methods.
+  struct Physical {
+    Physical(Eigen::Index d, bool rkn)
+        : Q(Eigen::VectorXd::Zero(d)), g(Eigen::VectorXd::Zero(d)), Mq(rkn ? d : 0) {}
+    Eigen::VectorXd Q, g, Mq;
+  };
+  // A processed method's processor (processor.hpp) and the state pi or pi^-1 works on (m = 0:
+  // not processed).
+  struct Processing {
+    Processing(const Method& method, double h, const Eigen::VectorXd& lambda, Eigen::Index m)
+        : coefficients(method, h, lambda), q(m), p(m) {}
+    ProcessorCoefficients coefficients;
+    Spectral q, p;
+  };
 
  public:
   /// lambda: M's eigenvalue of each eigen coordinate ({0} for RKN methods, whose force then
@@ -94,28 +137,14 @@ class ExplicitStepper final : public StepperBase {
         system_(std::move(system)),
         kahan_(options.compensated_summation),
         rkn_(method.kind() == Kind::rkn),
-        s_(method.stages()),
         kicks_(method, h),
-        fsal_(kicks_.fsal_factor(method)),
-        d_(d),
-        h_(h),
         flows_(method, h, lambda),
         transform_(std::move(transform)),
         M_(system_.M, d),
-        m_(transform_.spectral_size(d)),
-        stride_(kFixed ? D : aligned_stride<Scalar>(m_)),
-        spectral_(storage(stride_)),
-        state_{slot(0), slot(1), slot(2), slot(3)},
-        G_(slot(4)),
-        G_last_(slot(5)),
-        work_{slot(6), slot(7), slot(8), slot(9)},
-        Q_(Eigen::VectorXd::Zero(d)),
-        g_(Eigen::VectorXd::Zero(d)),
+        arrays_(transform_.spectral_size(d)),
+        physical_(d, rkn_),
         modified_(method.has_modified_kicks() || method.is_processed() ? d : 0),
-        processor_(method, h, lambda) {
-    if (rkn_) Mq_.resize(d);
-    if (method.is_processed()) pq_.resize(m_), pp_.resize(m_);
-  }
+        processing_(method, h, lambda, method.is_processed() ? arrays_.m : 0) {}
 
   ExplicitStepper(const ExplicitStepper&) = delete;  // (the pointers view its own buffer)
   ExplicitStepper& operator=(const ExplicitStepper&) = delete;
@@ -123,17 +152,17 @@ class ExplicitStepper final : public StepperBase {
   void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p, Statistics& stats) override {
     if (method_.is_processed()) {  // (pi^-1 on a copy: a refused state changes nothing)
       Counts counts;
-      transform_.forward(q, pq_);
-      transform_.forward(p, pp_);
-      process(pq_.data(), pp_.data(), false, counts);
-      map(state_.q) = pq_, map(state_.p) = pp_;
+      transform_.forward(q, processing_.q);
+      transform_.forward(p, processing_.p);
+      process(processing_.q.data(), processing_.p.data(), false, counts);
+      map(arrays_.state.q) = processing_.q, map(arrays_.state.p) = processing_.p;
       count(counts, stats);
     } else {
-      transform_.forward(q, map(state_.q));
-      transform_.forward(p, map(state_.p));
+      transform_.forward(q, map(arrays_.state.q));
+      transform_.forward(p, map(arrays_.state.p));
     }
-    map(state_.eq).setZero();
-    map(state_.ep).setZero();
+    map(arrays_.state.eq).setZero();
+    map(arrays_.state.ep).setZero();
     have_history_ = false;
     pending_ = false;
   }
@@ -145,11 +174,11 @@ class ExplicitStepper final : public StepperBase {
       load<false>(q, p);
     if (!method_.is_processed()) return;
     Counts counts;  // pi of the kernel's state, in eigen coordinates
-    transform_.forward(q, pq_);
-    transform_.forward(p, pp_);
-    process(pq_.data(), pp_.data(), true, counts);
-    transform_.inverse(pq_, q);
-    transform_.inverse(pp_, p);
+    transform_.forward(q, processing_.q);
+    transform_.forward(p, processing_.p);
+    process(processing_.q.data(), processing_.p.data(), true, counts);
+    transform_.inverse(processing_.q, q);
+    transform_.inverse(processing_.p, p);
     count(counts, stats);
   }
 
@@ -161,9 +190,9 @@ class ExplicitStepper final : public StepperBase {
       passes<true>(counts);
     else
       passes<false>(counts);
-    std::swap(G_, G_last_);  // (FSAL: the last stage's gradient)
+    std::swap(arrays_.G, arrays_.G_last);  // (FSAL: the last stage's gradient)
     have_history_ = true;
-    pending_ = flows_.moves(s_);
+    pending_ = flows_.moves(kicks_.stages());
     ++stats.steps;
     stats.stage_iterations += counts.gradients;
     count(counts, stats);
@@ -188,14 +217,14 @@ class ExplicitStepper final : public StepperBase {
   // pi^-1 (backwards = false: the table's pre-sequence drift, kick, ..., drift) or pi (its
   // exact inverse: the same operations reversed, each negated) on eigen coordinates q, p.
   void process(Scalar* q, Scalar* p, bool backwards, Counts& counts) {
-    const int m = processor_.kicks();
+    const int m = processing_.coefficients.kicks();
     const double sign = backwards ? -1 : 1;
     place_.processor = backwards ? "pi" : "pi^-1";  // (messages name the processor's kick)
     try {
       for (int j = 0; j <= 2 * m; ++j) {
         const int k = backwards ? 2 * m - j : j;  // (even: drift k/2, odd: kick k/2)
         if (k % 2 == 0)
-          processor_drift(processor_.drift(k / 2), sign, lanes(q), lanes(p));
+          processor_drift(processing_.coefficients.drift(k / 2), sign, lanes(q), lanes(p));
         else
           processor_kick(k / 2, sign, q, p, counts);
       }
@@ -234,22 +263,13 @@ class ExplicitStepper final : public StepperBase {
   // Processor kick k (sign -1: undone): p -= sign h (y grad U + h^2 v G), or p -= sign h y grad
   // U when v = 0.
   void processor_kick(int k, double sign, const Scalar* q, Scalar* p, Counts& counts) {
-    const ProcessorCoefficients::Kick& w = processor_.kick(k);
+    const ProcessorCoefficients::Kick& w = processing_.coefficients.kick(k);
     const bool modified = w.h2v != 0;
     const Scalar* g = force(q, false, k, w.y, w.h2v, counts, true);  // (no pass checks it)
-    const double weight = sign * h_ * (modified ? 1.0 : w.y);
+    const double weight = sign * kicks_.h() * (modified ? 1.0 : w.y);
     double* pl = lanes(p);
     const double* gl = lanes(g);
     for (Eigen::Index x = 0; x < kLanes * n(); ++x) pl[x] -= weight * gl[x];
-  }
-
-  // (Uninitialised with a dynamic dimension: set_state writes the state, every pass what it
-  // reads later.)
-  static Storage storage(Eigen::Index stride) {
-    if constexpr (kFixed)
-      return Storage{};
-    else
-      return Spectral(kArrays * stride);
   }
 
   // One step into the second copy (a fixed dimension: whole arrays, which the compiler keeps
@@ -265,28 +285,28 @@ class ExplicitStepper final : public StepperBase {
   template <bool kKahan>
   void passes(Counts& evaluations) {
     if constexpr (kFixed) {
-      Values v{Fixed(state_.q), Fixed(state_.p), Fixed::Zero(), Fixed::Zero()};
-      if (kKahan) v.eq = Fixed(state_.eq), v.ep = Fixed(state_.ep);
+      Values v{Fixed(arrays_.state.q), Fixed(arrays_.state.p), Fixed::Zero(), Fixed::Zero()};
+      if (kKahan) v.eq = Fixed(arrays_.state.eq), v.ep = Fixed(arrays_.state.ep);
       stages<kKahan>(v, v, evaluations);
       require_finite(v);
-      FixedMap(state_.q) = v.q, FixedMap(state_.p) = v.p;
-      if (kKahan) FixedMap(state_.eq) = v.eq, FixedMap(state_.ep) = v.ep;
+      FixedMap(arrays_.state.q) = v.q, FixedMap(arrays_.state.p) = v.p;
+      if (kKahan) FixedMap(arrays_.state.eq) = v.eq, FixedMap(arrays_.state.ep) = v.ep;
     } else {
-      if (stages<kKahan>(state_, work_, evaluations)) non_finite_result(true, place_);
-      std::swap(state_, work_);
+      if (stages<kKahan>(arrays_.state, arrays_.work, evaluations)) non_finite_result(true, place_);
+      std::swap(arrays_.state, arrays_.work);
     }
   }
 
   // The flows and kicks from `start` into `to` (S: State or Values; start may be to), the first
   // flow merged with the pending one, the last left pending; kick i and flow i + 1 in one pass.
-  // In the identity basis each flow before a gradient writes the stage's Q_ as it goes (with a
-  // staging transform: the inverse transform's input), and the last kick saves the gradient to
-  // G_ for FSAL: no pass reloads what the last one stored. Returns the non-finite bits of the
-  // last kick's p (arrays; with Values 0: they are checked whole).
+  // In the identity basis each flow before a gradient writes the stage's physical_.Q as it goes
+  // (with a staging transform: the inverse transform's input), and the last kick saves the gradient
+  // to arrays_.G for FSAL: no pass reloads what the last one stored. Returns the non-finite bits of
+  // the last kick's p (arrays; with Values 0: they are checked whole).
   template <bool kKahan, class S>
   EIGEN_ALWAYS_INLINE std::uint64_t stages(const S& start, S& to, Counts& evaluations) {
     const S* from = &start;
-    const bool reuse = fsal_ && have_history_;  // (stage 1's force; its flow never moves)
+    const bool reuse = kicks_.fsal() && have_history_;  // (stage 1's force; its flow never moves)
     const int first = pending_ ? flows_.merged(method_) : 0;
     bool staged = false;  // (stage i's Q written by the last pass)
     if (flows_.moves(first)) {
@@ -295,14 +315,14 @@ class ExplicitStepper final : public StepperBase {
       staged = kStage;
     }
     PassBits bits;
-    for (int i = 0; i < s_; ++i) {
+    for (int i = 0; i < kicks_.stages(); ++i) {
       const bool reused = i == 0 && reuse;
-      const double hd = h_ * (reused ? *fsal_ : kicks_.weight(i));
-      const Scalar* g = reused ? G_last_ : evaluate(&from->q[0], staged, i, evaluations);
-      staged = i + 1 < s_ && flows_.moves(i + 1);
+      const double hd = kicks_.h() * (reused ? *kicks_.fsal() : kicks_.weight(i));
+      const Scalar* g = reused ? arrays_.G_last : evaluate(&from->q[0], staged, i, evaluations);
+      staged = i + 1 < kicks_.stages() && flows_.moves(i + 1);
       if (staged)
         bits = apply<kKahan, kKickFlow>(*from, to, hd, g, i + 1);
-      else if (kIdentity && i == s_ - 1)  // (the FSAL force)
+      else if (kIdentity && i == kicks_.stages() - 1)  // (the FSAL force)
         bits = apply<kKahan, kKickSaved>(*from, to, hd, g, 0);
       else
         bits = apply<kKahan, kKick>(*from, to, hd, g, 0);
@@ -318,21 +338,24 @@ class ExplicitStepper final : public StepperBase {
   template <bool kKahan>
   void load(Eigen::VectorXd& q, Eigen::VectorXd& p) {
     if constexpr (kFixed) {
-      Values v{Fixed(state_.q), Fixed(state_.p), Fixed(state_.eq), Fixed(state_.ep)};
-      if (pending_) apply<kKahan, kFlow>(v, v, 0, nullptr, s_);
+      Values v{Fixed(arrays_.state.q), Fixed(arrays_.state.p), Fixed(arrays_.state.eq),
+               Fixed(arrays_.state.ep)};
+      if (pending_) apply<kKahan, kFlow>(v, v, 0, nullptr, kicks_.stages());
       q = (v.q + v.eq).matrix(), p = (v.p + v.ep).matrix();
     } else {
-      const State* from = &state_;
-      if (pending_) apply<kKahan, kFlow>(state_, work_, 0, nullptr, s_), from = &work_;
+      const State* from = &arrays_.state;
+      if (pending_)
+        apply<kKahan, kFlow>(arrays_.state, arrays_.work, 0, nullptr, kicks_.stages()),
+            from = &arrays_.work;
       if constexpr (kStaged) {  // (the sum, scaled, straight into the staging buffer)
         inverse_of_sum<kKahan>(from->q, from->eq, q);
         inverse_of_sum<kKahan>(from->p, from->ep, p);
         return;
       }
       if (kKahan) {
-        map(work_.q) = map(from->q) + map(from->eq);
-        map(work_.p) = map(from->p) + map(from->ep);
-        from = &work_;
+        map(arrays_.work.q) = map(from->q) + map(from->eq);
+        map(arrays_.work.p) = map(from->p) + map(from->ep);
+        from = &arrays_.work;
       }
       transform_.inverse(map(from->q), q);
       transform_.inverse(map(from->p), p);
@@ -344,7 +367,7 @@ class ExplicitStepper final : public StepperBase {
     double* __restrict y = transform_.staging();
     const double* __restrict a = reinterpret_cast<const double*>(x);
     const double* __restrict b = reinterpret_cast<const double*>(ex);
-    for (Eigen::Index j = 0; j < kLanes * m_; ++j)
+    for (Eigen::Index j = 0; j < kLanes * arrays_.m; ++j)
       y[j] = stage_scale_ * (kKahan ? a[j] + b[j] : a[j]);
     transform_.inverse_staged(out);
   }
@@ -355,9 +378,9 @@ class ExplicitStepper final : public StepperBase {
   }
 
   // The passes a step makes (explicit_passes.hpp, PassKind {kick, flow, in place, save, stage}):
-  // a flow, the first one staging Q (identity basis: Q_, else the transform's staging buffer,
-  // if any); kicks, the last one saving the force to G_ (identity basis); a kick and the next
-  // flow, staging its Q.
+  // a flow, the first one staging Q (identity basis: physical_.Q, else the transform's staging
+  // buffer, if any); kicks, the last one saving the force to arrays_.G (identity basis); a kick and
+  // the next flow, staging its Q.
   static constexpr bool kStage = kIdentity || kStaged;
   static constexpr PassKind kFlow{false, true, false, false, false};
   static constexpr PassKind kFlowStaged{false, true, false, false, kStage};
@@ -372,7 +395,7 @@ class ExplicitStepper final : public StepperBase {
     const PassArrays a = arrays(from), b = arrays(to);
     const auto f = flow_of(k);
     const double* gd = reinterpret_cast<const double*>(g);
-    double* save = reinterpret_cast<double*>(G_);
+    double* save = reinterpret_cast<double*>(arrays_.G);
     double* Q = stage_input();
     constexpr PassKind copy{kind.kick, kind.flow, false, kind.save, kind.stage};
     constexpr PassKind in_place{kind.kick, kind.flow, true, kind.save, kind.stage};
@@ -386,13 +409,13 @@ class ExplicitStepper final : public StepperBase {
     if constexpr (kind.kick) {
       kick_update<kKahan, true>(Fixed(-hd * Eigen::Map<const Fixed>(g)), v.q, v.p, v.eq, v.ep);
       if (kind.save)
-        for (int e = 0; e < D; ++e) G_[e] = g[e];
+        for (int e = 0; e < D; ++e) arrays_.G[e] = g[e];
     }
     if constexpr (kind.flow) {
       flow_update<kKahan, true>(fixed(flows_.cos(k)), fixed(flows_.cm1(k)), fixed(flows_.sinc(k)),
                                 fixed(flows_.msinc(k)), v.q, v.p, v.eq, v.ep);
       if (kind.stage)
-        for (int e = 0; e < D; ++e) Q_[e] = v.q[e];
+        for (int e = 0; e < D; ++e) physical_.Q[e] = v.q[e];
     }
     return {};
   }
@@ -413,9 +436,9 @@ class ExplicitStepper final : public StepperBase {
                                      flows_.sinc(k).data(), flows_.msinc(k).data()};
   }
 
-  // The force at the stage q (eigen coordinates; already in Q_ when have_Q), evaluated in
-  // physical coordinates: in eigen coordinates in G_, or (identity basis) in g_. A modified
-  // kick's force is d_i g + h^2 e_i G.
+  // The force at the stage q (eigen coordinates; already in physical_.Q when have_Q), evaluated in
+  // physical coordinates: in eigen coordinates in arrays_.G, or (identity basis) in physical_.g. A
+  // modified kick's force is d_i g + h^2 e_i G.
   EIGEN_ALWAYS_INLINE const Scalar* evaluate(const Scalar* q, bool have_Q, int i,
                                              Counts& evaluations) {
     // (With arrays the kick checks the force; a modified one's g is checked before G(Q, g).)
@@ -427,26 +450,29 @@ class ExplicitStepper final : public StepperBase {
   EIGEN_ALWAYS_INLINE const Scalar* force(const Scalar* q, bool have_Q, int i, double d_i,
                                           double h2e, Counts& evaluations, bool check_g) {
     if constexpr (kIdentity) {
-      if (!have_Q) std::copy_n(q, n(), Q_.data());
+      if (!have_Q) std::copy_n(q, n(), physical_.Q.data());
     } else if constexpr (kStaged) {
       if (have_Q)
-        transform_.inverse_staged(Q_);
+        transform_.inverse_staged(physical_.Q);
       else
-        transform_.inverse(ConstMap(q, m_), Q_);
+        transform_.inverse(ConstMap(q, arrays_.m), physical_.Q);
     } else {
-      transform_.inverse(ConstMap(q, m_), Q_);
+      transform_.inverse(ConstMap(q, arrays_.m), physical_.Q);
     }
-    checked_gradient<D>(system_, Q_, g_, d_, i, place_, evaluations.gradients, check_g);
+    checked_gradient<D>(system_, physical_.Q, physical_.g, physical_.Q.size(), i, place_,
+                        evaluations.gradients, check_g);
     if (rkn_) {
-      M_.apply(Q_, Mq_);
-      g_ += Mq_;
+      M_.apply(physical_.Q, physical_.Mq);
+      physical_.g += physical_.Mq;
     }
-    if (h2e != 0) modified_.apply<D>(system_, Q_, d_i, h2e, g_, i, place_, evaluations.products);
+    if (h2e != 0)
+      modified_.apply<D>(system_, physical_.Q, d_i, h2e, physical_.g, i, place_,
+                         evaluations.products);
     if constexpr (kIdentity) {
-      return g_.data();
+      return physical_.g.data();
     } else {
-      transform_.forward(g_, map(G_));
-      return G_;
+      transform_.forward(physical_.g, map(arrays_.G));
+      return arrays_.G;
     }
   }
 
@@ -459,7 +485,7 @@ class ExplicitStepper final : public StepperBase {
   // Where the flow before a gradient writes the stage's q (as doubles), or nullptr.
   double* stage_input() {
     if constexpr (kIdentity)
-      return Q_.data();
+      return physical_.Q.data();
     else if constexpr (kStaged)
       return transform_.staging();
     else
@@ -471,7 +497,7 @@ class ExplicitStepper final : public StepperBase {
     if constexpr (kFixed)
       return D;
     else
-      return m_;
+      return arrays_.m;
   }
 
   // A coefficient as a fixed-size array (or the one value of a scalar M).
@@ -481,32 +507,21 @@ class ExplicitStepper final : public StepperBase {
     return Fixed(values.data());
   }
 
-  // Slot k of the storage (the second copy's slots 6..9 exist with a dynamic dimension only).
-  Scalar* slot(int k) { return k < kArrays ? spectral_.data() + k * stride_ : nullptr; }
-  SpectralMap map(Scalar* x) const { return {x, m_}; }
+  // An array of the storage as an Eigen array.
+  SpectralMap map(Scalar* x) const { return {x, arrays_.m}; }
 
   Method method_;
   System system_;
   bool kahan_, rkn_;
-  int s_;
   KickWeights kicks_;
-  std::optional<double> fsal_;  // the first kick's weight on the last force (FSAL), if reused
-  Eigen::Index d_;
-  double h_;  // (the kicks' h d_i are formed as they are used)
   FlowCoefficients<Coef> flows_;
   Transform transform_;
   double stage_scale_ = staging_scale(transform_);  // (what stage_input wants)
   MOperator M_;
-  // kArrays arrays in eigen coordinates, m_ entries each and stride_ apart.
-  Eigen::Index m_, stride_;
-  Storage spectral_;
-  State state_;
-  Scalar *G_, *G_last_;
-  State work_;                  // (dynamic dimension only)
-  Eigen::VectorXd Q_, g_, Mq_;  // physical coordinates (Q_, g_ go to the callback)
+  Arrays arrays_;
+  Physical physical_;
   ModifiedForce modified_;
-  ProcessorCoefficients processor_;
-  Spectral pq_, pp_;  // the state pi or pi^-1 works on (processed methods)
+  Processing processing_;
   bool have_history_ = false;
   bool pending_ = false;  // the stored state awaits flow s (the last of the step)
   StepPlace place_{&method_, 0, 0};

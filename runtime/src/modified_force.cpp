@@ -19,13 +19,14 @@ void require_modified_force(const Method& method, const System& system) {
               plain + ")");
 }
 
-KickWeights::KickWeights(const Method& method, double h) {
+KickWeights::KickWeights(const Method& method, double h) : s_(method.stages()), h_(h) {
   const std::span<const double> e = method.modified();
   for (int i = 0; i < method.stages(); ++i) {
     const bool modified = !e.empty() && e[size_t(i)] != 0;
     weight_[size_t(i)] = modified ? 1.0 : method.table().d[i];
     h2e_[size_t(i)] = modified ? h * h * e[size_t(i)] : 0.0;
   }
+  fsal_ = fsal_factor(method);
 }
 
 std::optional<double> KickWeights::fsal_factor(const Method& method) const {

@@ -26,15 +26,22 @@ void require_modified_force(const Method& method, const System& system);
 class KickWeights {
  public:
   KickWeights(const Method& method, double h);
+  int stages() const { return s_; }
+  double h() const { return h_; }
   double weight(int i) const { return weight_[size_t(i)]; }
   double h2e(int i) const { return h2e_[size_t(i)]; }  ///< h^2 e_i (0: a plain kick)
   /// When the first kick can reuse the last stage's force (c_1 = 0, c_s = 1: the same point),
   /// its weight on that force: d_1 for plain kicks, r for modified ones with (d_1, e_1) =
   /// r (d_s, e_s); none when it cannot (plain and modified, or other mixtures of g and G).
-  std::optional<double> fsal_factor(const Method& method) const;
+  const std::optional<double>& fsal() const { return fsal_; }
 
  private:
+  std::optional<double> fsal_factor(const Method& method) const;
+
+  int s_;
+  double h_;  // (the kicks' h d_i are formed as they are used)
   std::array<double, kMaxStages> weight_{}, h2e_{};
+  std::optional<double> fsal_;
 };
 
 /// Adds h2e G(Q) to d_i g in g (g = grad U(Q) on entry), through the System's Hessian-vector
