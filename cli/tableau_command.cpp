@@ -18,6 +18,18 @@
 namespace erkn::cli {
 namespace {
 
+// A processed method's kernel order and pi^-1, the pre-processor the runtime applies to a state
+// before the kernel steps (erkn/table.hpp: drift pre_drift[k] h, kick pre_kick[k] and
+// pre_modified[k], ..., drift pre_drift[npre] h; pi is its exact inverse).
+void print_processor(const Method& m) {
+  const generated::Table& t = m.table();
+  const auto list = [](const double* x, int n) { return json_list(std::vector<double>(x, x + n)); };
+  std::cout << ",\n \"kernel_order\": " << m.kernel_order()
+            << ",\n \"pre_drift\": " << list(t.pre_drift, t.npre + 1)
+            << ",\n \"pre_kick\": " << list(t.pre_kick, t.npre)
+            << ",\n \"pre_modified\": " << list(t.pre_modified, t.npre);
+}
+
 // {"method", "stages", "order", "c", "d", "b", "bbar", "abar"} with each coefficient rendered
 // by `value(index)` (index in table order b_1..b_s, bbar_1..bbar_s, abar_11, abar_21, ...).
 void print_tableau(const Method& m, const std::function<std::string(int)>& value) {
@@ -29,6 +41,7 @@ void print_tableau(const Method& m, const std::function<std::string(int)>& value
   if (m.has_modified_kicks())
     std::cout << ",\n \"modified\": "
               << json_list(std::vector<double>(m.modified().begin(), m.modified().end()));
+  if (m.is_processed()) print_processor(m);
   std::cout << ",\n \"b\": [";
   for (int i = 0; i < s; ++i) std::cout << (i ? ", " : "") << value(i);
   std::cout << "],\n \"bbar\": [";

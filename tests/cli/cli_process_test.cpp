@@ -3,6 +3,7 @@
 // no signal, no hang, never exit 0 on junk.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <erkn/advisor.hpp>
 #include <erkn/method.hpp>
@@ -86,6 +87,35 @@ TEST(Cli, RunFindsErknExperimentsBesideItOrSaysItIsMissing) {
   EXPECT_EQ(beside.exit_code, 0) << beside.err;
   EXPECT_NE(beside.out.find("usage: erkn-experiments"), std::string::npos) << beside.out;
   fs::remove_all(alone.parent_path());
+}
+
+// erkn tableau shows a processed method's pre-processor pi^-1 (npre + 1 drifts, npre kicks) and
+// its kernel's order; an unprocessed method shows none (negative control).
+TEST(Cli, TableauShowsTheProcessorOfProcessedMethods) {
+  int processed = 0;
+  for (const erkn::Method& m : erkn::Method::all()) {
+    const erkn::process::Result r = erkn_cli({"tableau", std::string(m.name()), "--v", "0.5"});
+    ASSERT_EQ(r.exit_code, 0) << m.name() << r.err;
+    if (!m.is_processed()) {
+      EXPECT_EQ(r.out.find("pre_drift"), std::string::npos) << m.name();
+      continue;
+    }
+    ++processed;
+    const erkn::generated::Table& t = m.table();
+    const auto count = [&](const std::string& key) {  // entries of the list after "key": [
+      const size_t at = r.out.find("\"" + key + "\": [");
+      if (at == std::string::npos) return -1;
+      const std::string list = r.out.substr(at, r.out.find(']', at) - at);
+      return int(std::count(list.begin(), list.end(), ',')) + 1;
+    };
+    EXPECT_EQ(count("pre_drift"), t.npre + 1) << r.out;
+    EXPECT_EQ(count("pre_kick"), t.npre) << r.out;
+    EXPECT_EQ(count("pre_modified"), t.npre) << r.out;
+    EXPECT_NE(r.out.find("\"kernel_order\": " + std::to_string(m.kernel_order())),
+              std::string::npos)
+        << r.out;
+  }
+  EXPECT_GT(processed, 0);
 }
 
 TEST(Cli, AdviseFlagsPolesAndResonancesAndAcceptsTheRest) {
