@@ -4,6 +4,7 @@
 // with A = p'p/2 + q'Mq/2 and B = U(q), [B, [B, [B, A]]] = 0 still holds, the property the
 // Runge-Kutta-Nystrom (SRKN) families exploit. Closing coefficients are recomputed from the
 // consistency conditions (sum of kicks = sum of flows = 1) so they hold to the last bit.
+#include <cmath>
 #include <numeric>
 
 #include "splitting.hpp"
@@ -30,7 +31,9 @@ Composition strang() {
           {0.5, 0.5},
           {1.0},
           false,
-          true};
+          true,
+          {},
+          {}};
 }
 
 Composition blanes_moan_srkn6b() {
@@ -48,7 +51,9 @@ Composition blanes_moan_srkn6b() {
           palindrome(b, b4, true),
           palindrome(flow_half, 0, false),
           false,
-          true};
+          true,
+          {},
+          {}};
 }
 
 Composition blanes_moan_srkn14a() {
@@ -69,7 +74,9 @@ Composition blanes_moan_srkn14a() {
           kick,
           palindrome(a, 1 - 2 * sum(a), true),
           false,
-          true};
+          true,
+          {},
+          {}};
 }
 
 Composition aba1064() {
@@ -93,7 +100,10 @@ Composition aba1064() {
           4,
           kick,
           palindrome(a, 1 - 2 * sum(a), true),
-          false};
+          false,
+          false,
+          {},
+          {}};
 }
 
 Composition mollified_impulse() {
@@ -108,6 +118,64 @@ Composition mollified_impulse() {
   c.filtered = true;
   c.for_grids = false;  // built for near-integrable and resonant problems (P1-P3 charts)
   return c;
+}
+
+Composition omf4_3f3g() {
+  // I.P. Omelyan, I.M. Mryglod, R. Folk, Symplectic analytically integrable decomposition
+  // algorithms, Comput. Phys. Commun. 151 (2003) 272-314, eqs. (40)-(42), 4MN3F3GP (minimum
+  // norm, 3 forces, 3 force gradients, position version); lambda, chi and the formulas for theta
+  // and xi as in jxy/MDevolve src/mdevolve.nim (mkOmelyan4MN3F3GP) @
+  // 2d2f4d586419049d2fdb1fbb762afc1c55d02fa1:
+  // T(theta) V(lambda) G(xi) T(1/2-theta) V(1-2 lambda) G(chi) T(1/2-theta) G(xi) V(lambda)
+  // T(theta). Its G step of weight xi is p += xi h^3 grad |grad U|^2, so e = -xi here.
+  const double lambda = 0.2825633404177051, chi = 0.003035236056708454;
+  const double theta = 0.5 - 1.0 / std::sqrt(24.0 * lambda);
+  const double xi = (1.0 - 12.0 * chi - std::sqrt(6.0 * lambda) * (1.0 - lambda)) / 24.0;
+  Composition c{"OMF4 (4MN3F3GP)",
+                "Omelyan, Mryglod & Folk, Comput. Phys. Commun. 151 (2003), 4MN3F3GP",
+                4,
+                {0, lambda, 1 - 2 * lambda, lambda, 0},
+                {theta, 0.5 - theta, 0.5 - theta, theta},
+                false,
+                true,
+                {0, -xi, -chi, -xi, 0},
+                {}};
+  return c;
+}
+
+Composition pmlf6() {
+  // S. Blanes, F. Casas, J. Ros, Symplectic integration with processing: a general study,
+  // SIAM J. Sci. Comput. 21 (1999) 711-727; as REBOUND's EOS method PMLF6 (hannorein/rebound
+  // src/integrator_eos.c @ 0c7d40c89524e48cdbaa0f38c10a798f7c2b9798: pmlf6_a, _b, _c for the
+  // kernel, pmlf6_z, _y, _v for the processor). Kernel: A(a0) B(b0, c0) A(a1) B(b1, c1) A(a1)
+  // B(b0, c0) A(a0); its preprocessor (pi^-1 here): A(z_i) B(y_i, v_i), i = 0..5; its
+  // postprocessor is the reverse with every coefficient negated. REBOUND's kick B(y, v) is
+  // p += y a + v grad |a|^2 with a = -grad U (v already carries h^3), so e = -c and e = -v here.
+  const std::vector<double> a{-0.0682610383918630, 0.568261038391863038121699};
+  const std::vector<double> b{0.2621129352517028, 0.475774129496594366806050};
+  const std::vector<double> c{0., 0.0164011128160783};
+  const std::vector<double> z{0.07943288242455420, 0.02974829169467665, -0.7057074964815896,
+                              0.3190423451260838,  -0.2869147334299646, 0.564398710666239478150885};
+  const std::vector<double> y{1.3599424487455264,    -0.6505973747535132,
+                              -0.033542814598338416, -0.040129915275115030,
+                              0.044579729809902803,  -0.680252073928462652752103};
+  const std::vector<double> v{-0.034841228074994859,
+                              0.031675672097525204,
+                              -0.005661054677711889,
+                              0.004262222269023640,
+                              0.005,
+                              -0.005};
+  Composition k{"PMLF6 (processed)",
+                "Blanes, Casas & Ros, SIAM J. Sci. Comput. 21 (1999); REBOUND's EOS PMLF6",
+                6,
+                {0, b[0], b[1], b[0], 0},
+                {a[0], a[1], a[1], a[0]},
+                false,
+                true,
+                {0, -c[0], -c[1], -c[0], 0},
+                {z, y, {}}};
+  for (double x : v) k.processor.modified.push_back(-x);
+  return k;
 }
 
 int evaluations_per_step(const Composition& c) {

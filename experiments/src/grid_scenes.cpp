@@ -274,10 +274,10 @@ std::vector<GridScene> make_scenes(const GridSceneConfig& cfg, const SolverList&
   scenes[1].make = klein_gordon_3d, scenes[1].sizes = cfg.kg_sizes;
   scenes[1].step_sizes = cfg.kg_step_sizes;
   // Solver::suits_grid: the ERKN methods, Verlet (resolves M's frequencies) and the exact-flow
-  // splittings of orders 2, 4 and 6. Left out: the RKN limits (must resolve M), Gauss2 (dense
-  // block solves), the Odeint RKN steppers (like Verlet, slower per step), ABA(10,6,4) and the
-  // mollified impulse method (built for near-integrable and resonant problems; their P1-P3
-  // charts show them).
+  // splittings of orders 2, 4 and 6 (plain, force-gradient OMF4, processed PMLF6). Left out: the
+  // RKN limits (must resolve M), Gauss2 (dense block solves), the Odeint RKN steppers (like Verlet,
+  // slower per step), ABA(10,6,4) and the mollified impulse method (built for near-integrable and
+  // resonant problems; their P1-P3 charts show them).
   for (GridScene& sc : scenes)
     for (const auto& s : solvers)
       if (s->suits_grid()) sc.lines.push_back({s.get(), {}});

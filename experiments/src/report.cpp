@@ -207,9 +207,13 @@ void write_report(const std::filesystem::path& file, const RunInfo& info,
         "identity or real FFT) with kicks by the same ∇U code, the last kick of a step serving "
         "as the first of the next (FSAL): Strang / impulse (order 2), Blanes–Moan SRKN6b (order "
         "4, 6 ∇U a step) and SRKN14a (order 6, 14), ABA(10,6,4) of Blanes, Casas, Farrés, "
-        "Laskar, Makazaga & Murua (8; error O(εh¹⁰ + ε²h⁶ + ε³h⁴) for a perturbation of size ε) "
-        "and the mollified impulse method of García-Archilla, Sanz-Serna & Skeel (filter sinc, "
-        "order 2). All peers are written in experiments/, independently of the runtime.\n";
+        "Laskar, Makazaga & Murua (8; error O(εh¹⁰ + ε²h⁶ + ε³h⁴) for a perturbation of size ε), "
+        "the mollified impulse method of García-Archilla, Sanz-Serna & Skeel (filter sinc, "
+        "order 2), the force-gradient OMF4 (4MN3F3GP) of Omelyan, Mryglod & Folk (order 4, 3 "
+        "kicks with ∇(|∇U|²) = 2∇²U∇U a step) and the processed PMLF6 of Blanes, Casas & Ros as "
+        "in REBOUND (order 6, 3 kicks, one modified; its processor applied at the start and to "
+        "every state given out). All peers are written in experiments/, independently of the "
+        "runtime.\n";
   const std::vector<SceneRuns> scenes = target_scenes(problems, scaling);
   const std::string verdict = verdict_markdown(scenes, stiff);
   md << "\n" << verdict << "\n" << targets_markdown(scenes) << breakdown_markdown(scenes);

@@ -67,7 +67,7 @@ std::unique_ptr<Solver> make_mclachlan_sb3a();     ///< Boost.Odeint symplectic_
 std::unique_ptr<Solver> make_mclachlan_sb3a_m4();  ///< Boost.Odeint ..._sb3a_m4_mclachlan
 std::unique_ptr<Solver> make_gauss2();             ///< 2-stage Gauss-Legendre, Nystrom form
 /// The exact-flow splitting peers (splitting.hpp): Strang, SRKN6b, SRKN14a, ABA(10,6,4),
-/// mollified impulse.
+/// mollified impulse, the force-gradient OMF4 (4MN3F3GP) and the processed PMLF6.
 SolverList make_splitting_peers();
 /// Every ERKN method and RKN limit of the runtime's registry, in its order, each method once:
 /// a method identical to an earlier one (identical_registry_methods) is left out.
