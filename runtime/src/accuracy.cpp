@@ -194,7 +194,7 @@ Candidate with_given_step(const Search& s, double h) {
 // replaced by the suggestion when that is smaller.
 double advised(const Method& m, const System& sys, const HessianBounds& bounds, double h,
                std::string& note) {
-  const StepSizeAdvice a = advise_step_size(m, sys.M.eigenvalues(), h, bounds);
+  const StepSizeAdvice a = advise_step_size(m, detail::distinct(sys.M.eigenvalues()), h, bounds);
   if (a.safe()) {
     note = "the advisor finds no pole, instability or resonance at this h";
     return h;
@@ -224,7 +224,7 @@ std::string reason_of(const Choice& c, const Search& s, const std::string& advic
   if (pl)
     out += ": its pilot over " + format(s.pilot.pilot, 4) + " of " + format(s.pilot.span, 4) +
            " at h = " + format(pl->h, 4) + " and h/2 estimates " + format(pl->error, 3) +
-           " at t_end (step doubling, error grown linearly in t)";
+           " at t_end (step doubling, error grown as t^beta, beta in [1/2, 1] from the pilot)";
   out += "; h = " + format(c.h, 6) + " aims at " + format(s.target, 3) + " (estimated " +
          format(c.estimated_error, 3) + ")";
   if (c.candidates.size() > 1)

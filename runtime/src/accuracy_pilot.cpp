@@ -121,6 +121,15 @@ ErrorShape error_shape(const Method& m, double r) {
   return out;
 }
 
+Eigen::VectorXd distinct(const Eigen::VectorXd& values) {
+  std::vector<double> v(values.data(), values.data() + values.size());
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end(),
+                      [](double a, double b) { return b - a <= 1e-12 * std::abs(b); }),
+          v.end());
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), Eigen::Index(v.size()));
+}
+
 double ErrorShape::operator()(double h) const {
   double sum = 0;
   for (size_t k = 0; k < c.size(); ++k) sum += c[k] * std::pow(h, g[k]);

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "accuracy_pilot.hpp"  // runtime/src: the error shape the choice solves
+#include "erkn/advisor.hpp"
 #include "erkn/error.hpp"
 #include "erkn/problems.hpp"
 
@@ -76,6 +77,32 @@ TEST(Accuracy, ErrorShapeStepReachesTheLevel) {
       }
     }
   EXPECT_GT(solved, 0);
+}
+
+// The choice asks the advisor about M's distinct eigenvalues only: on a grid (repeated
+// eigenvalues) its verdict and suggestion equal those over all of them, for every explicit
+// method and several h. Negative control: without the largest eigenvalue some verdict changes.
+TEST(Accuracy, AdvisorVerdictOnDistinctEigenvaluesIsTheSame) {
+  const problems::Problem p = problems::sine_gordon_2d(4);
+  const System sys = problems::system(p);
+  const Eigen::VectorXd all = sys.M.eigenvalues(), once = detail::distinct(all);
+  ASSERT_LT(once.size(), all.size());
+  const HessianBounds bounds = hessian_bounds_at(sys, p.q0);
+  const auto same = [](const StepSizeAdvice& a, const StepSizeAdvice& b) {
+    return a.safe() == b.safe() && (a.suggested_h == b.suggested_h ||
+                                    (std::isnan(a.suggested_h) && std::isnan(b.suggested_h)));
+  };
+  int changed_without_top = 0;
+  for (const Method& m : Method::all()) {
+    if (!m.is_explicit()) continue;
+    for (double h : {0.9, 2.5}) {
+      const StepSizeAdvice full = advise_step_size(m, all, h, bounds);
+      EXPECT_TRUE(same(full, advise_step_size(m, once, h, bounds))) << m.name() << " h " << h;
+      changed_without_top +=
+          !same(full, advise_step_size(m, once.head(once.size() - 1), h, bounds));
+    }
+  }
+  EXPECT_GT(changed_without_top, 0);
 }
 
 TEST(Accuracy, KeepsAGivenMethodAndAGivenStep) {
