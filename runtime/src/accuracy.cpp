@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "accuracy_pilot.hpp"
 #include "clock.hpp"
@@ -79,7 +80,10 @@ struct Search {
   HessianBounds bounds;         // at q0 (zero when not affordable)
   double F = 1;                 // the problem factor of the model, from the first pilot
   double cpu_per_gradient = 0;  // of the first pilot
+  std::map<const Method*, detail::ErrorShape> shapes;  // each candidate's, at r (made once)
 };
+
+const detail::ErrorShape& shape_of(const Search& s, const Method& m) { return s.shapes.at(&m); }
 
 const Pilot* pilot_of(const Search& s, const Method* m) {
   for (const auto& [pm, pl] : s.piloted)
@@ -90,7 +94,7 @@ const Pilot* pilot_of(const Search& s, const Method* m) {
 // The pilot request with m's error shape.
 detail::PilotRequest shaped(const Search& s, const Method& m) {
   detail::PilotRequest r = s.pilot;
-  r.shape = detail::error_shape(m, s.r);
+  r.shape = shape_of(s, m);
   return r;
 }
 
@@ -106,7 +110,7 @@ Candidate predict(const Method& m, const Search& s) {
     c.predicted_cpu = pl->cpu_per_gradient * gradients_per_step(m) * std::ceil(span / c.h);
     return c;
   }
-  c.h = detail::error_shape(m, s.r).step_at(s.target / (span * s.F), span);
+  c.h = shape_of(s, m).step_at(s.target / (span * s.F), span);
   c.predicted_cpu = s.cpu_per_gradient * gradients_per_step(m) * std::ceil(span / c.h);
   return c;
 }
@@ -121,7 +125,7 @@ bool run_pilot(Search& s, const Method& m, double h_start, std::string& failures
     return false;
   }
   if (s.piloted.empty()) {
-    const double base = detail::error_shape(m, s.r)(pl.h) * s.pilot.span;
+    const double base = shape_of(s, m)(pl.h) * s.pilot.span;
     s.F = base > 0 && pl.error > 0 ? pl.error / base : 1;
     s.cpu_per_gradient = pl.cpu_per_gradient;
   }
@@ -144,8 +148,7 @@ void first_pilot(Search& s) {
   std::vector<std::pair<double, const Method*>> order;
   const double span = s.pilot.span;
   for (const Method* m : s.methods)
-    order.emplace_back(
-        gradients_per_step(*m) / detail::error_shape(*m, s.r).step_at(s.target / span, span), m);
+    order.emplace_back(gradients_per_step(*m) / shape_of(s, *m).step_at(s.target / span, span), m);
   std::stable_sort(order.begin(), order.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   std::string failures;
@@ -177,8 +180,8 @@ Candidate with_given_step(const Search& s, double h) {
     const Method& m = Method::by_name(c.method);
     const Pilot* pl = pilot_of(s, &m);
     c.h = h;
-    c.estimated_error = pl ? pl->error * std::pow(h / pl->h, m.order())
-                           : s.F * s.pilot.span * detail::error_shape(m, s.r)(h);
+    c.estimated_error =
+        pl ? pl->error * std::pow(h / pl->h, m.order()) : s.F * s.pilot.span * shape_of(s, m)(h);
     c.predicted_cpu = s.cpu_per_gradient * gradients_per_step(m) * std::ceil(s.pilot.span / h);
   }
   const auto reaches = [&](const Candidate& c) { return c.estimated_error <= s.target; };
@@ -248,6 +251,7 @@ Choice choose_method_and_step(const System& system, const Eigen::VectorXd& q0,
   if (!system.gradient) throw Error("solve: the system has no gradient");
   s.bounds = bounds_at(system, q0);
   s.r = perturbation(system, s.bounds);
+  for (const Method* m : s.methods) s.shapes.emplace(m, detail::error_shape(*m, s.r));
   first_pilot(s);
   if (request.h == 0) more_pilots(s);
   const std::vector<Candidate> list = ranked(s);
@@ -260,7 +264,7 @@ Choice choose_method_and_step(const System& system, const Eigen::VectorXd& q0,
   if (request.h == 0) {
     const double h = advised(m, system, s.bounds, best.h, advice);
     c.h = s.pilot.span / std::ceil(s.pilot.span / h * (1 - 1e-12));  // whole steps to t_end
-    const detail::ErrorShape shape = detail::error_shape(m, s.r);
+    const detail::ErrorShape& shape = shape_of(s, m);
     c.estimated_error *= shape(c.h) / shape(best.h);
   }
   c.reason = reason_of(c, s, advice);
