@@ -64,7 +64,7 @@ def test_a_failed_run_carries_its_own_partial_output():
 def test_solution_repr_with_no_times():
     sol = erkn.solve(4.0, "phi4", q0=Q0, p0=P0, t_span=(0, 1), h=0.1, t_eval=[])
     assert sol.t.size == 0 and sol.q.shape == (0, 2)
-    assert repr(sol) == "erkn.Solution(method='ABA1064', 0 times, d=2)"  # the default method
+    assert repr(sol) == f"erkn.Solution(method={erkn._DEFAULT_METHOD!r}, 0 times, d=2)"  # default
     full = erkn.solve(4.0, "phi4", q0=Q0, p0=P0, t_span=(0, 1), h=0.1)
     assert "11 times in [0, 1]" in repr(full)
 

@@ -106,9 +106,12 @@ def test_pole_tolerance_and_check_stability_refuse_an_h_the_defaults_accept():
 def test_energy_tolerance_stops_a_run_that_drifts_and_keeps_its_output(chain):
     M, q0, p0 = chain
     kw = dict(q0=q0, p0=p0, t_span=(0, 5), h=0.2)
-    assert erkn.solve(M, "sine", energy_tolerance=1e-2, **kw).t[-1] == 5  # drift ~1e-4: passes
+    free = erkn.solve(M, "sine", **kw)  # the run's own relative energy drift, step by step
+    drift = np.abs(free.energy - free.energy[0]).max() / abs(free.energy[0])
+    assert drift > 0
+    assert erkn.solve(M, "sine", energy_tolerance=10 * drift, **kw).t[-1] == 5  # passes
     with pytest.raises(erkn.Error, match="energy monitor") as failure:
-        erkn.solve(M, "sine", energy_tolerance=1e-9, **kw)
+        erkn.solve(M, "sine", energy_tolerance=drift / 10, **kw)
     assert 0 < failure.value.solution.t.size < 26
     with pytest.raises(erkn.Error, match="needs System::potential"):
         erkn.solve(M, np.sin, energy_tolerance=1e-9, **kw)
