@@ -35,6 +35,7 @@ CirculantTransform::CirculantTransform(MPI_Comm comm, const Stiffness& M) {
   const CirculantLayout l = circulant_layout(comm, n);
   part_ = {Eigen::Index(l.first_in), Eigen::Index(l.count_in), Eigen::Index(l.count_in)};
   scale_ = 1.0 / double(n);
+  first_k_ = Eigen::Index(l.first_out), n_ = Eigen::Index(n);
   in_ = fftw_alloc_complex(size_t(l.buffer));
   out_ = fftw_alloc_complex(size_t(l.buffer));
   forward_ = fftw_mpi_plan_dft_1d(n, in_, out_, comm, FFTW_FORWARD, FFTW_ESTIMATE);
@@ -57,6 +58,11 @@ CirculantTransform::~CirculantTransform() {
   if (inverse_) fftw_destroy_plan(inverse_);
   fftw_free(in_);
   fftw_free(out_);
+}
+
+Eigen::Index CirculantTransform::mode(Eigen::Index local) const {
+  const Eigen::Index k = first_k_ + local / 2;
+  return std::min(k, n_ - k);
 }
 
 void CirculantTransform::execute_forward(const Eigen::Ref<const Eigen::VectorXd>& x,

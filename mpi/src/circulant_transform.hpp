@@ -28,6 +28,8 @@ class CirculantTransform final : public DistributedTransform {
   ~CirculantTransform() override;
   CirculantTransform(const CirculantTransform&) = delete;
   CirculantTransform& operator=(const CirculantTransform&) = delete;
+  /// Both doubles of X_k are at wave number min(k, N - k) of M.eigenvalues().
+  Eigen::Index mode(Eigen::Index local) const override;
 
  private:
   void execute_forward(const Eigen::Ref<const Eigen::VectorXd>& x,
@@ -38,6 +40,7 @@ class CirculantTransform final : public DistributedTransform {
   double scale_ = 1;  // 1 / N
   fftw_complex *in_ = nullptr, *out_ = nullptr;
   fftw_plan forward_ = nullptr, inverse_ = nullptr;
+  Eigen::Index first_k_ = 0, n_ = 0;  // (mode: the first local k, N)
 };
 
 }  // namespace erkn::mpi::detail

@@ -33,6 +33,8 @@ class DistributedTransform {
   /// Eigenvalue of M and norm weight of each local spectral coordinate.
   const Eigen::ArrayXd& eigenvalues() const { return lambda_; }
   const Eigen::ArrayXd& weights() const { return weights_; }
+  /// The index in M.eigenvalues() of local spectral coordinate `local` (where its eigenvalue is).
+  virtual Eigen::Index mode(Eigen::Index local) const = 0;
   /// Collective: y = forward(x), x = inverse(y) (normalised so inverse(forward(x)) = x).
   void forward(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::ArrayXd> y) {
     const double start = MPI_Wtime();

@@ -3,7 +3,8 @@
 // first-iteration stop, Newton-Krylov fallback) over the slab space (slab_space.hpp), whose
 // reduce is one MPI_Allreduce that also carries the check that every rank's gradient was good, so
 // all ranks take every decision together. The state stays in physical coordinates between steps
-// (q() and p() are this rank's slab without a collective call).
+// (q() and p() are this rank's slab without a collective call). The blow-up guard is
+// erkn::Integrator's (runtime/src/blowup_guard.hpp), its sums reduced by the same reduce.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -12,11 +13,13 @@
 #include <string>
 #include <utility>
 
+#include "blowup_guard.hpp"  // (runtime/src)
 #include "collective.hpp"
 #include "compensated_sum.hpp"  // (runtime/src)
 #include "distributed_transform.hpp"
 #include "erkn/mpi.hpp"
 #include "erkn/time_grid.hpp"
+#include "slab_advice.hpp"
 #include "slab_space.hpp"
 #include "stage_solver.hpp"       // (runtime/src)
 #include "step_coefficients.hpp"  // (runtime/src)
@@ -25,6 +28,7 @@
 namespace erkn::mpi {
 namespace detail {
 
+using erkn::detail::BlowupGuard;
 using erkn::detail::StepCoefficients;
 using Solver = erkn::detail::StageSolver<SlabSpace, Eigen::ArrayXd>;
 
@@ -78,6 +82,21 @@ class GridStepper {
         x_(T_.physical_size(), T_.spectral_size()) {
     slab_ = {T_.first_row(), T_.rows(), T_.physical_size()};
     x_.q = q0, x_.p = p0;
+    guard_.start(options_.blowup_guard);  // (its reference, at the checkpoint: when first needed)
+    save_checkpoint();
+  }
+
+  /// step() under the blow-up guard (Options::blowup_guard); a shorter step ends at *t_end,
+  /// where the time grid restarts (t() == t_end exactly).
+  void guarded_step(std::optional<double> t_end = {}) {
+    try {
+      step(t_end.has_value());
+    } catch (const Error& e) {  // (a blow-up often ends in a failed stage: say so)
+      if (guard_.on()) check_guard(e.what());
+      throw;
+    }
+    if (t_end) grid_.restart(*t_end);
+    if (guard_.due()) check_guard();
   }
 
   /// One step of size h, or with short_step = true of the size given to prepare_short (the
@@ -110,12 +129,7 @@ class GridStepper {
 
   double energy() {
     if (!system_.potential) throw Error("energy() needs System::potential");
-    T_.forward(x_.q, x_.q_hat);
-    double local = 0.5 * x_.p.squaredNorm() +
-                   0.5 * (T_.weights() * T_.eigenvalues() * x_.q_hat.square()).sum();
-    collectively(comm_, [&] { local += system_.potential(x_.q); });
-    MPI_Allreduce(MPI_IN_PLACE, &local, 1, MPI_DOUBLE, MPI_SUM, comm_);
-    return local;
+    return sums(x_.q, x_.p, true).H();
   }
 
   Eigen::VectorXd gather(const Eigen::VectorXd& local) const {
@@ -138,8 +152,63 @@ class GridStepper {
   Slab slab_;
   Statistics statistics_;
   SlabState x_;
+  BlowupGuard guard_;
 
  private:
+  // E_2 = 1/2|p|^2 + 1/2 q'M q (q'M q by Parseval in eigen coordinates) and, with_U, U(q) over
+  // every rank (the slabs' parts summed by the space's reduce). x_.q_hat is free between steps.
+  BlowupGuard::Sums sums(const Eigen::VectorXd& q, const Eigen::VectorXd& p, bool with_U) {
+    T_.forward(q, x_.q_hat);
+    std::array<double, 2> local{
+        0.5 * p.squaredNorm() + 0.5 * (T_.weights() * T_.eigenvalues() * x_.q_hat.square()).sum(),
+        0.0};
+    if (with_U) collectively(comm_, [&] { local[1] = system_.potential(q); });
+    const std::array<double, 2> all = space_.reduce(local);
+    return {all[0], all[1]};
+  }
+
+  // A check of the guard (collective, and every rank decides alike: the sums are reduced):
+  // passed, the state becomes the checkpoint; failed, the checkpoint becomes the state again and
+  // the run stops. After a step that failed with `failure`, a passed check changes nothing (the
+  // caller rethrows the failure).
+  void check_guard(const char* failure = nullptr) {
+    const bool potential = bool(system_.potential);
+    if (guard_.pending()) {
+      const BlowupGuard::Checkpoint& c = guard_.checkpoint();
+      const BlowupGuard::Sums start = sums(c.q, c.p, guard_.needs_potential(potential));
+      guard_.set_reference(start.H(), start.scale(), potential);
+    }
+    const double measure = guard_.measure(sums(x_.q, x_.p, guard_.needs_potential(potential)));
+    if (guard_.growth(measure) <= 1) return failure ? void() : save_checkpoint();
+    const double t_now = grid_.t();
+    const long step_now = statistics_.steps;
+    restore_checkpoint();
+    std::string message = guard_.message(measure, t_now, step_now, grid_.t(), likely_cause());
+    if (failure) message += ". The next step then failed: " + std::string(failure);
+    throw Error(message);
+  }
+
+  void save_checkpoint() {
+    BlowupGuard::Checkpoint& c = guard_.checkpoint();
+    c.q = x_.q, c.p = x_.p;
+    c.grid = grid_, c.steps = statistics_.steps;
+  }
+
+  void restore_checkpoint() {
+    const BlowupGuard::Checkpoint& c = guard_.checkpoint();
+    x_.q = c.q, x_.p = c.p;
+    x_.q_error.setZero(), x_.p_error.setZero();
+    grid_ = c.grid, statistics_.steps = c.steps;
+    stages_.solver.reset();  // (its history is of the steps after the checkpoint)
+  }
+
+  // The step-size advisor's verdict at h at the (kept) state: its linear model (slab_advice.hpp).
+  std::string likely_cause() {
+    return BlowupGuard::likely_cause(
+        [&] { return slab_advice(comm_, T_, method_, system_, grid_.h(), x_.q, x_.p); }, method_,
+        grid_.h());
+  }
+
   // Eq. (d)'s update from the solved stages, added to the state (physical) at the end.
   void update(Stages& st) {
     const StepCoefficients<Eigen::ArrayXd>& k = st.k;
@@ -219,8 +288,9 @@ GridIntegrator::GridIntegrator(GridIntegrator&&) noexcept = default;
 GridIntegrator& GridIntegrator::operator=(GridIntegrator&&) noexcept = default;
 
 void GridIntegrator::step() {
-  // A failed step leaves q, p unchanged (they are only written at its end).
-  stepper_->step();
+  // A failed step leaves q, p unchanged (they are only written at its end); a failed check of the
+  // blow-up guard restores the state of the last check that passed.
+  stepper_->guarded_step();
 }
 
 void GridIntegrator::integrate(double t_end) {
@@ -231,11 +301,8 @@ void GridIntegrator::integrate(double t_end) {
   const TimeGrid::Plan plan = s.grid_.plan_to(t_end);
   if (plan.shorter)
     detail::collectively(s.comm_, [&] { s.prepare_short(t_end - s.grid_.ahead(plan.whole)); });
-  for (long k = 0; k < plan.whole; ++k) s.step();
-  if (plan.shorter) {
-    s.step(true);
-    s.grid_.restart(t_end);  // (t() == t_end exactly)
-  }
+  for (long k = 0; k < plan.whole; ++k) s.guarded_step();
+  if (plan.shorter) s.guarded_step(t_end);
 }
 
 const Eigen::VectorXd& GridIntegrator::q() const { return stepper_->x_.q; }

@@ -3,7 +3,10 @@
 //                             [--method SERKN2s4] [--h 1e-3] [--steps 20] [--repeats 3]
 //   mpirun -np N erkn-mpi scaling --table FILE   appends this rank count's strong- and
 //                                                weak-scaling rows to FILE (tab-separated)
+//   mpirun -np N erkn-mpi guard-cost [--rounds 5] [the options of run]   the blow-up guard's
+//                                                cost: runs with it on and off, alternated
 //   erkn-mpi report --table FILE --out FILE.md   the scaling tables and the model beyond them
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -21,7 +24,8 @@ std::map<std::string, std::string> options(int argc, char** argv, int first) {
   std::map<std::string, std::string> o{{"--grid", "256x256"}, {"--boundary", "periodic"},
                                        {"--shift", "0"},      {"--method", "SERKN2s4"},
                                        {"--h", "1e-3"},       {"--steps", "20"},
-                                       {"--repeats", "3"},    {"--weak-rows", "64"}};
+                                       {"--repeats", "3"},    {"--weak-rows", "64"},
+                                       {"--rounds", "5"}};
   for (int i = first; i < argc; i += 2) {
     if (i + 1 >= argc) throw erkn::Error(std::string("option ") + argv[i] + " needs a value");
     o[argv[i]] = argv[i + 1];
@@ -90,6 +94,34 @@ int scaling(std::map<std::string, std::string>& o, int rank, int ranks) {
   return 0;
 }
 
+// The blow-up guard's cost (Options::blowup_guard): `--rounds` rounds of a run with the guard on
+// and one with it off, which goes first alternating, in this one process; the best time per step
+// of each (of the slowest rank, wall and CPU) and their ratio on / off, and the transforms per
+// step of each (its work, free of the machine's noise: a check transforms q once).
+int guard_cost(std::map<std::string, std::string>& o, int rank) {
+  scene::Settings s = settings(o);
+  const int rounds = int(number(o, "--rounds"));
+  if (rounds < 1) throw erkn::Error("--rounds must be >= 1");
+  double wall[2] = {1e300, 1e300}, cpu[2] = {1e300, 1e300}, transforms[2] = {0, 0};
+  for (int round = 0; round < rounds; ++round)
+    for (int guard : {round % 2, 1 - round % 2}) {
+      s.guard = guard == 1;
+      const scene::Timing t = scene::run(MPI_COMM_WORLD, s);
+      wall[guard] = std::min(wall[guard], t.seconds_per_step);
+      cpu[guard] = std::min(cpu[guard], t.cpu_seconds_per_step);
+      transforms[guard] = t.transforms_per_step;
+    }
+  if (rank == 0)
+    std::printf(
+        "guard-cost: grid %s, %s, h = %g, %d x %d steps per run, %d rounds: wall %.4e s per step "
+        "off, %.4e on, on/off %.4f; CPU %.4e off, %.4e on, on/off %.4f; transforms per step "
+        "%.6f off, %.6f on, on/off %.6f\n",
+        scene::describe(s.axes).c_str(), s.method.c_str(), s.h, s.repeats, s.steps, rounds, wall[0],
+        wall[1], wall[1] / wall[0], cpu[0], cpu[1], cpu[1] / cpu[0], transforms[0], transforms[1],
+        transforms[1] / transforms[0]);
+  return 0;
+}
+
 int dispatch(int argc, char** argv, int rank, int ranks) {
   const std::string command = argc > 1 ? argv[1] : "";
   auto o = options(argc, argv, 2);
@@ -100,6 +132,7 @@ int dispatch(int argc, char** argv, int rank, int ranks) {
     return 0;
   }
   if (command == "scaling") return scaling(o, rank, ranks);
+  if (command == "guard-cost") return guard_cost(o, rank);
   if (command == "report") {
     if (rank == 0) report::write(required(o, "--table"), required(o, "--out"));
     return 0;
@@ -110,6 +143,7 @@ int dispatch(int argc, char** argv, int rank, int ranks) {
       "                            [--shift 0] [--method SERKN2s4] [--h 1e-3] [--steps 20]\n"
       "                            [--repeats 3]\n"
       "  mpirun -np N erkn-mpi scaling --table FILE [the options of run] [--weak-rows 64]\n"
+      "  mpirun -np N erkn-mpi guard-cost [the options of run] [--rounds 5]\n"
       "  erkn-mpi report --table FILE --out FILE.md");
 }
 

@@ -82,7 +82,9 @@ Timing run(MPI_Comm comm, const Settings& s) {
   sys.M = M;
   sys.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = q.array().sin(); };
   sys.potential = [](const Eigen::VectorXd& q) { return (1 - q.array().cos()).sum(); };
-  GridIntegrator run(comm, Method::by_name(s.method), sys, s.h, q0, p0);
+  Options options;
+  options.blowup_guard = s.guard;
+  GridIntegrator run(comm, Method::by_name(s.method), sys, s.h, q0, p0, options);
   Timing t;
   MPI_Comm_size(comm, &t.ranks);
   t.d = long(M.dim());

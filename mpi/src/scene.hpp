@@ -17,6 +17,7 @@ struct Settings {
   std::string method = "SERKN2s4";
   double h = 1e-3;
   int steps = 20, repeats = 3;
+  bool guard = true;  ///< Options::blowup_guard
 };
 
 /// Axes "256x256" with one boundary name for all ("periodic", "dirichlet", "neumann") or one per

@@ -74,6 +74,7 @@ SlabTransform::SlabTransform(MPI_Comm comm, const Stiffness& M) {
     scale_ /= k.logical_size;
   }
   part_ = {Eigen::Index(l.first0), Eigen::Index(l.rows0), l.physical_size};
+  first1_ = l.first1, n0_ = l.n[0], n1_ = l.n[1], rest_ = M.dim() / (n0_ * n1_);
   in_ = fftw_alloc_real(std::max<ptrdiff_t>(l.buffer, 1));
   out_ = fftw_alloc_real(std::max<ptrdiff_t>(l.buffer, 1));
   const int rank = int(axes.size());
@@ -100,6 +101,12 @@ SlabTransform::~SlabTransform() {
   if (inverse_) fftw_destroy_plan(inverse_);
   fftw_free(in_);
   fftw_free(out_);
+}
+
+Eigen::Index SlabTransform::mode(Eigen::Index local) const {
+  const Eigen::Index r = local % rest_, k0 = (local / rest_) % n0_,
+                     k1 = first1_ + local / (rest_ * n0_);
+  return (k0 * n1_ + k1) * rest_ + r;
 }
 
 void SlabTransform::execute_forward(const Eigen::Ref<const Eigen::VectorXd>& x,

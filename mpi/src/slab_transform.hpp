@@ -41,6 +41,8 @@ class SlabTransform final : public DistributedTransform {
   ~SlabTransform() override;
   SlabTransform(const SlabTransform&) = delete;
   SlabTransform& operator=(const SlabTransform&) = delete;
+  /// The local entry (k1 - first1, k0, k2, ...) is entry (k0, k1, k2, ...) of M.eigenvalues().
+  Eigen::Index mode(Eigen::Index local) const override;
 
  private:
   void execute_forward(const Eigen::Ref<const Eigen::VectorXd>& x,
@@ -51,6 +53,7 @@ class SlabTransform final : public DistributedTransform {
   double scale_ = 1;                       // 1 / prod of FFTW's logical sizes
   double *in_ = nullptr, *out_ = nullptr;  // FFTW-MPI buffers (local size incl. transpose room)
   fftw_plan forward_ = nullptr, inverse_ = nullptr;
+  Eigen::Index first1_ = 0, n0_ = 0, n1_ = 0, rest_ = 1;  // (mode: k1's offset, axis sizes)
 };
 
 }  // namespace erkn::mpi::detail

@@ -12,10 +12,10 @@ void BlowupGuard::start(bool on) {
   countdown_ = kInterval;
 }
 
-void BlowupGuard::set_reference(bool energy, double measure, double scale) {
-  energy_ = energy;
-  reference_ = measure;
-  scale_ = scale;
+void BlowupGuard::set_reference(double H, double scale, bool has_potential) {
+  energy_ = has_potential && std::isfinite(H);
+  reference_ = energy_ || !has_potential ? H : 0;  // (U(q0) not finite: E_2's first positive value)
+  scale_ = energy_ ? scale : 0;
   pending_ = false;
 }
 
@@ -43,6 +43,20 @@ std::string BlowupGuard::message(double measure, double t, long step, double t_k
          "; the state of the last check, t = " + format(t_kept, 12) + " (step " +
          std::to_string(checkpoint_.steps) + "), is kept. Likely cause: " + cause +
          " (Options::blowup_guard = false switches this check off)";
+}
+
+std::string BlowupGuard::cause(const StepSizeAdvice& advice, const Method& method, double h) {
+  if (advice.safe() && !advice.equation.empty())
+    return "the differential equation's own growth, not the step size, by the step-size "
+           "advisor: " +
+           advice.report(method);
+  if (advice.safe())
+    return "not the step size by the step-size advisor (no eigenvalue of M in an unstable "
+           "band, at a resonance of an excited mode or near a pole at h = " +
+           format(h) +
+           " with the Hessian of U at the kept state): a Hessian range or a mode's energy the "
+           "kept state does not show";
+  return "the step size, by the step-size advisor: " + advice.report(method);
 }
 
 }  // namespace erkn::detail

@@ -14,11 +14,17 @@
 // product with M and (with a potential) one U per kInterval steps. The reference is measured when
 // the first check needs it, from the checkpoint (the state the guard started at): a run shorter
 // than kInterval steps pays nothing for the guard but the checkpoint's copy of the state.
+// One mechanism for erkn::Integrator and the distributed erkn::mpi::GridIntegrator: each front
+// end forms the measure's Sums (the latter summed over its ranks by one reduce, so every rank
+// takes the same decision) and keeps its state in the checkpoint.
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <string>
 
+#include "erkn/advisor.hpp"
+#include "erkn/error.hpp"
 #include "erkn/integrator.hpp"
 
 namespace erkn::detail {
@@ -35,14 +41,29 @@ class BlowupGuard {
     long steps = 0;
   };
 
+  /// The parts of the measure at a state.
+  struct Sums {
+    double E2 = 0;  ///< 1/2 |p|^2 + 1/2 q^T M q
+    double U = 0;   ///< U(q) where needs_potential, else 0
+    double H() const { return E2 + U; }
+    double scale() const { return E2 + std::abs(U); }
+  };
+
   /// Starts over at a new state (construction, set_state), which the checkpoint saved next
   /// holds; its measure, the reference, is pending until set_reference.
   void start(bool on);
   /// True from start until set_reference.
   bool pending() const { return pending_; }
-  /// The reference: `energy` true measures H with the reference H_0 = measure and `scale`, else
-  /// E_2 against its first positive value.
-  void set_reference(bool energy, double measure, double scale);
+  /// Whether the next Sums need U(q): a potential is given and the reference is pending or the
+  /// energy is watched.
+  bool needs_potential(bool has_potential) const { return has_potential && (pending_ || energy_); }
+  /// The reference from the state the guard started at: H = E_2 + U there (E_2 without a
+  /// potential) and scale = E_2 + |U|. With a potential and H finite the energy is watched
+  /// (H_0 = H), else E_2.
+  void set_reference(double H, double scale, bool has_potential);
+  /// The measure of a state: H = E_2 + U while the reference is pending or the energy is
+  /// watched, else E_2.
+  double measure(const Sums& s) const { return pending_ || energy_ ? s.H() : s.E2; }
   /// True once per kInterval calls (when on).
   bool due() {
     if (!on_ || --countdown_ > 0) return false;
@@ -60,9 +81,19 @@ class BlowupGuard {
     return workspace_;
   }
   /// The error for a check that failed with `measure` at time t (step `step`), the checkpoint's
-  /// time t_kept restored; `cause`: the advisor's verdict at h there.
+  /// time t_kept restored; `cause`: the advisor's verdict at h there (likely_cause).
   std::string message(double measure, double t, long step, double t_kept,
                       const std::string& cause) const;
+  /// The message's likely cause: the step-size advisor's verdict `advise()` at h, at the kept
+  /// state ("unknown" with the advisor's error when it cannot judge h).
+  template <class Advise>
+  static std::string likely_cause(Advise&& advise, const Method& method, double h) {
+    try {
+      return cause(advise(), method, h);
+    } catch (const Error& e) {
+      return std::string("unknown (the step-size advisor cannot judge h: ") + e.what() + ")";
+    }
+  }
 
  private:
   bool on_ = false, energy_ = false, pending_ = false;
@@ -70,6 +101,8 @@ class BlowupGuard {
   double reference_ = 0, scale_ = 0;
   Checkpoint checkpoint_;
   Eigen::VectorXd workspace_;
+
+  static std::string cause(const StepSizeAdvice& advice, const Method& method, double h);
 };
 
 }  // namespace erkn::detail

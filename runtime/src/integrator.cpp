@@ -362,28 +362,23 @@ double Integrator::energy(const Eigen::VectorXd& q, const Eigen::VectorXd& p) co
   return 0.5 * p.squaredNorm() + 0.5 * q.dot(Mq) + s.potential(q);
 }
 
-// The guard's measure at (q, p): H with a potential (its energy mode), else 1/2|p|^2 + 1/2 q'M q;
-// `scale` (if given) receives 1/2|p|^2 + 1/2 q'M q + |U(q)|.
+// The guard's measure at (q, p) (BlowupGuard::measure); `scale` (if given) receives
+// 1/2|p|^2 + 1/2 q'M q + |U(q)| (U where the guard needs it, else 0).
 double Integrator::guard_measure(const Eigen::VectorXd& q, const Eigen::VectorXd& p,
                                  double* scale) const {
   Eigen::VectorXd& Mq = guard_->workspace(q.size());
   stepper_->apply_M(q, Mq);
-  const double E2 = 0.5 * p.squaredNorm() + 0.5 * q.dot(Mq);
-  const double U = guard_->uses_energy() || scale ? system().potential(q) : 0;
-  if (scale) *scale = E2 + std::abs(U);
-  return E2 + U;
+  detail::BlowupGuard::Sums sums{0.5 * p.squaredNorm() + 0.5 * q.dot(Mq), 0};
+  if (guard_->needs_potential(bool(system().potential))) sums.U = system().potential(q);
+  if (scale) *scale = sums.scale();
+  return guard_->measure(sums);
 }
 
 // The guard's reference: the measure of the state it started at, (q, p).
 void Integrator::start_guard(const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
-  if (!system().potential) {
-    Eigen::VectorXd Mq(q.size());
-    stepper_->apply_M(q, Mq);
-    return guard_->set_reference(false, 0.5 * p.squaredNorm() + 0.5 * q.dot(Mq), 0);
-  }
   double scale = 0;
   const double H = guard_measure(q, p, &scale);
-  guard_->set_reference(std::isfinite(H), std::isfinite(H) ? H : 0, scale);  // (else: E_2)
+  guard_->set_reference(H, scale, bool(system().potential));
 }
 
 void Integrator::save_checkpoint() {
@@ -413,22 +408,8 @@ void Integrator::check_guard(const char* failure) {
 
 // The step-size advisor's verdict at h from the current state (erkn/advisor.hpp).
 std::string Integrator::likely_cause() const {
-  try {
-    const StepSizeAdvice advice = advise_step_size(method_, system(), h(), q(), p());
-    if (advice.safe() && !advice.equation.empty())
-      return "the differential equation's own growth, not the step size, by the step-size "
-             "advisor: " +
-             advice.report(method_);
-    if (advice.safe())
-      return "not the step size by the step-size advisor (no eigenvalue of M in an unstable "
-             "band, at a resonance of an excited mode or near a pole at h = " +
-             format(h()) +
-             " with the Hessian of U at the kept state): a Hessian range or a mode's energy the "
-             "kept state does not show";
-    return "the step size, by the step-size advisor: " + advice.report(method_);
-  } catch (const Error& e) {
-    return std::string("unknown (the step-size advisor cannot judge h: ") + e.what() + ")";
-  }
+  return detail::BlowupGuard::likely_cause(
+      [&] { return advise_step_size(method_, system(), h(), q(), p()); }, method_, h());
 }
 
 }  // namespace erkn

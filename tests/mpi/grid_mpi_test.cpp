@@ -3,56 +3,14 @@
 // method and every boundary; errors on one rank are errors on all; ensembles over ranks are
 // bit-identical to one process.
 #include <gtest/gtest.h>
-#include <mpi.h>
 
-#include <erkn/mpi.hpp>
 #include <limits>
 #include <stdexcept>
 
+#include "scenes.hpp"
+
 namespace erkn::test {
 namespace {
-
-using B = GridAxis::Boundary;
-
-int rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-int ranks() {
-  int n = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &n);
-  return n;
-}
-
-// Uneven sizes (7 and 6 rows over 2 or 4 ranks), every boundary, and a mass shift. Spacing 0.55
-// keeps h^2 lambda <= 0.45 at h = 0.1, below every method's poles.
-struct Grid {
-  std::vector<GridAxis> axes;
-  double shift;
-};
-std::vector<Grid> grids() {
-  return {{{{8, 0.55, B::periodic}, {6, 0.55, B::periodic}}, 0.0},
-          {{{7, 0.55, B::dirichlet}, {6, 0.55, B::neumann}, {5, 0.55, B::periodic}}, 0.5},
-          {{{6, 0.55, B::neumann}, {7, 0.55, B::dirichlet}}, 0.0}};
-}
-
-System sine_gordon(const Stiffness& M) {
-  System s;
-  s.M = M;
-  s.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = q.array().sin(); };
-  s.potential = [](const Eigen::VectorXd& q) { return (1 - q.array().cos()).sum(); };
-  return s;
-}
-
-// The whole initial state (a smooth function of the global index) and this rank's slab of it.
-void initial(Eigen::Index d, Eigen::VectorXd& q, Eigen::VectorXd& p) {
-  q.resize(d), p.resize(d);
-  for (Eigen::Index k = 0; k < d; ++k) {
-    q[k] = 1.5 * std::sin(0.37 * double(k) + 0.2);
-    p[k] = 0.8 * std::cos(0.23 * double(k));
-  }
-}
 
 // Both integrators solve every stage to round-off (a tolerance below it: the iterations stop when
 // they stall at round-off), so the comparison sees the method, not where the two stage solvers'
@@ -89,15 +47,10 @@ System stiff_sine_gordon(const Stiffness& M) {
 
 Runs run_both(const Method& method, const Grid& g, double h, int steps,
               System (*system)(const Stiffness&) = sine_gordon) {
-  const Stiffness M = Stiffness::grid(g.axes, g.shift);
-  Eigen::VectorXd q0, p0;
-  initial(M.dim(), q0, p0);
-  const mpi::Slab slab = mpi::slab(MPI_COMM_WORLD, M);
-  const Eigen::Index offset = slab.size == 0 ? 0 : slab.first * (M.dim() / g.axes[0].n);
-  mpi::GridIntegrator distributed(MPI_COMM_WORLD, method, system(M), h,
-                                  q0.segment(offset, slab.size), p0.segment(offset, slab.size),
+  const Scene sc = scene(g);
+  mpi::GridIntegrator distributed(MPI_COMM_WORLD, method, system(sc.M), h, sc.q0_slab, sc.p0_slab,
                                   converged());
-  Integrator serial(method, system(M), h, q0, p0, converged());
+  Integrator serial(method, system(sc.M), h, sc.q0, sc.p0, converged());
   for (int k = 0; k < steps; ++k) distributed.step(), serial.step();
   return {distributed.gather(distributed.q()),
           distributed.gather(distributed.p()),
@@ -124,18 +77,13 @@ TEST(GridMpi, SlabsPartitionTheGrid) {
 // Methods with modified kicks are refused (the distributed stepper forms no grad(|grad U|^2)):
 // by a collective error on every rank, naming the method.
 TEST(GridMpi, RefusesMethodsWithModifiedKicksNamingThem) {
-  const Grid g = grids()[0];
-  const Stiffness M = Stiffness::grid(g.axes, g.shift);
-  Eigen::VectorXd q0, p0;
-  initial(M.dim(), q0, p0);
-  const mpi::Slab slab = mpi::slab(MPI_COMM_WORLD, M);
-  const Eigen::Index offset = slab.size == 0 ? 0 : slab.first * (M.dim() / g.axes[0].n);
+  const Scene sc = scene(grids()[0]);
   int refused = 0;
   for (const Method& method : Method::all()) {
     if (!method.has_modified_kicks()) continue;
     try {
-      mpi::GridIntegrator run(MPI_COMM_WORLD, method, sine_gordon(M), 0.1,
-                              q0.segment(offset, slab.size), p0.segment(offset, slab.size));
+      mpi::GridIntegrator run(MPI_COMM_WORLD, method, sine_gordon(sc.M), 0.1, sc.q0_slab,
+                              sc.p0_slab);
       ADD_FAILURE() << method.name() << " not refused";
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find("modified kicks"), std::string::npos) << e.what();
@@ -148,18 +96,13 @@ TEST(GridMpi, RefusesMethodsWithModifiedKicksNamingThem) {
 // Processed methods (psi = pi o K o pi^-1): the grid integrator has no processor and refuses
 // them on every rank, naming the method (those with plain kicks: the test above has the others).
 TEST(GridMpi, RefusesProcessedMethodsNamingThem) {
-  const Grid g = grids()[0];
-  const Stiffness M = Stiffness::grid(g.axes, g.shift);
-  Eigen::VectorXd q0, p0;
-  initial(M.dim(), q0, p0);
-  const mpi::Slab slab = mpi::slab(MPI_COMM_WORLD, M);
-  const Eigen::Index offset = slab.size == 0 ? 0 : slab.first * (M.dim() / g.axes[0].n);
+  const Scene sc = scene(grids()[0]);
   int refused = 0;
   for (const Method& method : Method::all()) {
     if (!method.is_processed() || method.has_modified_kicks()) continue;
     try {
-      mpi::GridIntegrator run(MPI_COMM_WORLD, method, sine_gordon(M), 0.1,
-                              q0.segment(offset, slab.size), p0.segment(offset, slab.size));
+      mpi::GridIntegrator run(MPI_COMM_WORLD, method, sine_gordon(sc.M), 0.1, sc.q0_slab,
+                              sc.p0_slab);
       ADD_FAILURE() << method.name() << " not refused";
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find(std::string(method.name()) + " is processed"),
@@ -186,17 +129,11 @@ TEST(GridMpi, AgreesWithTheSingleProcessIntegratorForEveryMethodAndBoundary) {
 }
 
 TEST(GridMpi, AnOffGridEndTakesTheSameShorterLastStepAsTheSingleProcessIntegrator) {
-  const Grid g = grids()[1];
-  const Stiffness M = Stiffness::grid(g.axes, g.shift);
-  Eigen::VectorXd q0, p0;
-  initial(M.dim(), q0, p0);
-  const mpi::Slab slab = mpi::slab(MPI_COMM_WORLD, M);
-  const Eigen::Index offset = slab.size == 0 ? 0 : slab.first * (M.dim() / g.axes[0].n);
+  const Scene sc = scene(grids()[1]);
   const Method& method = Method::by_name("SERKN3s4(1)");
-  mpi::GridIntegrator distributed(MPI_COMM_WORLD, method, sine_gordon(M), 0.1,
-                                  q0.segment(offset, slab.size), p0.segment(offset, slab.size),
-                                  converged());
-  Integrator serial(method, sine_gordon(M), 0.1, q0, p0, converged());
+  mpi::GridIntegrator distributed(MPI_COMM_WORLD, method, sine_gordon(sc.M), 0.1, sc.q0_slab,
+                                  sc.p0_slab, converged());
+  Integrator serial(method, sine_gordon(sc.M), 0.1, sc.q0, sc.p0, converged());
   for (double t_end : {0.55, 0.75, 1.0}) {  // off the grid, off the new grid, on it
     distributed.integrate(t_end);
     serial.integrate(t_end);

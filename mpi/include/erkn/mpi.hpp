@@ -19,6 +19,18 @@
 // integrator sums the parts). Every call below is collective over the communicator; an error on
 // any rank is thrown on every rank, with the same message.
 //
+// The blow-up guard (Options::blowup_guard, on by default) is erkn::Integrator's, its sums
+// (1/2|p|^2 + 1/2 q'M q and U) reduced over the ranks in one MPI_Allreduce every 1024 steps: an
+// energy error |H - H_0| beyond a quarter of 1/2|p0|^2 + 1/2 q0'M q0 + |U(q0)| (with
+// System::potential), else a 1e4-fold growth of 1/2|p|^2 + 1/2 q'M q, or a non-finite state
+// stops the run on every rank with the same erkn::Error naming the time, the growth and the
+// likely cause, and keeps the state of the last check that passed (q(), p(), t(),
+// statistics().steps). The likely cause is the step-size advisor's linear model at h
+// (erkn/advisor.hpp) at the kept state: M's eigenvalues, the Hessian of the pointwise U
+// (diagonal: one more gradient) and the state's mode energies, without the trial run
+// erkn::Integrator's guard adds (it would integrate the whole grid on one process).
+// Options::blowup_guard = false switches it off.
+//
 // A complete program (2-D sine-Gordon; link with erkn::mpi, run with mpirun -np N):
 //
 //   #include <cmath>
@@ -92,9 +104,11 @@ class GridIntegrator {
   GridIntegrator(GridIntegrator&&) noexcept;
   GridIntegrator& operator=(GridIntegrator&&) noexcept;
 
+  /// One step of h (under the blow-up guard, see above).
   void step();
   /// Steps to t_end as Integrator::integrate does: whole steps of h to the last grid point before
-  /// t_end, then (off the grid) one shorter step with the method's coefficients at its size.
+  /// t_end, then (off the grid) one shorter step with the method's coefficients at its size; the
+  /// blow-up guard stops it as step() does.
   void integrate(double t_end);
 
   /// This rank's slab of the state.
