@@ -457,27 +457,50 @@ def mode_energies(M, q, p):
     return _erkn.mode_energies(_stiffness(M), _state(q, "q"), _state(p, "p"))
 
 
-def advise_step_size(method, M, h, grad=None, *, q0=None, p0=None, steps=0, hessian_bounds=None,
-                     **advisor_options):
+# AdvisorOptions fields only the trial run reads (erkn/advisor.hpp, "Severity").
+_TRIAL_OPTIONS = ("steps", "energy_tolerance", "trial_steps", "trial_margin")
+
+
+def advise_step_size(method, M, h, grad=None, *, q0=None, p0=None, hessian_steps=0,
+                     hessian_bounds=None, potential=None, hessian=None, **advisor_options):
     """The step sizes near h the stability analysis warns against for `method` on
     q'' + M q = -grad U(q), and the nearest one it does not (erkn/advisor.hpp; `erkn advise`).
 
-    The bounds (lo, hi) on the Hessian of U: hessian_bounds if given; else, with grad, at q0
-    (steps = 0) or along `steps` steps from (q0, p0); else (0, 0). With q0 and p0 a resonance is
-    flagged only at eigenvalues the state excites (erkn.mode_energies); without, at all.
+    With the problem -- grad, q0 and p0 (and no hessian_bounds or hessian_steps) -- the verdict is
+    `erkn advise --problem`'s: the linear model at q0 judged by a trial run of the problem itself
+    (the first min(trial_steps, steps) steps at h; its energy error extrapolated to a run of
+    `steps` steps, default 1e5, is held against energy_tolerance / trial_margin; U from the
+    built-in potential, a problem's System or `potential`, else 1/2|p|^2 + 1/2 q'Mq's growth).
+    Otherwise the linear model alone, with the bounds (lo, hi) on U's Hessian: hessian_bounds if
+    given; else, with grad, at q0 or along `hessian_steps` steps from (q0, p0); else (0, 0). With
+    q0 and p0 a resonance is flagged only at eigenvalues the state excites (erkn.mode_energies).
     advisor_options: potential_degree, pole_margin, trace_tolerance, z_samples, max_change,
-    search_step, min_excitation. Returns an erkn.StepSizeAdvice: safe, findings, equation (the
-    differential equation's own growth: information), suggested_h, hessian, report."""
+    search_step, min_excitation, and for the trial steps, energy_tolerance, trial_steps (0: no
+    trial), trial_margin. Returns an erkn.StepSizeAdvice: safe, findings, equation (the
+    differential equation's own growth: information), notes (linear findings the trial clears),
+    trial, suggested_h, hessian, report."""
     options = _erkn._AdvisorOptions()
     for name, value in advisor_options.items():
         if not hasattr(options, name) or name.startswith("_"):
             raise Error(f"advise_step_size has no option '{name}'")
         setattr(options, name, value)
+    problem = (grad is not None and q0 is not None and p0 is not None and hessian_bounds is None
+               and hessian_steps == 0)
+    trial_options = sorted(set(advisor_options) & set(_TRIAL_OPTIONS))
+    trial_options += ["potential"] if potential is not None else []
+    if trial_options and not problem:
+        raise Error("advise_step_size: " + ", ".join(trial_options) + " set the trial run, which "
+                    "needs the problem: grad, q0 and p0, without hessian_bounds or hessian_steps")
+    if problem:
+        q0, p0 = _state(q0, "q0"), _state(p0, "p0")
+        return _erkn._advise_problem(method, _system(M, grad, q0.size, potential, hessian),
+                                     float(h), q0, p0, options)
     if hessian_bounds is None and grad is not None:
         if q0 is None:
             raise Error("advise_step_size: grad needs q0 (the state the Hessian is bounded at)")
-        hessian_bounds = (hessian_bounds_at(M, grad, q0) if steps == 0 else
-                          hessian_bounds_along(method, M, grad, h=h, q0=q0, p0=p0, steps=steps))
+        hessian_bounds = (hessian_bounds_at(M, grad, q0, hessian) if hessian_steps == 0 else
+                          hessian_bounds_along(method, M, grad, h=h, q0=q0, p0=p0,
+                                               steps=hessian_steps, hessian=hessian))
     lo, hi = (0.0, 0.0) if hessian_bounds is None else (float(x) for x in hessian_bounds)
     stiffness = _stiffness(M)
     energy = np.zeros(0)

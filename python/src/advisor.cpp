@@ -35,6 +35,22 @@ struct Advice {
 
 py::tuple bounds(HessianBounds b) { return py::make_tuple(b.lo, b.hi); }
 
+py::list findings(const std::vector<AdvisorFinding>& all) {
+  py::list out;
+  for (const AdvisorFinding& f : all) out.append(finding(f));
+  return out;
+}
+
+// erkn::TrialRun as a dict; None when no trial ran.
+py::object trial(const TrialRun& t) {
+  if (t.steps == 0 && t.failure.empty()) return py::none();
+  py::dict d;
+  d["steps"] = t.steps, d["error"] = t.error, d["early"] = t.early;
+  d["predicted"] = t.predicted, d["horizon"] = t.horizon, d["limit"] = t.limit;
+  d["failure"] = t.failure, d["flagged"] = t.flagged;
+  return d;
+}
+
 void bind_advice(py::module_& m) {
   py::class_<AdvisorOptions>(m, "_AdvisorOptions")
       .def(py::init<>())
@@ -44,7 +60,11 @@ void bind_advice(py::module_& m) {
       .def_readwrite("z_samples", &AdvisorOptions::z_samples)
       .def_readwrite("max_change", &AdvisorOptions::max_change)
       .def_readwrite("search_step", &AdvisorOptions::search_step)
-      .def_readwrite("min_excitation", &AdvisorOptions::min_excitation);
+      .def_readwrite("min_excitation", &AdvisorOptions::min_excitation)
+      .def_readwrite("steps", &AdvisorOptions::steps)
+      .def_readwrite("energy_tolerance", &AdvisorOptions::energy_tolerance)
+      .def_readwrite("trial_steps", &AdvisorOptions::trial_steps)
+      .def_readwrite("trial_margin", &AdvisorOptions::trial_margin);
   py::class_<Advice>(m, "StepSizeAdvice", "erkn::StepSizeAdvice: findings for h, a suggestion")
       .def_property_readonly("h", [](const Advice& a) { return a.advice.h; })
       .def_property_readonly("method", [](const Advice& a) { return a.method; })
@@ -55,23 +75,21 @@ void bind_advice(py::module_& m) {
           "safe", [](const Advice& a) { return a.advice.safe(); },
           "True when nothing is flagged for h")
       .def_property_readonly(
-          "findings",
-          [](const Advice& a) {
-            py::list out;
-            for (const AdvisorFinding& f : a.advice.findings) out.append(finding(f));
-            return out;
-          },
+          "findings", [](const Advice& a) { return findings(a.advice.findings); },
           "one dict per flagged eigenvalue: index, lambda, V, hazard (unstable, resonance, "
           "pole), z, trace, pole, harmonic")
       .def_property_readonly(
-          "equation",
-          [](const Advice& a) {
-            py::list out;
-            for (const AdvisorFinding& f : a.advice.equation) out.append(finding(f));
-            return out;
-          },
+          "equation", [](const Advice& a) { return findings(a.advice.equation); },
           "information, not flagged: one dict per eigenvalue where the differential equation "
           "itself grows (lambda + kappa < 0), its rate mu = sqrt(-(lambda + kappa))")
+      .def_property_readonly(
+          "notes", [](const Advice& a) { return findings(a.advice.notes); },
+          "information, not flagged: the linear model's findings the trial run shows to stay "
+          "within the energy criterion (with the problem only)")
+      .def_property_readonly(
+          "trial", [](const Advice& a) { return trial(a.advice.trial); },
+          "the trial run (with the problem): a dict of steps, error, early, predicted, horizon, "
+          "limit, failure, flagged; None without one")
       .def_property_readonly(
           "suggested_h", [](const Advice& a) { return a.advice.suggested_h; },
           "the nearest h without findings (NaN when none within max_change)")
@@ -134,6 +152,15 @@ void bind_advisor(py::module_& m) {
       },
       py::arg("method"), py::arg("eigenvalues"), py::arg("h"), py::arg("lo"), py::arg("hi"),
       py::arg("options"), py::arg("mode_energy"));
+  m.def(
+      "_advise_problem",
+      [](const std::string& method, const PySystem& s, double h, const Eigen::VectorXd& q0,
+         const Eigen::VectorXd& p0, const AdvisorOptions& options) {
+        const Method& me = Method::by_name(method);
+        return Advice{advise_step_size(me, s.system, h, q0, p0, options), std::string(me.name())};
+      },
+      py::arg("method"), py::arg("system"), py::arg("h"), py::arg("q0"), py::arg("p0"),
+      py::arg("options"));
   m.def("mode_energies", &mode_energies, py::arg("M"), py::arg("q"), py::arg("p"),
         "the state's 1/2|p|^2 + 1/2 q'Mq at each eigenvalue of M (erkn/advisor.hpp)");
   m.def(

@@ -47,9 +47,10 @@ def test_hessian_bounds_along_a_run_contain_those_at_the_start():
     s = erkn.system(M, "fpu", 6)
     fd = erkn.hessian_bounds_at(M, lambda q: s.gradient(q), q0)
     assert fd == pytest.approx(at, abs=1e-5)
-    # advise_step_size takes the same bounds from grad and q0 (and along `steps`).
+    # advise_step_size takes the same bounds from grad and q0 (and along `hessian_steps`).
     assert erkn.advise_step_size(name, M, 0.01, "fpu", q0=q0).hessian == at
-    assert erkn.advise_step_size(name, M, 0.01, "fpu", q0=q0, p0=p0, steps=500).hessian == along
+    assert erkn.advise_step_size(name, M, 0.01, "fpu", q0=q0, p0=p0,
+                                 hessian_steps=500).hessian == along
 
 
 def sine_gordon(n=32):
@@ -91,6 +92,73 @@ def test_mode_energies_sum_to_the_linear_energy_and_gate_resonances():
     slow_q[3:], slow_p[3:] = 0, 0
     quiet = erkn.advise_step_size("SERKN2s4", Mf, h, hessian_bounds=(0, 12), q0=slow_q, p0=slow_p)
     assert all(f["hazard"] != "resonance" for f in quiet.findings)
+
+
+TRIAL = 2048  # steps of the trial, and of the whole run it judges
+
+
+def whole_run_error(problem, method, h):
+    """The largest |H_n - H_0| / H_0 over TRIAL steps of the run without the blow-up guard (FPU:
+    U(q0) >= 0, so H_0 is the trial's scale); inf when a step fails or H is not finite."""
+    try:
+        sol = erkn.solve(problem.M, problem.grad, q0=problem.q0, p0=problem.p0,
+                         t_span=(0, TRIAL * h), h=h, method=method,
+                         options={"blowup_guard": False})
+    except erkn.Error:
+        return np.inf
+    error = np.abs(sol.energy - sol.energy[0]) / sol.energy[0]
+    return error.max() if np.all(np.isfinite(error)) else np.inf
+
+
+def advise_fpu(problem, method, h, **options):
+    return erkn.advise_step_size(method, problem.M, h, problem.grad, q0=problem.q0,
+                                 p0=problem.p0, max_change=0, **options)
+
+
+def test_the_trial_run_flags_exactly_the_runs_beyond_the_limit():
+    # With the problem, erkn.advise_step_size judges h by a trial run (erkn advise --problem's
+    # C++ call). When the trial is the whole run (steps = trial_steps) it flags h exactly when
+    # the run's own energy error reaches energy_tolerance / trial_margin = 0.05: every method
+    # of the registry on FPU (omega = 50) at h omega = 0.999 pi, where some blow up and some
+    # stay clean (both occur). Negative controls: the linear model alone (trial_steps = 0)
+    # flags runs that stay clean; at h omega = 0.1 no method is flagged.
+    fpu = erkn.problems.fpu()
+    h = 0.999 * np.pi / 50
+    flagged = clean = linear_false_alarms = 0
+    for m in erkn.methods():
+        name = m["name"]
+        advice = advise_fpu(fpu, name, h, steps=TRIAL, trial_steps=TRIAL)
+        error = whole_run_error(fpu, name, h)
+        trial = advice.trial
+        assert trial["steps"] <= TRIAL and trial["horizon"] == TRIAL and trial["limit"] == 0.05
+        assert trial["flagged"] == (error >= 0.05), (name, error, trial)
+        if trial["flagged"]:
+            assert not advice.safe
+        else:  # (the linear model's findings are notes now; poles always flag)
+            assert all(f["hazard"] == "pole" for f in advice.findings), (name, advice.report)
+        flagged += trial["flagged"]
+        clean += not trial["flagged"]
+        linear = advise_fpu(fpu, name, h, trial_steps=0)
+        assert linear.trial is None and linear.notes == []
+        linear_false_alarms += not linear.safe and error < 0.05
+    assert flagged > 0 and clean > 0
+    assert linear_false_alarms > 0
+    for m in erkn.methods():
+        calm = advise_fpu(fpu, m["name"], 0.1 / 50, steps=TRIAL, trial_steps=TRIAL)
+        assert calm.safe and not calm.trial["flagged"], (m["name"], calm.report)
+
+
+def test_trial_options_need_the_problem():
+    M, q0, p0 = fpu()
+    name = erkn.methods()[0]["name"]
+    with pytest.raises(erkn.Error, match="trial_steps set the trial run"):
+        erkn.advise_step_size(name, M, 0.01, "fpu", q0=q0, trial_steps=100)  # (no p0)
+    with pytest.raises(erkn.Error, match="steps set the trial run"):
+        erkn.advise_step_size(name, M, 0.01, "fpu", q0=q0, p0=p0, hessian_steps=5, steps=10)
+    with pytest.raises(erkn.Error, match="potential set the trial run"):
+        erkn.advise_step_size(name, M, 0.01, hessian_bounds=(0, 1), potential=lambda q: 0.0)
+    with pytest.raises(erkn.Error, match="trial_steps"):
+        erkn.advise_step_size(name, M, 0.01, "fpu", q0=q0, p0=p0, trial_steps=-1)
 
 
 def test_advisor_refusals_name_the_problem():
