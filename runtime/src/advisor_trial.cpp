@@ -5,14 +5,13 @@
 #include <limits>
 #include <memory>
 
+#include "blowup_guard.hpp"
 #include "erkn/error.hpp"
 #include "erkn/integrator.hpp"
 
 namespace erkn::detail {
 namespace {
 
-// The blow-up guard's limit on E_2's growth without a potential (blowup_guard.hpp).
-constexpr double kGrowthLimit = 1e4;
 // E(n / kEarly) against E(n) gives the growth exponent.
 constexpr long kEarly = 16;
 
@@ -68,7 +67,7 @@ TrialRun trial_run(const Method& method, const System& system, double h, const E
   }
   t.predicted = t.failure.empty() ? predicted(t, o.steps) : std::numeric_limits<double>::infinity();
   t.horizon = o.steps;
-  t.limit = system.potential ? o.energy_tolerance / o.trial_margin : kGrowthLimit;
+  t.limit = system.potential ? o.energy_tolerance / o.trial_margin : BlowupGuard::kGrowthLimit;
   t.flagged = !t.failure.empty() || t.predicted >= t.limit;
   return t;
 }

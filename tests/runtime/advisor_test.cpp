@@ -13,20 +13,15 @@
 namespace erkn::test {
 namespace {
 
-constexpr double kOmega = 50, kPi = std::numbers::pi;  // erkn::problems::fpu()'s stiff omega
-
-const problems::Problem& fpu_problem() {
-  static const problems::Problem p = problems::fpu(3, kOmega);
-  return p;
-}
-System fpu() { return problems::system(fpu_problem()); }
+constexpr double kOmega = kStiffOmega, kPi = std::numbers::pi;
+System fpu() { return problems::system(stiff_fpu()); }
 
 // max |H_n - H_0| / |H_0| over n steps (sampled every 50 steps); infinity if the run fails.
 // (The blow-up guard is off: this measures how far a flagged h drifts.)
 double energy_error(const Method& m, double h, long n) {
   Options unguarded;
   unguarded.blowup_guard = false;
-  Integrator run(m, fpu(), h, fpu_problem().q0, fpu_problem().p0, unguarded);
+  Integrator run(m, fpu(), h, stiff_fpu().q0, stiff_fpu().p0, unguarded);
   const double H0 = run.energy();
   double worst = 0;
   try {
@@ -56,7 +51,7 @@ double expect_clean(const Method& m, double h, double error) {
 // The Hessian range along a pilot run of t = 100 at h omega = 0.5 (hi about 23; at the
 // initial state alone it is [0, 12.5], too narrow: the slow springs stretch further later).
 HessianBounds pilot_hessian(const Method& m) {
-  return hessian_bounds_along(m, fpu(), 0.5 / kOmega, fpu_problem().q0, fpu_problem().p0, 10000);
+  return hessian_bounds_along(m, fpu(), 0.5 / kOmega, stiff_fpu().q0, stiff_fpu().p0, 10000);
 }
 
 // Issue 12's resonant step sizes h omega, for every ERKN method of the registry including the
@@ -100,10 +95,10 @@ INSTANTIATE_TEST_SUITE_P(Registry, AdvisorFpu,
 
 // Negative control: h omega = 1 is far from every k pi and not flagged; its run is accurate.
 TEST(Advisor, AcceptsANonResonantStepAndItsRunIsAccurate) {
-  const Eigen::VectorXd &q = fpu_problem().q0, &p = fpu_problem().p0;
+  const Eigen::VectorXd &q = stiff_fpu().q0, &p = stiff_fpu().p0;
   for (const Method& m : methods_of(Kind::erkn)) {
     SCOPED_TRACE(std::string(m.name()));
-    const StepSizeAdvice advice = advise_step_size(m, fpu(), 1 / kOmega, q, fpu_problem().p0);
+    const StepSizeAdvice advice = advise_step_size(m, fpu(), 1 / kOmega, q, p);
     EXPECT_TRUE(advice.safe()) << advice.report(m);
     EXPECT_EQ(advice.suggested_h, 1 / kOmega);
     EXPECT_LT(energy_error(m, 1 / kOmega, 5000), 0.02);
@@ -129,15 +124,15 @@ TEST(Advisor, ResonanceBandIsTheSlowPhasePerStep) {
 
 TEST(Advisor, HessianRangeAlongAPilotRunContainsTheInitialOne) {
   const Method& m = Method::all()[0];
-  const HessianBounds at = hessian_bounds_at(fpu(), fpu_problem().q0);
+  const HessianBounds at = hessian_bounds_at(fpu(), stiff_fpu().q0);
   const HessianBounds along =
-      hessian_bounds_along(m, fpu(), 0.5 / kOmega, fpu_problem().q0, fpu_problem().p0, 1000);
+      hessian_bounds_along(m, fpu(), 0.5 / kOmega, stiff_fpu().q0, stiff_fpu().p0, 1000);
   EXPECT_LE(along.lo, at.lo);
   EXPECT_GT(along.hi, 1.2 * at.hi);  // FPU's slow springs stretch beyond the initial state
   const HessianBounds none =
-      hessian_bounds_along(m, fpu(), 0.5 / kOmega, fpu_problem().q0, fpu_problem().p0, 0);
+      hessian_bounds_along(m, fpu(), 0.5 / kOmega, stiff_fpu().q0, stiff_fpu().p0, 0);
   EXPECT_EQ(none.hi, at.hi);
-  EXPECT_THROW(hessian_bounds_along(m, fpu(), 0.5 / kOmega, fpu_problem().q0, fpu_problem().p0, -1),
+  EXPECT_THROW(hessian_bounds_along(m, fpu(), 0.5 / kOmega, stiff_fpu().q0, stiff_fpu().p0, -1),
                Error);
 }
 
@@ -205,7 +200,7 @@ TEST(Advisor, RefusesInvalidInput) {
 // keeps h); off by default. At h omega = pi the low-order methods are refused (their runs drift
 // beyond the limit), the accurate ones accepted (the resonance is information): both occur.
 TEST(Advisor, OptInCheckAtConstructionAndStepSizeChange) {
-  const Eigen::VectorXd &q = fpu_problem().q0, &p = fpu_problem().p0;
+  const Eigen::VectorXd &q = stiff_fpu().q0, &p = stiff_fpu().p0;
   Options checked;
   checked.check_stability = true;
   int refused = 0, accepted = 0;

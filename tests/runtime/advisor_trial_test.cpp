@@ -13,13 +13,8 @@
 namespace erkn::test {
 namespace {
 
-constexpr double kOmega = 50, kPi = std::numbers::pi;
+constexpr double kOmega = kStiffOmega, kPi = std::numbers::pi;
 constexpr long kSteps = 2048;
-
-const problems::Problem& fpu_problem() {
-  static const problems::Problem p = problems::fpu(3, kOmega);
-  return p;
-}
 
 // The largest |H_n - H_0| / H_0 over n steps (every step; FPU's U(q0) >= 0, so H_0 is the trial's
 // scale E_2 + |U(q0)|); infinity when a step fails or the energy is not finite.
@@ -27,7 +22,7 @@ double run_error(const Method& m, const System& s, double h, long n) {
   Options unguarded;
   unguarded.blowup_guard = false;
   try {
-    Integrator run(m, s, h, fpu_problem().q0, fpu_problem().p0, unguarded);
+    Integrator run(m, s, h, stiff_fpu().q0, stiff_fpu().p0, unguarded);
     const double H0 = run.energy();
     double worst = 0;
     for (long k = 1; k <= n && std::isfinite(worst); ++k) {
@@ -53,22 +48,21 @@ AdvisorOptions whole_run() {
 // linear finding is kept either as a finding (flagged) or as a note (information). Negative
 // control: the linear model alone (trial_steps = 0) flags every one of them. Both verdicts occur.
 TEST(AdvisorTrial, WholeRunTrialFlagsExactlyTheRunsBeyondTheLimit) {
-  const System s = problems::system(fpu_problem());
+  const System s = problems::system(stiff_fpu());
   int flagged = 0, noted = 0;
   for (const Method& m : Method::all())
     for (double h_omega : {0.999 * kPi, kPi}) {
       SCOPED_TRACE(std::string(m.name()) + " h omega / pi = " + std::to_string(h_omega / kPi));
       const double h = h_omega / kOmega;
       const AdvisorOptions o = whole_run();
-      const StepSizeAdvice a = advise_step_size(m, s, h, fpu_problem().q0, fpu_problem().p0, o);
+      const StepSizeAdvice a = advise_step_size(m, s, h, stiff_fpu().q0, stiff_fpu().p0, o);
       const double error = run_error(m, s, h, kSteps);
       ASSERT_EQ(a.trial.horizon, kSteps);
       EXPECT_EQ(a.safe(), error < o.energy_tolerance / o.trial_margin) << a.report(m);
       if (std::isfinite(error)) EXPECT_NEAR(a.trial.error, error, 1e-12 * (1 + error));
       AdvisorOptions linear = o;
       linear.trial_steps = 0;
-      const StepSizeAdvice b =
-          advise_step_size(m, s, h, fpu_problem().q0, fpu_problem().p0, linear);
+      const StepSizeAdvice b = advise_step_size(m, s, h, stiff_fpu().q0, stiff_fpu().p0, linear);
       if (m.kind() != Kind::erkn || b.safe()) continue;
       EXPECT_EQ(a.findings.size() + a.notes.size(), b.findings.size()) << a.report(m);
       if (a.safe()) EXPECT_NE(a.report(m).find("information"), std::string::npos) << a.report(m);
@@ -82,21 +76,21 @@ TEST(AdvisorTrial, WholeRunTrialFlagsExactlyTheRunsBeyondTheLimit) {
 // steps, so it lies between the trial's error and its linear extrapolation; with steps = n it is
 // the trial's error. A blow-up within the trial is a failure and flags h (Strang at 0.999 pi).
 TEST(AdvisorTrial, PredictionLiesBetweenTheTrialsErrorAndItsDrift) {
-  const System s = problems::system(fpu_problem());
+  const System s = problems::system(stiff_fpu());
   for (const Method& m : Method::all()) {
     SCOPED_TRACE(std::string(m.name()));
     AdvisorOptions o = whole_run();
     o.steps = 100000;
     const StepSizeAdvice a =
-        advise_step_size(m, s, 1.0 / kOmega, fpu_problem().q0, fpu_problem().p0, o);
+        advise_step_size(m, s, 1.0 / kOmega, stiff_fpu().q0, stiff_fpu().p0, o);
     ASSERT_EQ(a.trial.steps, kSteps);
     EXPECT_LE(a.trial.early, a.trial.error);
     EXPECT_GE(a.trial.predicted, a.trial.error);
     EXPECT_LE(a.trial.predicted, a.trial.error * 100000.0 / kSteps * (1 + 1e-12));
   }
   const Method strang = Method::by_name("Strang");
-  const StepSizeAdvice blown = advise_step_size(strang, s, 0.999 * kPi / kOmega, fpu_problem().q0,
-                                                fpu_problem().p0, whole_run());
+  const StepSizeAdvice blown = advise_step_size(strang, s, 0.999 * kPi / kOmega, stiff_fpu().q0,
+                                                stiff_fpu().p0, whole_run());
   EXPECT_FALSE(blown.safe());
   EXPECT_FALSE(blown.trial.failure.empty()) << blown.report(strang);
   EXPECT_NE(blown.report(strang).find("trial run"), std::string::npos);
@@ -105,10 +99,10 @@ TEST(AdvisorTrial, PredictionLiesBetweenTheTrialsErrorAndItsDrift) {
 // Without System::potential the trial measures E_2 = 1/2 |p|^2 + 1/2 q^T M q: Strang at
 // 0.999 pi blows up (flagged), at h omega = 1 it stays bounded (not flagged).
 TEST(AdvisorTrial, WithoutAPotentialTheTrialMeasuresTheLinearEnergy) {
-  System s = problems::system(fpu_problem());
+  System s = problems::system(stiff_fpu());
   s.potential = nullptr;
   const Method strang = Method::by_name("Strang");
-  const Eigen::VectorXd &q0 = fpu_problem().q0, &p0 = fpu_problem().p0;
+  const Eigen::VectorXd &q0 = stiff_fpu().q0, &p0 = stiff_fpu().p0;
   EXPECT_FALSE(advise_step_size(strang, s, 0.999 * kPi / kOmega, q0, p0, whole_run()).safe());
   const StepSizeAdvice calm = advise_step_size(strang, s, 1.0 / kOmega, q0, p0, whole_run());
   EXPECT_TRUE(calm.safe()) << calm.report(strang);
@@ -116,12 +110,12 @@ TEST(AdvisorTrial, WithoutAPotentialTheTrialMeasuresTheLinearEnergy) {
 }
 
 TEST(AdvisorTrial, RefusesInvalidTrialOptions) {
-  const System s = problems::system(fpu_problem());
+  const System s = problems::system(stiff_fpu());
   const Method m = Method::by_name("SABA2");
   const auto refused = [&](auto change) {
     AdvisorOptions o;
     change(o);
-    EXPECT_THROW(advise_step_size(m, s, 0.01, fpu_problem().q0, fpu_problem().p0, o), Error);
+    EXPECT_THROW(advise_step_size(m, s, 0.01, stiff_fpu().q0, stiff_fpu().p0, o), Error);
   };
   refused([](AdvisorOptions& o) { o.steps = 0; });
   refused([](AdvisorOptions& o) { o.energy_tolerance = 0; });
@@ -129,7 +123,7 @@ TEST(AdvisorTrial, RefusesInvalidTrialOptions) {
   refused([](AdvisorOptions& o) { o.trial_steps = -1; });
   refused([](AdvisorOptions& o) { o.trial_margin = 0.5; });
   refused([](AdvisorOptions& o) { o.trial_margin = INFINITY; });
-  EXPECT_NO_THROW(advise_step_size(m, s, 0.01, fpu_problem().q0, fpu_problem().p0, whole_run()));
+  EXPECT_NO_THROW(advise_step_size(m, s, 0.01, stiff_fpu().q0, stiff_fpu().p0, whole_run()));
 }
 
 }  // namespace

@@ -14,13 +14,8 @@
 namespace erkn::test {
 namespace {
 
-constexpr double kOmega = 50, kPi = std::numbers::pi;
+constexpr double kOmega = kStiffOmega, kPi = std::numbers::pi;
 constexpr long kSteps = 100000;
-
-const problems::Problem& fpu_problem() {
-  static const problems::Problem p = problems::fpu(3, kOmega);
-  return p;
-}
 
 struct Outcome {
   bool stopped = false;
@@ -30,12 +25,12 @@ struct Outcome {
 };
 
 Outcome run_fpu(const Method& m, double h, bool guard, bool with_potential = true) {
-  System s = problems::system(fpu_problem());
+  System s = problems::system(stiff_fpu());
   const auto U = s.potential;
   if (!with_potential) s.potential = nullptr;
   Options o;
   o.blowup_guard = guard;
-  Integrator run(m, s, h, fpu_problem().q0, fpu_problem().p0, o);
+  Integrator run(m, s, h, stiff_fpu().q0, stiff_fpu().p0, o);
   const auto H = [&](const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
     Eigen::VectorXd Mq = s.M.to_dense(q.size()) * q;
     return 0.5 * p.squaredNorm() + 0.5 * q.dot(Mq) + U(q);

@@ -15,6 +15,14 @@
 
 namespace erkn::test {
 
+/// FPU with stiff springs omega = kStiffOmega (erkn::problems::fpu(3, 50)), made once: the
+/// scene of the advisor's, its trial run's and the blow-up guard's tests.
+inline constexpr double kStiffOmega = 50;
+inline const problems::Problem& stiff_fpu() {
+  static const problems::Problem p = problems::fpu(3, kStiffOmega);
+  return p;
+}
+
 inline std::vector<Method> methods_of(Kind kind) {
   std::vector<Method> out;
   for (const Method& m : Method::all())
