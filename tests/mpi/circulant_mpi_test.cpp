@@ -2,11 +2,11 @@
 // on 1, 2 and 4 ranks: the blocks partition the vector, and the distributed integrator agrees
 // with erkn::Integrator on the whole vector to round-off for every method it runs.
 #include <gtest/gtest.h>
-#include <mpi.h>
 
-#include <erkn/mpi.hpp>
 #include <string>
 #include <vector>
+
+#include "scenes.hpp"
 
 namespace erkn::test {
 namespace {
@@ -23,25 +23,6 @@ Stiffness circulant(Eigen::Index n, double coupling = 0.1) {
   return Stiffness::circulant(col);
 }
 
-System sine_gordon(const Stiffness& M) {
-  System s;
-  s.M = M;
-  s.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = q.array().sin(); };
-  s.potential = [](const Eigen::VectorXd& q) { return (1 - q.array().cos()).sum(); };
-  return s;
-}
-
-Options converged() {  // (as grid_mpi_test.cpp: stages solved to round-off on both sides)
-  Options o;
-  o.tolerance = 1e-17;
-  o.max_fixed_point_iterations = 60;
-  return o;
-}
-
-double max_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  return (a - b).lpNorm<Eigen::Infinity>() / std::max(1.0, b.lpNorm<Eigen::Infinity>());
-}
-
 struct Compared {
   double q = 0, p = 0, H = 0;  // max relative differences
   double size = 0;             // max |q| of the single-process run
@@ -51,9 +32,8 @@ struct Compared {
 // negative control), from a smooth state of the global index.
 Compared compare(const Method& method, const Stiffness& M, const Stiffness& M_serial) {
   const Eigen::Index n = M.dim();
-  Eigen::VectorXd q0(n), p0(n);
-  for (Eigen::Index k = 0; k < n; ++k)
-    q0[k] = 1.5 * std::sin(0.37 * double(k) + 0.2), p0[k] = 0.8 * std::cos(0.23 * double(k));
+  Eigen::VectorXd q0, p0;
+  initial(n, q0, p0);
   const mpi::Slab block = mpi::slab(MPI_COMM_WORLD, M);
   mpi::GridIntegrator distributed(MPI_COMM_WORLD, method, sine_gordon(M), 0.1,
                                   q0.segment(block.first, block.size),

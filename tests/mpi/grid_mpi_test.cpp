@@ -12,20 +12,6 @@
 namespace erkn::test {
 namespace {
 
-// Both integrators solve every stage to round-off (a tolerance below it: the iterations stop when
-// they stall at round-off), so the comparison sees the method, not where the two stage solvers'
-// different starting guesses and stopping tests happen to stop within the default tolerance.
-Options converged() {
-  Options o;
-  o.tolerance = 1e-17;
-  o.max_fixed_point_iterations = 60;
-  return o;
-}
-
-double max_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  return (a - b).lpNorm<Eigen::Infinity>() / std::max(1.0, b.lpNorm<Eigen::Infinity>());
-}
-
 struct Runs {
   Eigen::VectorXd q_mpi, p_mpi, q_serial, p_serial;
   double H_mpi, H_serial;

@@ -1,9 +1,11 @@
-// The grids, systems and initial states the erkn::mpi tests share (grid_mpi_test.cpp,
-// guard_mpi_test.cpp; one program, run by ctest under mpirun on 1, 2 and 4 ranks).
+// The grids, systems, initial states and comparisons the erkn::mpi tests share (grid_mpi_test.cpp,
+// circulant_mpi_test.cpp, guard_mpi_test.cpp; one program, run by ctest under mpirun on 1, 2 and 4
+// ranks).
 #pragma once
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <erkn/mpi.hpp>
 #include <vector>
@@ -66,6 +68,20 @@ inline Scene scene(const Grid& g) {
   s.q0_slab = s.q0.segment(offset, slab.size);
   s.p0_slab = s.p0.segment(offset, slab.size);
   return s;
+}
+
+// Both integrators solve every stage to round-off (a tolerance below it: the iterations stop when
+// they stall at round-off), so the comparison sees the method, not where the two stage solvers'
+// different starting guesses and stopping tests happen to stop within the default tolerance.
+inline Options converged() {
+  Options o;
+  o.tolerance = 1e-17;
+  o.max_fixed_point_iterations = 60;
+  return o;
+}
+
+inline double max_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  return (a - b).lpNorm<Eigen::Infinity>() / std::max(1.0, b.lpNorm<Eigen::Infinity>());
 }
 
 }  // namespace erkn::test
