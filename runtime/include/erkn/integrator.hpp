@@ -63,7 +63,7 @@ struct Options {
   /// current state: a pole, or a trial run of 4096 steps whose energy error, extrapolated to 1e5
   /// steps, reaches 0.05 (see erkn/advisor.hpp, "Severity"); off by default.
   bool check_stability = false;
-  /// Blow-up guard, on by default: every 1024 steps, a relative energy error |H - H_0| above 0.5
+  /// Blow-up guard, on by default: every 1024 steps, a relative energy error |H - H_0| above 0.25
   /// (with System::potential; relative to 1/2|p0|^2 + 1/2 q0^T M q0 + |U(q0)|), else a 1e4-fold
   /// growth of 1/2|p|^2 + 1/2 q^T M q, or a non-finite state, throws erkn::Error naming the time,
   /// the growth and the step-size advisor's verdict at h, and restores the state of the last
