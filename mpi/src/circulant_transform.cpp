@@ -36,11 +36,11 @@ CirculantTransform::CirculantTransform(MPI_Comm comm, const Stiffness& M) {
   part_ = {Eigen::Index(l.first_in), Eigen::Index(l.count_in), Eigen::Index(l.count_in)};
   scale_ = 1.0 / double(n);
   first_k_ = Eigen::Index(l.first_out), n_ = Eigen::Index(n);
-  in_ = fftw_alloc_complex(size_t(l.buffer));
-  out_ = fftw_alloc_complex(size_t(l.buffer));
-  forward_ = fftw_mpi_plan_dft_1d(n, in_, out_, comm, FFTW_FORWARD, FFTW_ESTIMATE);
-  inverse_ = fftw_mpi_plan_dft_1d(n, in_, out_, comm, FFTW_BACKWARD, FFTW_ESTIMATE);
-  if (!forward_ || !inverse_)
+  fftw_.in = fftw_alloc_complex(size_t(l.buffer));
+  fftw_.out = fftw_alloc_complex(size_t(l.buffer));
+  fftw_.forward = fftw_mpi_plan_dft_1d(n, fftw_.in, fftw_.out, comm, FFTW_FORWARD, FFTW_ESTIMATE);
+  fftw_.inverse = fftw_mpi_plan_dft_1d(n, fftw_.in, fftw_.out, comm, FFTW_BACKWARD, FFTW_ESTIMATE);
+  if (!fftw_.forward || !fftw_.inverse)
     throw Error("FFTW-MPI cannot plan a distributed DFT of size " + std::to_string(n) +
                 " on this many ranks (its 1-D transforms need n to factor over the ranks): use "
                 "another size or erkn::Integrator on one process");
@@ -53,13 +53,6 @@ CirculantTransform::CirculantTransform(MPI_Comm comm, const Stiffness& M) {
   weights_ = Eigen::ArrayXd::Constant(lambda_.size(), scale_);
 }
 
-CirculantTransform::~CirculantTransform() {
-  if (forward_) fftw_destroy_plan(forward_);
-  if (inverse_) fftw_destroy_plan(inverse_);
-  fftw_free(in_);
-  fftw_free(out_);
-}
-
 Eigen::Index CirculantTransform::mode(Eigen::Index local) const {
   const Eigen::Index k = first_k_ + local / 2;
   return std::min(k, n_ - k);
@@ -67,16 +60,16 @@ Eigen::Index CirculantTransform::mode(Eigen::Index local) const {
 
 void CirculantTransform::execute_forward(const Eigen::Ref<const Eigen::VectorXd>& x,
                                          Eigen::Ref<Eigen::ArrayXd> y) {
-  for (Eigen::Index j = 0; j < physical_size(); ++j) in_[j][0] = x[j], in_[j][1] = 0;
-  fftw_execute(forward_);
-  y = Eigen::Map<const Eigen::ArrayXd>(&out_[0][0], spectral_size());
+  for (Eigen::Index j = 0; j < physical_size(); ++j) fftw_.in[j][0] = x[j], fftw_.in[j][1] = 0;
+  fftw_execute(fftw_.forward);
+  y = Eigen::Map<const Eigen::ArrayXd>(&fftw_.out[0][0], spectral_size());
 }
 
 void CirculantTransform::execute_inverse(const Eigen::Ref<const Eigen::ArrayXd>& y,
                                          Eigen::Ref<Eigen::VectorXd> x) {
-  Eigen::Map<Eigen::ArrayXd>(&in_[0][0], spectral_size()) = y;
-  fftw_execute(inverse_);
-  for (Eigen::Index j = 0; j < physical_size(); ++j) x[j] = scale_ * out_[j][0];
+  Eigen::Map<Eigen::ArrayXd>(&fftw_.in[0][0], spectral_size()) = y;
+  fftw_execute(fftw_.inverse);
+  for (Eigen::Index j = 0; j < physical_size(); ++j) x[j] = scale_ * fftw_.out[j][0];
 }
 
 }  // namespace erkn::mpi::detail

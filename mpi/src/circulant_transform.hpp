@@ -11,6 +11,7 @@
 #include <fftw3-mpi.h>
 
 #include "distributed_transform.hpp"
+#include "fftw_plans.hpp"
 
 namespace erkn::mpi::detail {
 
@@ -25,9 +26,6 @@ class CirculantTransform final : public DistributedTransform {
   /// M must be circulant (collective over comm; throws erkn::Error on every rank when FFTW-MPI
   /// cannot plan the size on this many ranks).
   CirculantTransform(MPI_Comm comm, const Stiffness& M);
-  ~CirculantTransform() override;
-  CirculantTransform(const CirculantTransform&) = delete;
-  CirculantTransform& operator=(const CirculantTransform&) = delete;
   /// Both doubles of X_k are at wave number min(k, N - k) of M.eigenvalues().
   Eigen::Index mode(Eigen::Index local) const override;
 
@@ -38,8 +36,7 @@ class CirculantTransform final : public DistributedTransform {
                        Eigen::Ref<Eigen::VectorXd> x) override;
 
   double scale_ = 1;  // 1 / N
-  fftw_complex *in_ = nullptr, *out_ = nullptr;
-  fftw_plan forward_ = nullptr, inverse_ = nullptr;
+  FftwPlans<fftw_complex> fftw_;
   Eigen::Index first_k_ = 0, n_ = 0;  // (mode: the first local k, N)
 };
 

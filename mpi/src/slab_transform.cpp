@@ -75,14 +75,14 @@ SlabTransform::SlabTransform(MPI_Comm comm, const Stiffness& M) {
   }
   part_ = {Eigen::Index(l.first0), Eigen::Index(l.rows0), l.physical_size};
   first1_ = l.first1, n0_ = l.n[0], n1_ = l.n[1], rest_ = M.dim() / (n0_ * n1_);
-  in_ = fftw_alloc_real(std::max<ptrdiff_t>(l.buffer, 1));
-  out_ = fftw_alloc_real(std::max<ptrdiff_t>(l.buffer, 1));
+  fftw_.in = fftw_alloc_real(std::max<ptrdiff_t>(l.buffer, 1));
+  fftw_.out = fftw_alloc_real(std::max<ptrdiff_t>(l.buffer, 1));
   const int rank = int(axes.size());
-  forward_ = fftw_mpi_plan_r2r(rank, l.n.data(), in_, out_, comm, forward_kinds.data(),
-                               FFTW_ESTIMATE | FFTW_MPI_TRANSPOSED_OUT);
-  inverse_ = fftw_mpi_plan_r2r(rank, l.n.data(), in_, out_, comm, inverse_kinds.data(),
-                               FFTW_ESTIMATE | FFTW_MPI_TRANSPOSED_IN);
-  if (!forward_ || !inverse_) throw Error("FFTW-MPI could not plan the grid transforms");
+  fftw_.forward = fftw_mpi_plan_r2r(rank, l.n.data(), fftw_.in, fftw_.out, comm,
+                                    forward_kinds.data(), FFTW_ESTIMATE | FFTW_MPI_TRANSPOSED_OUT);
+  fftw_.inverse = fftw_mpi_plan_r2r(rank, l.n.data(), fftw_.in, fftw_.out, comm,
+                                    inverse_kinds.data(), FFTW_ESTIMATE | FFTW_MPI_TRANSPOSED_IN);
+  if (!fftw_.forward || !fftw_.inverse) throw Error("FFTW-MPI could not plan the grid transforms");
   // Spectral layout: (k1 local, k0, k2, ...).
   std::vector<Eigen::ArrayXd> mu, w;
   const auto add = [&](const GridAxis& a, Eigen::Index first, Eigen::Index count) {
@@ -96,13 +96,6 @@ SlabTransform::SlabTransform(MPI_Comm comm, const Stiffness& M) {
   weights_ = outer(w, true);
 }
 
-SlabTransform::~SlabTransform() {
-  if (forward_) fftw_destroy_plan(forward_);
-  if (inverse_) fftw_destroy_plan(inverse_);
-  fftw_free(in_);
-  fftw_free(out_);
-}
-
 Eigen::Index SlabTransform::mode(Eigen::Index local) const {
   const Eigen::Index r = local % rest_, k0 = (local / rest_) % n0_,
                      k1 = first1_ + local / (rest_ * n0_);
@@ -111,16 +104,16 @@ Eigen::Index SlabTransform::mode(Eigen::Index local) const {
 
 void SlabTransform::execute_forward(const Eigen::Ref<const Eigen::VectorXd>& x,
                                     Eigen::Ref<Eigen::ArrayXd> y) {
-  Eigen::Map<Eigen::VectorXd>(in_, physical_size()) = x;
-  fftw_execute(forward_);
-  y = Eigen::Map<const Eigen::ArrayXd>(out_, spectral_size());
+  Eigen::Map<Eigen::VectorXd>(fftw_.in, physical_size()) = x;
+  fftw_execute(fftw_.forward);
+  y = Eigen::Map<const Eigen::ArrayXd>(fftw_.out, spectral_size());
 }
 
 void SlabTransform::execute_inverse(const Eigen::Ref<const Eigen::ArrayXd>& y,
                                     Eigen::Ref<Eigen::VectorXd> x) {
-  Eigen::Map<Eigen::ArrayXd>(in_, spectral_size()) = y;
-  fftw_execute(inverse_);
-  x = scale_ * Eigen::Map<const Eigen::VectorXd>(out_, physical_size());
+  Eigen::Map<Eigen::ArrayXd>(fftw_.in, spectral_size()) = y;
+  fftw_execute(fftw_.inverse);
+  x = scale_ * Eigen::Map<const Eigen::VectorXd>(fftw_.out, physical_size());
 }
 
 }  // namespace erkn::mpi::detail

@@ -18,6 +18,7 @@
 
 #include "distributed_transform.hpp"
 #include "erkn/stiffness.hpp"
+#include "fftw_plans.hpp"
 
 namespace erkn::mpi::detail {
 
@@ -38,9 +39,6 @@ class SlabTransform final : public DistributedTransform {
   /// M must be a grid with at least two axes (collective over comm; throws erkn::Error on every
   /// rank otherwise).
   SlabTransform(MPI_Comm comm, const Stiffness& M);
-  ~SlabTransform() override;
-  SlabTransform(const SlabTransform&) = delete;
-  SlabTransform& operator=(const SlabTransform&) = delete;
   /// The local entry (k1 - first1, k0, k2, ...) is entry (k0, k1, k2, ...) of M.eigenvalues().
   Eigen::Index mode(Eigen::Index local) const override;
 
@@ -50,9 +48,8 @@ class SlabTransform final : public DistributedTransform {
   void execute_inverse(const Eigen::Ref<const Eigen::ArrayXd>& y,
                        Eigen::Ref<Eigen::VectorXd> x) override;
 
-  double scale_ = 1;                       // 1 / prod of FFTW's logical sizes
-  double *in_ = nullptr, *out_ = nullptr;  // FFTW-MPI buffers (local size incl. transpose room)
-  fftw_plan forward_ = nullptr, inverse_ = nullptr;
+  double scale_ = 1;  // 1 / prod of FFTW's logical sizes
+  FftwPlans<double> fftw_;
   Eigen::Index first1_ = 0, n0_ = 0, n1_ = 0, rest_ = 1;  // (mode: k1's offset, axis sizes)
 };
 
