@@ -150,14 +150,8 @@ void stiff_section(std::ostream& md, const std::vector<StiffResult>& stiff) {
   }
 }
 
-}  // namespace
-
-void write_report(const std::filesystem::path& file, const RunInfo& info,
-                  const std::vector<ProblemResult>& problems,
-                  const std::optional<ScalingResult>& scaling,
-                  const std::vector<StiffResult>& stiff) {
-  std::ofstream md(file);
-  if (!md) throw std::runtime_error("cannot write " + file.string());
+// The header of results.md: the run, and how every number in it was measured.
+void write_methodology(std::ostream& md, const RunInfo& info) {
   md << "# erkn — measured results\n\n"
      << "Written by `" << info.command << "` (" << info.mode << " sweep) in "
      << fmt("%.0f", info.wall_seconds) << " s (" << fmt("%.0f", info.cpu_seconds)
@@ -214,9 +208,11 @@ void write_report(const std::filesystem::path& file, const RunInfo& info,
         "in REBOUND (order 6, 3 kicks, one modified; its processor applied at the start and to "
         "every state given out). All peers are written in experiments/, independently of the "
         "runtime.\n";
-  const std::vector<SceneRuns> scenes = target_scenes(problems, scaling);
-  const std::string verdict = verdict_markdown(scenes, stiff);
-  md << "\n" << verdict << "\n" << targets_markdown(scenes) << breakdown_markdown(scenes);
+}
+
+// summary.md beside results.md: the verdict alone.
+void write_summary(const std::filesystem::path& file, const RunInfo& info,
+                   const std::string& verdict) {
   const std::filesystem::path summary = file.parent_path() / "summary.md";
   std::ofstream sm(summary);
   if (!sm) throw std::runtime_error("cannot write " + summary.string());
@@ -224,6 +220,21 @@ void write_report(const std::filesystem::path& file, const RunInfo& info,
      << info.mode << " sweep) with [results.md](results.md), which holds every number behind it. "
      << "Do not edit.\n\n"
      << verdict;
+}
+
+}  // namespace
+
+void write_report(const std::filesystem::path& file, const RunInfo& info,
+                  const std::vector<ProblemResult>& problems,
+                  const std::optional<ScalingResult>& scaling,
+                  const std::vector<StiffResult>& stiff) {
+  std::ofstream md(file);
+  if (!md) throw std::runtime_error("cannot write " + file.string());
+  write_methodology(md, info);
+  const std::vector<SceneRuns> scenes = target_scenes(problems, scaling);
+  const std::string verdict = verdict_markdown(scenes, stiff);
+  md << "\n" << verdict << "\n" << targets_markdown(scenes) << breakdown_markdown(scenes);
+  write_summary(file, info, verdict);
   for (const ProblemResult& r : problems) problem_section(md, r);
   if (scaling) scaling_section(md, *scaling);
   if (!stiff.empty()) stiff_section(md, stiff);
