@@ -59,6 +59,13 @@ py::dict tableau(const std::string& name, double v) {
   t["c"] = c, t["d"] = d, t["b"] = b, t["bbar"] = bbar, t["abar"] = abar;
   if (m.has_modified_kicks())
     t["modified"] = std::vector<double>(m.modified().begin(), m.modified().end());
+  if (m.is_processed()) {  // (as erkn tableau prints it: the kernel's order and pi^-1)
+    const generated::Table& p = m.table();
+    t["kernel_order"] = m.kernel_order();
+    t["pre_drift"] = std::vector<double>(p.pre_drift, p.pre_drift + p.npre + 1);
+    t["pre_kick"] = std::vector<double>(p.pre_kick, p.pre_kick + p.npre);
+    t["pre_modified"] = std::vector<double>(p.pre_modified, p.pre_modified + p.npre);
+  }
   return t;
 }
 
@@ -112,7 +119,9 @@ void bind_registry(py::module_& m) {
       "the order conditions; erkn.Error names the failing condition and adds none of them. "
       "Returns their dicts (the fields of erkn.methods())");
   m.def("tableau", &tableau, py::arg("name"), py::arg("v") = 0.0,
-        "coefficients of a method at v = h^2 lambda >= 0 (erkn.Error at a pole)");
+        "coefficients of a method at v = h^2 lambda >= 0 (erkn.Error at a pole); a processed "
+        "method's also kernel_order and its pre-processor pi^-1 (pre_drift, pre_kick, "
+        "pre_modified)");
   m.def("_stability", &stability, py::arg("name"), py::arg("V"), py::arg("z"));
   m.attr("trace_tolerance") = kTraceTolerance;
 }

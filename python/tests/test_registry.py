@@ -68,3 +68,18 @@ def test_stability_matrix_is_symplectic_and_classified(m):
     assert np.all(st["rho"][periodic] == pytest.approx(1.0, abs=1e-6))
     # Negative control: V + z < 0 (the exact solution grows), at small h, is unstable.
     assert erkn.stability(m["name"], 0.1, -0.15)["class"] == "unstable"
+
+
+def test_tableau_shows_the_processor_of_processed_methods():
+    # pi^-1 as erkn tableau prints it: npre + 1 drifts, npre kicks, and the kernel's order; an
+    # unprocessed method has none of these keys (negative control).
+    processed = [m for m in erkn.methods() if m["processed"]]
+    assert processed
+    for m in erkn.methods():
+        t = erkn.tableau(m["name"], 0.0)
+        if not m["processed"]:
+            assert "pre_drift" not in t, m["name"]
+            continue
+        assert t["kernel_order"] == m["kernel_order"] < m["order"]
+        assert len(t["pre_drift"]) == len(t["pre_kick"]) + 1 == len(t["pre_modified"]) + 1
+        assert any(x != 0 for x in t["pre_kick"])
