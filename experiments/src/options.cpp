@@ -65,7 +65,8 @@ void set_full(RunConfig& c) {
 }  // namespace
 
 std::string usage() {
-  return "usage: erkn-experiments [--quick | --full] [--problems P1,P2,P3,scaling,stiff,grids]\n"
+  return "usage: erkn-experiments [--quick | --full] [--problems "
+         "P1,P2,P3,FPU,HH,scaling,stiff,grids]\n"
          "                        [--methods NAME,...] [--methods-file F.json] [--steps H,...]\n"
          "                        [--out DIR] [--list]\n"
          "  --quick      small sweep (default): step factor 2, best of up to 5 timings, the\n"
@@ -115,9 +116,10 @@ Options parse_options(int argc, char** argv) {
   }
   if (!o.config.steps.empty()) o.mode = "custom";
   for (const std::string& p : o.problems)
-    if (p != "P1" && p != "P2" && p != "P3" && p != "scaling" && p != "stiff" && p != "grids")
+    if (p != "P1" && p != "P2" && p != "P3" && p != "FPU" && p != "HH" && p != "scaling" &&
+        p != "stiff" && p != "grids")
       throw std::invalid_argument("unknown problem " + p +
-                                  " (known: P1, P2, P3, scaling, stiff, grids)");
+                                  " (known: P1, P2, P3, FPU, HH, scaling, stiff, grids)");
   return o;
 }
 

@@ -10,7 +10,7 @@
 namespace ex {
 
 struct Options {
-  std::vector<std::string> problems{"P1", "P2", "P3", "scaling", "stiff", "grids"};
+  std::vector<std::string> problems{"P1", "P2", "P3", "FPU", "HH", "scaling", "stiff", "grids"};
   std::vector<std::string> methods;  ///< empty: all
   /// --methods-file F.json (repeatable): a user's explicit methods (erkn-generate --json),
   /// loaded into the registry (erkn::Method::load) before the methods are chosen.

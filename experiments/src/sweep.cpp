@@ -24,9 +24,11 @@ std::vector<Measurement> sweep(const Solver& solver, const Problem& problem, dou
                                const Vec& q_ref, const SweepPolicy& policy,
                                const std::vector<long>& steps) {
   std::vector<Measurement> ms;
-  const std::vector<long> seeds =
+  std::vector<long> seeds =
       steps.empty() ? std::vector<long>(problem.paper_steps.begin(), problem.paper_steps.end())
                     : steps;
+  // A scene outside the paper (FPU, Henon-Heiles) starts at its energy chart's step.
+  if (seeds.empty()) seeds.push_back(std::max(1L, std::lround(t_end / problem.h_energy)));
   for (long n : seeds) ms.push_back(measure(solver, problem, t_end, n, q_ref, policy.timing));
   sort_by_steps(ms);
   if (!steps.empty()) return ms;

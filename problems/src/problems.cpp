@@ -164,6 +164,7 @@ Problem henon_heiles(double energy) {
   p.q0 = Eigen::Vector2d(0, y0);
   p.p0 = Eigen::Vector2d(std::sqrt(2 * (energy - v0)), 0);
   p.t_error = 20;
+  p.h_energy = 0.1;
   p.grad_u = [](const Vec& q, Vec& g) {
     g.resize(2);
     g[0] = 2 * q[0] * q[1];
