@@ -37,7 +37,7 @@ ProblemResult run_problem(const Problem& problem, const SolverList& solvers,
 }
 
 ScalingResult run_scaling(const SolverList& solvers, const RunConfig& config, Progress& progress) {
-  ScalingResult out{config.scaling_tolerance, config.scaling_t_end, config.scaling_sizes, {}, {}};
+  ScalingResult out{config.scaling_tolerances, config.scaling_t_end, config.scaling_sizes, {}, {}};
   for (const auto& solver : solvers) out.lines.push_back({traits_of(*solver), {}});
   for (int n : config.scaling_sizes) {
     Problem problem = sine_gordon(n);
@@ -54,7 +54,7 @@ ScalingResult run_scaling(const SolverList& solvers, const RunConfig& config, Pr
           solvers[i]->family() == Family::peer && !solvers[i]->exact_for_linear_part();
       const long start = resolves ? std::max(8L, long(n)) : 8L;
       out.lines[i].brackets.push_back(bracket(*solvers[i], problem, config.scaling_t_end,
-                                              out.references.back().q, config.scaling_tolerance,
+                                              out.references.back().q, config.scaling_tolerances,
                                               start, config.sweep));
       progress.advance("scaling N=" + std::to_string(n) + " " + solvers[i]->name());
     }
@@ -62,7 +62,7 @@ ScalingResult run_scaling(const SolverList& solvers, const RunConfig& config, Pr
     std::vector<TimedLine> lines;
     for (size_t i = 0; i < solvers.size(); ++i)
       lines.push_back({solvers[i].get(), &out.lines[i], &out.lines[i].brackets.back()});
-    retime_contenders(problem, lines, {config.scaling_tolerance}, config.sweep.timing);
+    retime_contenders(problem, lines, config.scaling_tolerances, config.sweep.timing);
     progress.record("scaling N=" + std::to_string(n) + " interleaved timing");
   }
   return out;

@@ -125,7 +125,8 @@ std::string problem_json(const ProblemResult& p) {
 }
 
 std::string scaling_json(const ScalingResult& s) {
-  return "{\"tolerance\": " + num(s.tolerance, true) + ", \"t_end\": " + num(s.t_end, true) +
+  return "{\"tolerances\": " + json_list(s.tolerances, [](double x) { return num(x, true); }) +
+         ", \"t_end\": " + num(s.t_end, true) +
          ", \"sizes\": " + json_list(s.sizes, [](int n) { return std::to_string(n); }) +
          ", \"lines\": " +
          json_list(s.lines,

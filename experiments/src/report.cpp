@@ -66,7 +66,7 @@ void problem_section(std::ostream& md, const ProblemResult& r) {
 
 void scaling_section(std::ostream& md, const ScalingResult& s) {
   md << "\n## Scaling — P1 for growing N, t ∈ [0, " << s.t_end << "]\n\n"
-     << "CPU time (ms) to reach error " << sci(s.tolerance)
+     << "CPU time (ms) to reach error " << sci(s.tolerances.front())
      << " (step doubled or halved from a start until the error crosses it, then interpolated). "
         "Reference per N: RKF7(8) with fixed steps in double precision (ample for this "
         "tolerance); steps, and agreement with the run at twice the step:";

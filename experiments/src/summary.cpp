@@ -105,8 +105,8 @@ SceneRuns scene_runs(const ProblemResult& result, double tolerance) {
   return s;
 }
 
-SceneRuns scene_runs(const ScalingResult& result, size_t i) {
-  SceneRuns s{"P1 scaling, N = " + std::to_string(result.sizes[i]), result.tolerance, {}};
+SceneRuns scene_runs(const ScalingResult& result, size_t i, double tolerance) {
+  SceneRuns s{"P1 scaling, N = " + std::to_string(result.sizes[i]), tolerance, {}};
   for (const ScalingResult::Line& l : result.lines) s.runs.push_back({&l, &l.brackets[i]});
   return s;
 }
@@ -200,7 +200,7 @@ Limit stability_limit(const std::vector<Measurement>& sweep) {
 
 std::optional<double> scaling_cpu(const ScalingResult& result, size_t line, size_t i) {
   const auto& ms = result.lines[line].brackets[i];
-  return ex::cost_to_tolerance(curve(ms, Axis::cpu), result.tolerance);
+  return ex::cost_to_tolerance(curve(ms, Axis::cpu), result.tolerances.front());
 }
 
 std::optional<size_t> best_line(const ScalingResult& result, Group group) {

@@ -42,7 +42,7 @@ struct SceneRuns {
   std::vector<Run> runs;
 };
 SceneRuns scene_runs(const ProblemResult& result, double tolerance);
-SceneRuns scene_runs(const ScalingResult& result, size_t size_index);
+SceneRuns scene_runs(const ScalingResult& result, size_t size_index, double tolerance);
 
 /// The cheapest method of a group in CPU time; empty cpu when none reaches the tolerance.
 struct Best {

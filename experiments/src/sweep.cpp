@@ -51,31 +51,32 @@ std::vector<Measurement> sweep(const Solver& solver, const Problem& problem, dou
 }
 
 std::vector<Measurement> bracket(const Solver& solver, const Problem& problem, double t_end,
-                                 const Vec& q_ref, double tolerance, long start,
-                                 const SweepPolicy& policy) {
+                                 const Vec& q_ref, const std::vector<double>& tolerances,
+                                 long start, const SweepPolicy& policy) {
   auto run = [&](long n) { return measure(solver, problem, t_end, n, q_ref, policy.timing); };
+  const double coarse = *std::max_element(tolerances.begin(), tolerances.end());
+  const double fine = *std::min_element(tolerances.begin(), tolerances.end());
   std::vector<Measurement> ms{run(start)};
-  if (ms.back().error <= tolerance) {
-    while (ms.front().error <= tolerance && ms.front().steps > 1)
-      ms.insert(ms.begin(), run(ms.front().steps / 2));
-  } else {
-    while (ms.back().error > tolerance && ms.back().steps * 2 <= policy.max_steps)
+  while (ms.front().error <= coarse && ms.front().steps > 1)
+    ms.insert(ms.begin(), run(ms.front().steps / 2));
+  if (ms.back().error > fine) {
+    while (ms.back().error > fine && ms.back().steps * 2 <= policy.max_steps)
       ms.push_back(run(ms.back().steps * 2));
     // One more: a finer step can cost less (a stage solver that needed Newton at the coarser).
-    if (ms.back().error <= tolerance && ms.back().steps * 2 <= policy.max_steps)
+    if (ms.back().error <= fine && ms.back().steps * 2 <= policy.max_steps)
       ms.push_back(run(ms.back().steps * 2));
   }
-  // A failed (unstable) run next to one within tolerance: bisect the step count down to a 5% gap,
-  // so that the cheapest run within tolerance sits at the stability limit.
+  // A failed (unstable) run next to one within the coarsest tolerance: bisect the step count down
+  // to a 5% gap, so that the cheapest run within tolerance sits at the stability limit.
   for (size_t i = 0; i + 1 < ms.size(); ++i) {
-    while (!ms[i].ok() && ms[i + 1].error <= tolerance &&
+    while (!ms[i].ok() && ms[i + 1].error <= coarse &&
            double(ms[i + 1].steps) > kBisectionGap * double(ms[i].steps) + 1) {
       Measurement mid = run((ms[i].steps + ms[i + 1].steps) / 2);
-      const bool failed = !mid.ok() || mid.error > tolerance;
+      const bool failed = !mid.ok() || mid.error > coarse;
       ms.insert(ms.begin() + long(i) + 1, std::move(mid));
       if (failed)
         ++i;  // the bracket is now (mid, old i+1)
-      else if (ms[i + 1].error > tolerance)
+      else if (ms[i + 1].error > coarse)
         break;
     }
   }

@@ -21,11 +21,12 @@ std::vector<Measurement> sweep(const Solver& solver, const Problem& problem, dou
                                const Vec& q_ref, const SweepPolicy& policy,
                                const std::vector<long>& steps);
 
-/// Step counts bracketing `tolerance`: from `start`, doubling or halving until the error crosses
-/// it (or max_steps / one step is reached), one doubling beyond when doubling, and bisection
-/// between an unstable run and one within tolerance. Sorted by step count.
+/// Step counts bracketing every tolerance of `tolerances`: from `start`, halving until the error
+/// is above the coarsest and doubling until it is within the finest (or max_steps / one step is
+/// reached), one doubling beyond when doubling, and bisection between an unstable run and one
+/// within the coarsest tolerance. Sorted by step count.
 std::vector<Measurement> bracket(const Solver& solver, const Problem& problem, double t_end,
-                                 const Vec& q_ref, double tolerance, long start,
-                                 const SweepPolicy& policy);
+                                 const Vec& q_ref, const std::vector<double>& tolerances,
+                                 long start, const SweepPolicy& policy);
 
 }  // namespace ex

@@ -29,7 +29,7 @@ std::vector<SceneRuns> target_scenes(const std::vector<ProblemResult>& problems,
   for (const ProblemResult& r : problems)
     for (double tol : kTolerances) scenes.push_back(scene_runs(r, tol));
   for (size_t i = 0; scaling && i < scaling->sizes.size(); ++i)
-    scenes.push_back(scene_runs(*scaling, i));
+    for (double tol : scaling->tolerances) scenes.push_back(scene_runs(*scaling, i, tol));
   return scenes;
 }
 

@@ -1,12 +1,13 @@
-// predicted_bracket: the step counts the order predicts bracket the tolerance in few runs (from a
-// start far too coarse, from one unstable, and from one far too fine), and stop at the step cap
-// when the tolerance is out of reach.
+// predicted_bracket and bracket: the step counts the order predicts bracket the tolerance in few
+// runs (from a start far too coarse, from one unstable, and from one far too fine), and stop at the
+// step cap when the tolerance is out of reach.
 #include <gtest/gtest.h>
 
 #include "grid_sweep.hpp"
 #include "interpolate.hpp"
 #include "splitting.hpp"
 #include "summary.hpp"
+#include "sweep.hpp"
 
 namespace ex {
 namespace {
@@ -40,7 +41,8 @@ TEST(GridSweep, OrderPredictionBracketsTheToleranceInFewRuns) {
       SCOPED_TRACE(s->name() + ", start " + std::to_string(start));
       const auto ms = predicted_bracket(*s, pr, q_ref, 1e-8, start, policy);
       std::string runs;
-      for (const Measurement& m : ms) runs += " " + std::to_string(m.steps) + ":" + std::to_string(std::log10(m.error));
+      for (const Measurement& m : ms)
+        runs += " " + std::to_string(m.steps) + ":" + std::to_string(std::log10(m.error));
       SCOPED_TRACE("runs (steps:log10 error)" + runs);
       EXPECT_TRUE(bracketed(ms, 1e-8));
       EXPECT_LE(ms.size(), 5u);
@@ -55,6 +57,24 @@ TEST(GridSweep, OrderPredictionBracketsTheToleranceInFewRuns) {
   // Verlet from 4 steps: the first run is unstable (h omega = 2.5 > 2), the sweep recovers.
   const auto verlet = predicted_bracket(*solvers[0], pr, q_ref, 1e-8, 4, policy);
   EXPECT_FALSE(verlet.front().ok());
+}
+
+// bracket (the scaling scene's sweep) with several tolerances crosses each of them, from a start
+// within the finest (it halves) and one above the coarsest (it doubles). Negative control: a
+// bracket of the finest alone from the fine start never reaches the coarse one.
+TEST(GridSweep, BracketCrossesEveryTolerance) {
+  const Problem pr = duffing_at_one();
+  const Vec q_ref = (*pr.exact)(pr.t_error);
+  SweepPolicy policy;
+  policy.timing.repeats = 1;
+  const auto srkn6b = make_splitting(blanes_moan_srkn6b());
+  const std::vector<double> tols{1e-6, 1e-10};
+  for (long start : {4096L, 8L}) {
+    SCOPED_TRACE("start " + std::to_string(start));
+    const auto ms = bracket(*srkn6b, pr, pr.t_error, q_ref, tols, start, policy);
+    for (double tol : tols) EXPECT_TRUE(bracketed(ms, tol)) << tol;
+  }
+  EXPECT_FALSE(bracketed(bracket(*srkn6b, pr, pr.t_error, q_ref, {1e-10}, 4096, policy), 1e-6));
 }
 
 TEST(GridSweep, StopsAtTheStepCapWhenTheToleranceIsOutOfReach) {
