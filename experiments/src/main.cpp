@@ -1,4 +1,5 @@
-// erkn-experiments: the paper's three problems and the scaling scene, swept, charted, summarised.
+// erkn-experiments: the paper's three problems, FPU, Henon-Heiles, the sine-Gordon scaling scene, the
+// stiff scene and the grids, swept, charted, summarised.
 #include <chrono>
 #include <cstdio>
 #include <exception>

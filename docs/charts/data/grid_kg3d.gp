@@ -8,17 +8,21 @@ set logscale x 2
 set terminal pngcairo size 1000,620 font 'DejaVu Sans,11'
 set output 'grid_kg3d_cpu.png'
 plot 'data/grid_kg3d_serkn2s4.dat' u 1:2 w lp lw 2 dt 1 pt 7 t 'SERKN2s4', \
-  'data/grid_kg3d_aba1064.dat' u 1:2 w lp lw 2 dt 1 pt 7 t 'ABA1064', \
+  'data/grid_kg3d_omf4_3f3g.dat' u 1:2 w lp lw 2 dt 1 pt 7 t 'OMF4(3F3G)', \
   'data/grid_kg3d_strang_impulse.dat' u 1:2 w lp lw 2 dt (2,4) pt 4 t 'Strang (impulse)', \
   'data/grid_kg3d_blanes_moan_srkn6b.dat' u 1:2 w lp lw 2 dt (2,4) pt 4 t 'Blanes–Moan SRKN6b', \
-  'data/grid_kg3d_blanes_moan_srkn14a.dat' u 1:2 w lp lw 2 dt (2,4) pt 4 t 'Blanes–Moan SRKN14a'
+  'data/grid_kg3d_blanes_moan_srkn14a.dat' u 1:2 w lp lw 2 dt (2,4) pt 4 t 'Blanes–Moan SRKN14a', \
+  'data/grid_kg3d_omf4_4mn3f3gp.dat' u 1:2 w lp lw 2 dt (2,4) pt 4 t 'OMF4 (4MN3F3GP)', \
+  'data/grid_kg3d_pmlf6_processed.dat' u 1:2 w lp lw 2 dt (2,4) pt 4 t 'PMLF6 (processed)'
 set terminal svg size 1000,620 dynamic font 'DejaVu Sans,11'
 set output 'grid_kg3d_cpu.svg'
 plot 'data/grid_kg3d_serkn2s4.dat' u 1:2 w lp lw 2 dt 1 pt 7 t 'SERKN2s4', \
-  'data/grid_kg3d_aba1064.dat' u 1:2 w lp lw 2 dt 1 pt 7 t 'ABA1064', \
+  'data/grid_kg3d_omf4_3f3g.dat' u 1:2 w lp lw 2 dt 1 pt 7 t 'OMF4(3F3G)', \
   'data/grid_kg3d_strang_impulse.dat' u 1:2 w lp lw 2 dt (2,4) pt 4 t 'Strang (impulse)', \
   'data/grid_kg3d_blanes_moan_srkn6b.dat' u 1:2 w lp lw 2 dt (2,4) pt 4 t 'Blanes–Moan SRKN6b', \
-  'data/grid_kg3d_blanes_moan_srkn14a.dat' u 1:2 w lp lw 2 dt (2,4) pt 4 t 'Blanes–Moan SRKN14a'
+  'data/grid_kg3d_blanes_moan_srkn14a.dat' u 1:2 w lp lw 2 dt (2,4) pt 4 t 'Blanes–Moan SRKN14a', \
+  'data/grid_kg3d_omf4_4mn3f3gp.dat' u 1:2 w lp lw 2 dt (2,4) pt 4 t 'OMF4 (4MN3F3GP)', \
+  'data/grid_kg3d_pmlf6_processed.dat' u 1:2 w lp lw 2 dt (2,4) pt 4 t 'PMLF6 (processed)'
 unset output
 set title '3-D Klein-Gordon phi^4, Dirichlet: time per step against d' noenhanced
 set xlabel 'd (unknowns)'
@@ -26,12 +30,12 @@ set ylabel 'seconds per step'
 set logscale x 10
 set terminal pngcairo size 1000,620 font 'DejaVu Sans,11'
 set output 'grid_kg3d_step.png'
-plot 'data/grid_kg3d_step_aba1064.dat' u 1:2 w p pt 7 ps 1.3 t 'ABA1064', 'data/grid_kg3d_step_aba1064.dat' u 1:3 w l lw 1.5 t 'ABA1064: fit c d log2 d', \
+plot 'data/grid_kg3d_step_omf4_3f3g.dat' u 1:2 w p pt 7 ps 1.3 t 'OMF4(3F3G)', 'data/grid_kg3d_step_omf4_3f3g.dat' u 1:3 w l lw 1.5 t 'OMF4(3F3G): fit c d log2 d', \
   'data/grid_kg3d_step_serkn2s4.dat' u 1:2 w p pt 7 ps 1.3 t 'SERKN2s4', 'data/grid_kg3d_step_serkn2s4.dat' u 1:3 w l lw 1.5 t 'SERKN2s4: fit c d log2 d', \
-  'data/grid_kg3d_step_blanes_moan_srkn6b.dat' u 1:2 w p pt 7 ps 1.3 t 'Blanes–Moan SRKN6b', 'data/grid_kg3d_step_blanes_moan_srkn6b.dat' u 1:3 w l lw 1.5 t 'Blanes–Moan SRKN6b: fit c d log2 d'
+  'data/grid_kg3d_step_omf4_4mn3f3gp.dat' u 1:2 w p pt 7 ps 1.3 t 'OMF4 (4MN3F3GP)', 'data/grid_kg3d_step_omf4_4mn3f3gp.dat' u 1:3 w l lw 1.5 t 'OMF4 (4MN3F3GP): fit c d log2 d'
 set terminal svg size 1000,620 dynamic font 'DejaVu Sans,11'
 set output 'grid_kg3d_step.svg'
-plot 'data/grid_kg3d_step_aba1064.dat' u 1:2 w p pt 7 ps 1.3 t 'ABA1064', 'data/grid_kg3d_step_aba1064.dat' u 1:3 w l lw 1.5 t 'ABA1064: fit c d log2 d', \
+plot 'data/grid_kg3d_step_omf4_3f3g.dat' u 1:2 w p pt 7 ps 1.3 t 'OMF4(3F3G)', 'data/grid_kg3d_step_omf4_3f3g.dat' u 1:3 w l lw 1.5 t 'OMF4(3F3G): fit c d log2 d', \
   'data/grid_kg3d_step_serkn2s4.dat' u 1:2 w p pt 7 ps 1.3 t 'SERKN2s4', 'data/grid_kg3d_step_serkn2s4.dat' u 1:3 w l lw 1.5 t 'SERKN2s4: fit c d log2 d', \
-  'data/grid_kg3d_step_blanes_moan_srkn6b.dat' u 1:2 w p pt 7 ps 1.3 t 'Blanes–Moan SRKN6b', 'data/grid_kg3d_step_blanes_moan_srkn6b.dat' u 1:3 w l lw 1.5 t 'Blanes–Moan SRKN6b: fit c d log2 d'
+  'data/grid_kg3d_step_omf4_4mn3f3gp.dat' u 1:2 w p pt 7 ps 1.3 t 'OMF4 (4MN3F3GP)', 'data/grid_kg3d_step_omf4_4mn3f3gp.dat' u 1:3 w l lw 1.5 t 'OMF4 (4MN3F3GP): fit c d log2 d'
 unset output

@@ -21,7 +21,9 @@ plot 'data/p2_serkn2s3pf.dat' u 4:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.
   'data/p2_blanes_moan_srkn6b.dat' u 4:3 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
   'data/p2_blanes_moan_srkn14a.dat' u 4:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
   'data/p2_aba_10_6_4.dat' u 4:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
-  'data/p2_mollified_impulse_sinc.dat' u 4:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
+  'data/p2_mollified_impulse_sinc.dat' u 4:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/p2_omf4_4mn3f3gp.dat' u 4:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/p2_pmlf6_processed.dat' u 4:3 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
 set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
 set output 'p2_other_evals.svg'
 plot 'data/p2_serkn2s3pf.dat' u 4:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3pf', \
@@ -38,7 +40,9 @@ plot 'data/p2_serkn2s3pf.dat' u 4:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.
   'data/p2_blanes_moan_srkn6b.dat' u 4:3 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
   'data/p2_blanes_moan_srkn14a.dat' u 4:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
   'data/p2_aba_10_6_4.dat' u 4:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
-  'data/p2_mollified_impulse_sinc.dat' u 4:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
+  'data/p2_mollified_impulse_sinc.dat' u 4:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/p2_omf4_4mn3f3gp.dat' u 4:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/p2_pmlf6_processed.dat' u 4:3 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
 unset output
 set title 'P2: Duffing, k = 0.03: erkn''s other implicit methods + peers — error vs CPU time' noenhanced
 set xlabel 'CPU time (s)'
@@ -63,7 +67,9 @@ plot 'data/p2_serkn2s3pf.dat' u 5:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.
   'data/p2_blanes_moan_srkn6b.dat' u 5:3 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
   'data/p2_blanes_moan_srkn14a.dat' u 5:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
   'data/p2_aba_10_6_4.dat' u 5:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
-  'data/p2_mollified_impulse_sinc.dat' u 5:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
+  'data/p2_mollified_impulse_sinc.dat' u 5:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/p2_omf4_4mn3f3gp.dat' u 5:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/p2_pmlf6_processed.dat' u 5:3 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
 set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
 set output 'p2_other_cpu.svg'
 plot 'data/p2_serkn2s3pf.dat' u 5:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3pf', \
@@ -80,7 +86,9 @@ plot 'data/p2_serkn2s3pf.dat' u 5:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.
   'data/p2_blanes_moan_srkn6b.dat' u 5:3 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
   'data/p2_blanes_moan_srkn14a.dat' u 5:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
   'data/p2_aba_10_6_4.dat' u 5:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
-  'data/p2_mollified_impulse_sinc.dat' u 5:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
+  'data/p2_mollified_impulse_sinc.dat' u 5:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/p2_omf4_4mn3f3gp.dat' u 5:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/p2_pmlf6_processed.dat' u 5:3 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
 unset output
 set title 'P2: Duffing, k = 0.03: erkn''s other implicit methods + peers — energy error, h = 1/50' noenhanced
 set xlabel 't_{end} (time units)'
@@ -105,7 +113,9 @@ plot 'data/p2_serkn2s3pf_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 
   'data/p2_blanes_moan_srkn6b_energy.dat' u 1:2 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
   'data/p2_blanes_moan_srkn14a_energy.dat' u 1:2 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
   'data/p2_aba_10_6_4_energy.dat' u 1:2 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
-  'data/p2_mollified_impulse_sinc_energy.dat' u 1:2 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
+  'data/p2_mollified_impulse_sinc_energy.dat' u 1:2 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/p2_omf4_4mn3f3gp_energy.dat' u 1:2 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/p2_pmlf6_processed_energy.dat' u 1:2 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
 set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
 set output 'p2_other_energy.svg'
 plot 'data/p2_serkn2s3pf_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3pf', \
@@ -122,5 +132,7 @@ plot 'data/p2_serkn2s3pf_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 
   'data/p2_blanes_moan_srkn6b_energy.dat' u 1:2 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
   'data/p2_blanes_moan_srkn14a_energy.dat' u 1:2 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
   'data/p2_aba_10_6_4_energy.dat' u 1:2 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
-  'data/p2_mollified_impulse_sinc_energy.dat' u 1:2 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
+  'data/p2_mollified_impulse_sinc_energy.dat' u 1:2 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/p2_omf4_4mn3f3gp_energy.dat' u 1:2 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/p2_pmlf6_processed_energy.dat' u 1:2 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
 unset output

@@ -27,7 +27,9 @@ plot 'data/p3_serkn1s2_1.dat' u 4:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.
   'data/p3_blanes_moan_srkn6b.dat' u 4:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
   'data/p3_blanes_moan_srkn14a.dat' u 4:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
   'data/p3_aba_10_6_4.dat' u 4:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
-  'data/p3_mollified_impulse_sinc.dat' u 4:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
+  'data/p3_mollified_impulse_sinc.dat' u 4:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/p3_omf4_4mn3f3gp.dat' u 4:3 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/p3_pmlf6_processed.dat' u 4:3 w lp lc rgb '#1f77b4' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
 set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
 set output 'p3_evals.svg'
 plot 'data/p3_serkn1s2_1.dat' u 4:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(1)', \
@@ -50,7 +52,9 @@ plot 'data/p3_serkn1s2_1.dat' u 4:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.
   'data/p3_blanes_moan_srkn6b.dat' u 4:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
   'data/p3_blanes_moan_srkn14a.dat' u 4:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
   'data/p3_aba_10_6_4.dat' u 4:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
-  'data/p3_mollified_impulse_sinc.dat' u 4:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
+  'data/p3_mollified_impulse_sinc.dat' u 4:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/p3_omf4_4mn3f3gp.dat' u 4:3 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/p3_pmlf6_processed.dat' u 4:3 w lp lc rgb '#1f77b4' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
 unset output
 set title 'P3: stellar orbits, epsilon = 0.001: the paper''s methods + peers — error vs CPU time' noenhanced
 set xlabel 'CPU time (s)'
@@ -81,7 +85,9 @@ plot 'data/p3_serkn1s2_1.dat' u 5:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.
   'data/p3_blanes_moan_srkn6b.dat' u 5:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
   'data/p3_blanes_moan_srkn14a.dat' u 5:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
   'data/p3_aba_10_6_4.dat' u 5:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
-  'data/p3_mollified_impulse_sinc.dat' u 5:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
+  'data/p3_mollified_impulse_sinc.dat' u 5:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/p3_omf4_4mn3f3gp.dat' u 5:3 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/p3_pmlf6_processed.dat' u 5:3 w lp lc rgb '#1f77b4' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
 set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
 set output 'p3_cpu.svg'
 plot 'data/p3_serkn1s2_1.dat' u 5:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(1)', \
@@ -104,7 +110,9 @@ plot 'data/p3_serkn1s2_1.dat' u 5:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.
   'data/p3_blanes_moan_srkn6b.dat' u 5:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
   'data/p3_blanes_moan_srkn14a.dat' u 5:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
   'data/p3_aba_10_6_4.dat' u 5:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
-  'data/p3_mollified_impulse_sinc.dat' u 5:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
+  'data/p3_mollified_impulse_sinc.dat' u 5:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/p3_omf4_4mn3f3gp.dat' u 5:3 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/p3_pmlf6_processed.dat' u 5:3 w lp lc rgb '#1f77b4' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
 unset output
 set title 'P3: stellar orbits, epsilon = 0.001: the paper''s methods + peers — energy error, h = 1/10' noenhanced
 set xlabel 't_{end} (time units)'
@@ -135,7 +143,9 @@ plot 'data/p3_serkn1s2_1_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 
   'data/p3_blanes_moan_srkn6b_energy.dat' u 1:2 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
   'data/p3_blanes_moan_srkn14a_energy.dat' u 1:2 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
   'data/p3_aba_10_6_4_energy.dat' u 1:2 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
-  'data/p3_mollified_impulse_sinc_energy.dat' u 1:2 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
+  'data/p3_mollified_impulse_sinc_energy.dat' u 1:2 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/p3_omf4_4mn3f3gp_energy.dat' u 1:2 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/p3_pmlf6_processed_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
 set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
 set output 'p3_energy.svg'
 plot 'data/p3_serkn1s2_1_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(1)', \
@@ -158,5 +168,7 @@ plot 'data/p3_serkn1s2_1_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 
   'data/p3_blanes_moan_srkn6b_energy.dat' u 1:2 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
   'data/p3_blanes_moan_srkn14a_energy.dat' u 1:2 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
   'data/p3_aba_10_6_4_energy.dat' u 1:2 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
-  'data/p3_mollified_impulse_sinc_energy.dat' u 1:2 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
+  'data/p3_mollified_impulse_sinc_energy.dat' u 1:2 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/p3_omf4_4mn3f3gp_energy.dat' u 1:2 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/p3_pmlf6_processed_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
 unset output

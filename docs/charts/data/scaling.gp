@@ -9,9 +9,9 @@ set logscale x 2
 set format x '%g'
 set terminal pngcairo size 1000,620 enhanced font 'DejaVu Sans,11'
 set output 'scaling.png'
-plot 'data/scaling_serkn2s4.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4', \
+plot 'data/scaling_serkn2s3.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3', \
   'data/scaling_saba3.dat' u 1:2 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SABA3', \
-  'data/scaling_serkn2s3pf.dat' u 1:2 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3pf', \
+  'data/scaling_serkn3s4pf_1.dat' u 1:2 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4pf(1)', \
   'data/scaling_st_rmer_verlet.dat' u 1:2 w lp lc rgb '#9467bd' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
   'data/scaling_odeint_sb3a_mclachlan.dat' u 1:2 w lp lc rgb '#ff7f0e' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
   'data/scaling_odeint_sb3a_m4_mclachlan.dat' u 1:2 w lp lc rgb '#8c564b' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
@@ -20,12 +20,14 @@ plot 'data/scaling_serkn2s4.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps
   'data/scaling_blanes_moan_srkn6b.dat' u 1:2 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
   'data/scaling_blanes_moan_srkn14a.dat' u 1:2 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
   'data/scaling_aba_10_6_4.dat' u 1:2 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
-  'data/scaling_mollified_impulse_sinc.dat' u 1:2 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
+  'data/scaling_mollified_impulse_sinc.dat' u 1:2 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/scaling_omf4_4mn3f3gp.dat' u 1:2 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/scaling_pmlf6_processed.dat' u 1:2 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
 set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
 set output 'scaling.svg'
-plot 'data/scaling_serkn2s4.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4', \
+plot 'data/scaling_serkn2s3.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3', \
   'data/scaling_saba3.dat' u 1:2 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SABA3', \
-  'data/scaling_serkn2s3pf.dat' u 1:2 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3pf', \
+  'data/scaling_serkn3s4pf_1.dat' u 1:2 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4pf(1)', \
   'data/scaling_st_rmer_verlet.dat' u 1:2 w lp lc rgb '#9467bd' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
   'data/scaling_odeint_sb3a_mclachlan.dat' u 1:2 w lp lc rgb '#ff7f0e' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
   'data/scaling_odeint_sb3a_m4_mclachlan.dat' u 1:2 w lp lc rgb '#8c564b' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
@@ -34,5 +36,7 @@ plot 'data/scaling_serkn2s4.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps
   'data/scaling_blanes_moan_srkn6b.dat' u 1:2 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
   'data/scaling_blanes_moan_srkn14a.dat' u 1:2 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
   'data/scaling_aba_10_6_4.dat' u 1:2 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
-  'data/scaling_mollified_impulse_sinc.dat' u 1:2 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
+  'data/scaling_mollified_impulse_sinc.dat' u 1:2 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/scaling_omf4_4mn3f3gp.dat' u 1:2 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/scaling_pmlf6_processed.dat' u 1:2 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
 unset output

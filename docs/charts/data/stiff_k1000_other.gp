@@ -21,7 +21,9 @@ plot 'data/stiff_k1000_serkn2s3pf.dat' u 5:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 p
   'data/stiff_k1000_blanes_moan_srkn6b.dat' u 5:3 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
   'data/stiff_k1000_blanes_moan_srkn14a.dat' u 5:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
   'data/stiff_k1000_aba_10_6_4.dat' u 5:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
-  'data/stiff_k1000_mollified_impulse_sinc.dat' u 5:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
+  'data/stiff_k1000_mollified_impulse_sinc.dat' u 5:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/stiff_k1000_omf4_4mn3f3gp.dat' u 5:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/stiff_k1000_pmlf6_processed.dat' u 5:3 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
 set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
 set output 'stiff_k1000_other_cpu.svg'
 plot 'data/stiff_k1000_serkn2s3pf.dat' u 5:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3pf', \
@@ -38,7 +40,9 @@ plot 'data/stiff_k1000_serkn2s3pf.dat' u 5:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 p
   'data/stiff_k1000_blanes_moan_srkn6b.dat' u 5:3 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
   'data/stiff_k1000_blanes_moan_srkn14a.dat' u 5:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
   'data/stiff_k1000_aba_10_6_4.dat' u 5:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
-  'data/stiff_k1000_mollified_impulse_sinc.dat' u 5:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)'
+  'data/stiff_k1000_mollified_impulse_sinc.dat' u 5:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/stiff_k1000_omf4_4mn3f3gp.dat' u 5:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/stiff_k1000_pmlf6_processed.dat' u 5:3 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
 unset output
 set title 'stiff sine-Gordon, κ = 1000: erkn''s other implicit methods + peers — error vs h (×: failed; ▼: S(0, z) bound)' noenhanced
 set xlabel 'step size h'
@@ -64,7 +68,9 @@ plot 'data/stiff_k1000_serkn2s3pf.dat' u 2:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 p
   'data/stiff_k1000_blanes_moan_srkn6b.dat' u 2:3 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', 'data/stiff_k1000_blanes_moan_srkn6b_failed.dat' u 2:(1e3) w p lc rgb '#393b79' pt 2 ps 2 lw 2 notitle, 'data/stiff_k1000_blanes_moan_srkn6b_predicted.dat' u 1:(1e4) w p lc rgb '#393b79' pt 11 ps 1.6 notitle, \
   'data/stiff_k1000_blanes_moan_srkn14a.dat' u 2:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', 'data/stiff_k1000_blanes_moan_srkn14a_failed.dat' u 2:(1e3) w p lc rgb '#637939' pt 2 ps 2 lw 2 notitle, 'data/stiff_k1000_blanes_moan_srkn14a_predicted.dat' u 1:(1e4) w p lc rgb '#637939' pt 11 ps 1.6 notitle, \
   'data/stiff_k1000_aba_10_6_4.dat' u 2:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', 'data/stiff_k1000_aba_10_6_4_failed.dat' u 2:(1e3) w p lc rgb '#8c6d31' pt 2 ps 2 lw 2 notitle, 'data/stiff_k1000_aba_10_6_4_predicted.dat' u 1:(1e4) w p lc rgb '#8c6d31' pt 11 ps 1.6 notitle, \
-  'data/stiff_k1000_mollified_impulse_sinc.dat' u 2:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', 'data/stiff_k1000_mollified_impulse_sinc_failed.dat' u 2:(1e3) w p lc rgb '#843c39' pt 2 ps 2 lw 2 notitle, 'data/stiff_k1000_mollified_impulse_sinc_predicted.dat' u 1:(1e4) w p lc rgb '#843c39' pt 11 ps 1.6 notitle
+  'data/stiff_k1000_mollified_impulse_sinc.dat' u 2:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', 'data/stiff_k1000_mollified_impulse_sinc_failed.dat' u 2:(1e3) w p lc rgb '#843c39' pt 2 ps 2 lw 2 notitle, 'data/stiff_k1000_mollified_impulse_sinc_predicted.dat' u 1:(1e4) w p lc rgb '#843c39' pt 11 ps 1.6 notitle, \
+  'data/stiff_k1000_omf4_4mn3f3gp.dat' u 2:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', 'data/stiff_k1000_omf4_4mn3f3gp_failed.dat' u 2:(1e3) w p lc rgb '#7b4173' pt 2 ps 2 lw 2 notitle, 'data/stiff_k1000_omf4_4mn3f3gp_predicted.dat' u 1:(1e4) w p lc rgb '#7b4173' pt 11 ps 1.6 notitle, \
+  'data/stiff_k1000_pmlf6_processed.dat' u 2:3 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)', 'data/stiff_k1000_pmlf6_processed_failed.dat' u 2:(1e3) w p lc rgb '#000000' pt 2 ps 2 lw 2 notitle, 'data/stiff_k1000_pmlf6_processed_predicted.dat' u 1:(1e4) w p lc rgb '#000000' pt 11 ps 1.6 notitle
 set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
 set output 'stiff_k1000_other_h.svg'
 plot 'data/stiff_k1000_serkn2s3pf.dat' u 2:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3pf', 'data/stiff_k1000_serkn2s3pf_failed.dat' u 2:(1e3) w p lc rgb '#1f77b4' pt 2 ps 2 lw 2 notitle, 'data/stiff_k1000_serkn2s3pf_predicted.dat' u 1:(1e4) w p lc rgb '#1f77b4' pt 11 ps 1.6 notitle, \
@@ -81,5 +87,7 @@ plot 'data/stiff_k1000_serkn2s3pf.dat' u 2:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 p
   'data/stiff_k1000_blanes_moan_srkn6b.dat' u 2:3 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', 'data/stiff_k1000_blanes_moan_srkn6b_failed.dat' u 2:(1e3) w p lc rgb '#393b79' pt 2 ps 2 lw 2 notitle, 'data/stiff_k1000_blanes_moan_srkn6b_predicted.dat' u 1:(1e4) w p lc rgb '#393b79' pt 11 ps 1.6 notitle, \
   'data/stiff_k1000_blanes_moan_srkn14a.dat' u 2:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', 'data/stiff_k1000_blanes_moan_srkn14a_failed.dat' u 2:(1e3) w p lc rgb '#637939' pt 2 ps 2 lw 2 notitle, 'data/stiff_k1000_blanes_moan_srkn14a_predicted.dat' u 1:(1e4) w p lc rgb '#637939' pt 11 ps 1.6 notitle, \
   'data/stiff_k1000_aba_10_6_4.dat' u 2:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', 'data/stiff_k1000_aba_10_6_4_failed.dat' u 2:(1e3) w p lc rgb '#8c6d31' pt 2 ps 2 lw 2 notitle, 'data/stiff_k1000_aba_10_6_4_predicted.dat' u 1:(1e4) w p lc rgb '#8c6d31' pt 11 ps 1.6 notitle, \
-  'data/stiff_k1000_mollified_impulse_sinc.dat' u 2:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', 'data/stiff_k1000_mollified_impulse_sinc_failed.dat' u 2:(1e3) w p lc rgb '#843c39' pt 2 ps 2 lw 2 notitle, 'data/stiff_k1000_mollified_impulse_sinc_predicted.dat' u 1:(1e4) w p lc rgb '#843c39' pt 11 ps 1.6 notitle
+  'data/stiff_k1000_mollified_impulse_sinc.dat' u 2:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', 'data/stiff_k1000_mollified_impulse_sinc_failed.dat' u 2:(1e3) w p lc rgb '#843c39' pt 2 ps 2 lw 2 notitle, 'data/stiff_k1000_mollified_impulse_sinc_predicted.dat' u 1:(1e4) w p lc rgb '#843c39' pt 11 ps 1.6 notitle, \
+  'data/stiff_k1000_omf4_4mn3f3gp.dat' u 2:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', 'data/stiff_k1000_omf4_4mn3f3gp_failed.dat' u 2:(1e3) w p lc rgb '#7b4173' pt 2 ps 2 lw 2 notitle, 'data/stiff_k1000_omf4_4mn3f3gp_predicted.dat' u 1:(1e4) w p lc rgb '#7b4173' pt 11 ps 1.6 notitle, \
+  'data/stiff_k1000_pmlf6_processed.dat' u 2:3 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)', 'data/stiff_k1000_pmlf6_processed_failed.dat' u 2:(1e3) w p lc rgb '#000000' pt 2 ps 2 lw 2 notitle, 'data/stiff_k1000_pmlf6_processed_predicted.dat' u 1:(1e4) w p lc rgb '#000000' pt 11 ps 1.6 notitle
 unset output

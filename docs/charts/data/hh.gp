@@ -1,0 +1,174 @@
+set title 'HH: Henon-Heiles, H0 = 0.13: the paper''s methods + peers — error vs cost' noenhanced
+set xlabel '∇U evaluations (count)'
+set ylabel 'max-norm error of q at t = 20'
+set logscale xy
+set format xy '10^{%L}'
+set grid lc rgb '#dddddd'
+set key outside right top noenhanced spacing 1.15
+set terminal pngcairo size 1000,620 enhanced font 'DejaVu Sans,11'
+set output 'hh_evals.png'
+plot 'data/hh_serkn1s2_1.dat' u 4:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(1)', \
+  'data/hh_serkn1s2_2.dat' u 4:3 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(2)', \
+  'data/hh_serkn2s3.dat' u 4:3 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3', \
+  'data/hh_serkn2s4.dat' u 4:3 w lp lc rgb '#9467bd' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4', \
+  'data/hh_serkn3s4_1.dat' u 4:3 w lp lc rgb '#ff7f0e' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(1)', \
+  'data/hh_serkn3s4_2.dat' u 4:3 w lp lc rgb '#8c564b' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(2)', \
+  'data/hh_rkn1s2_1.dat' u 4:3 w lp lc rgb '#1f77b4' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(1)', \
+  'data/hh_rkn1s2_2.dat' u 4:3 w lp lc rgb '#d62728' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(2)', \
+  'data/hh_rkn2s3.dat' u 4:3 w lp lc rgb '#2ca02c' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s3', \
+  'data/hh_rkn2s4.dat' u 4:3 w lp lc rgb '#9467bd' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s4', \
+  'data/hh_rkn3s4_1.dat' u 4:3 w lp lc rgb '#ff7f0e' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(1)', \
+  'data/hh_rkn3s4_2.dat' u 4:3 w lp lc rgb '#8c564b' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(2)', \
+  'data/hh_st_rmer_verlet.dat' u 4:3 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
+  'data/hh_odeint_sb3a_mclachlan.dat' u 4:3 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
+  'data/hh_odeint_sb3a_m4_mclachlan.dat' u 4:3 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
+  'data/hh_gauss2_order_4.dat' u 4:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)', \
+  'data/hh_strang_impulse.dat' u 4:3 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 12 ps 1.0 t 'Strang (impulse)', \
+  'data/hh_blanes_moan_srkn6b.dat' u 4:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
+  'data/hh_blanes_moan_srkn14a.dat' u 4:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
+  'data/hh_aba_10_6_4.dat' u 4:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
+  'data/hh_mollified_impulse_sinc.dat' u 4:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/hh_omf4_4mn3f3gp.dat' u 4:3 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/hh_pmlf6_processed.dat' u 4:3 w lp lc rgb '#1f77b4' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
+set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
+set output 'hh_evals.svg'
+plot 'data/hh_serkn1s2_1.dat' u 4:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(1)', \
+  'data/hh_serkn1s2_2.dat' u 4:3 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(2)', \
+  'data/hh_serkn2s3.dat' u 4:3 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3', \
+  'data/hh_serkn2s4.dat' u 4:3 w lp lc rgb '#9467bd' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4', \
+  'data/hh_serkn3s4_1.dat' u 4:3 w lp lc rgb '#ff7f0e' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(1)', \
+  'data/hh_serkn3s4_2.dat' u 4:3 w lp lc rgb '#8c564b' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(2)', \
+  'data/hh_rkn1s2_1.dat' u 4:3 w lp lc rgb '#1f77b4' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(1)', \
+  'data/hh_rkn1s2_2.dat' u 4:3 w lp lc rgb '#d62728' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(2)', \
+  'data/hh_rkn2s3.dat' u 4:3 w lp lc rgb '#2ca02c' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s3', \
+  'data/hh_rkn2s4.dat' u 4:3 w lp lc rgb '#9467bd' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s4', \
+  'data/hh_rkn3s4_1.dat' u 4:3 w lp lc rgb '#ff7f0e' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(1)', \
+  'data/hh_rkn3s4_2.dat' u 4:3 w lp lc rgb '#8c564b' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(2)', \
+  'data/hh_st_rmer_verlet.dat' u 4:3 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
+  'data/hh_odeint_sb3a_mclachlan.dat' u 4:3 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
+  'data/hh_odeint_sb3a_m4_mclachlan.dat' u 4:3 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
+  'data/hh_gauss2_order_4.dat' u 4:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)', \
+  'data/hh_strang_impulse.dat' u 4:3 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 12 ps 1.0 t 'Strang (impulse)', \
+  'data/hh_blanes_moan_srkn6b.dat' u 4:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
+  'data/hh_blanes_moan_srkn14a.dat' u 4:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
+  'data/hh_aba_10_6_4.dat' u 4:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
+  'data/hh_mollified_impulse_sinc.dat' u 4:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/hh_omf4_4mn3f3gp.dat' u 4:3 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/hh_pmlf6_processed.dat' u 4:3 w lp lc rgb '#1f77b4' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
+unset output
+set title 'HH: Henon-Heiles, H0 = 0.13: the paper''s methods + peers — error vs CPU time' noenhanced
+set xlabel 'CPU time (s)'
+set ylabel 'max-norm error of q at t = 20'
+set logscale xy
+set format xy '10^{%L}'
+set grid lc rgb '#dddddd'
+set key outside right top noenhanced spacing 1.15
+set terminal pngcairo size 1000,620 enhanced font 'DejaVu Sans,11'
+set output 'hh_cpu.png'
+plot 'data/hh_serkn1s2_1.dat' u 5:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(1)', \
+  'data/hh_serkn1s2_2.dat' u 5:3 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(2)', \
+  'data/hh_serkn2s3.dat' u 5:3 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3', \
+  'data/hh_serkn2s4.dat' u 5:3 w lp lc rgb '#9467bd' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4', \
+  'data/hh_serkn3s4_1.dat' u 5:3 w lp lc rgb '#ff7f0e' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(1)', \
+  'data/hh_serkn3s4_2.dat' u 5:3 w lp lc rgb '#8c564b' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(2)', \
+  'data/hh_rkn1s2_1.dat' u 5:3 w lp lc rgb '#1f77b4' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(1)', \
+  'data/hh_rkn1s2_2.dat' u 5:3 w lp lc rgb '#d62728' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(2)', \
+  'data/hh_rkn2s3.dat' u 5:3 w lp lc rgb '#2ca02c' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s3', \
+  'data/hh_rkn2s4.dat' u 5:3 w lp lc rgb '#9467bd' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s4', \
+  'data/hh_rkn3s4_1.dat' u 5:3 w lp lc rgb '#ff7f0e' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(1)', \
+  'data/hh_rkn3s4_2.dat' u 5:3 w lp lc rgb '#8c564b' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(2)', \
+  'data/hh_st_rmer_verlet.dat' u 5:3 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
+  'data/hh_odeint_sb3a_mclachlan.dat' u 5:3 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
+  'data/hh_odeint_sb3a_m4_mclachlan.dat' u 5:3 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
+  'data/hh_gauss2_order_4.dat' u 5:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)', \
+  'data/hh_strang_impulse.dat' u 5:3 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 12 ps 1.0 t 'Strang (impulse)', \
+  'data/hh_blanes_moan_srkn6b.dat' u 5:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
+  'data/hh_blanes_moan_srkn14a.dat' u 5:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
+  'data/hh_aba_10_6_4.dat' u 5:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
+  'data/hh_mollified_impulse_sinc.dat' u 5:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/hh_omf4_4mn3f3gp.dat' u 5:3 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/hh_pmlf6_processed.dat' u 5:3 w lp lc rgb '#1f77b4' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
+set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
+set output 'hh_cpu.svg'
+plot 'data/hh_serkn1s2_1.dat' u 5:3 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(1)', \
+  'data/hh_serkn1s2_2.dat' u 5:3 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(2)', \
+  'data/hh_serkn2s3.dat' u 5:3 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3', \
+  'data/hh_serkn2s4.dat' u 5:3 w lp lc rgb '#9467bd' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4', \
+  'data/hh_serkn3s4_1.dat' u 5:3 w lp lc rgb '#ff7f0e' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(1)', \
+  'data/hh_serkn3s4_2.dat' u 5:3 w lp lc rgb '#8c564b' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(2)', \
+  'data/hh_rkn1s2_1.dat' u 5:3 w lp lc rgb '#1f77b4' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(1)', \
+  'data/hh_rkn1s2_2.dat' u 5:3 w lp lc rgb '#d62728' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(2)', \
+  'data/hh_rkn2s3.dat' u 5:3 w lp lc rgb '#2ca02c' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s3', \
+  'data/hh_rkn2s4.dat' u 5:3 w lp lc rgb '#9467bd' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s4', \
+  'data/hh_rkn3s4_1.dat' u 5:3 w lp lc rgb '#ff7f0e' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(1)', \
+  'data/hh_rkn3s4_2.dat' u 5:3 w lp lc rgb '#8c564b' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(2)', \
+  'data/hh_st_rmer_verlet.dat' u 5:3 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
+  'data/hh_odeint_sb3a_mclachlan.dat' u 5:3 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
+  'data/hh_odeint_sb3a_m4_mclachlan.dat' u 5:3 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
+  'data/hh_gauss2_order_4.dat' u 5:3 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)', \
+  'data/hh_strang_impulse.dat' u 5:3 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 12 ps 1.0 t 'Strang (impulse)', \
+  'data/hh_blanes_moan_srkn6b.dat' u 5:3 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
+  'data/hh_blanes_moan_srkn14a.dat' u 5:3 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
+  'data/hh_aba_10_6_4.dat' u 5:3 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
+  'data/hh_mollified_impulse_sinc.dat' u 5:3 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/hh_omf4_4mn3f3gp.dat' u 5:3 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/hh_pmlf6_processed.dat' u 5:3 w lp lc rgb '#1f77b4' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
+unset output
+set title 'HH: Henon-Heiles, H0 = 0.13: the paper''s methods + peers — energy error, h = 1/10' noenhanced
+set xlabel 't_{end} (time units)'
+set ylabel 'max_n |H_n − H_0|'
+set logscale xy
+set format xy '10^{%L}'
+set grid lc rgb '#dddddd'
+set key outside right top noenhanced spacing 1.15
+set terminal pngcairo size 1000,620 enhanced font 'DejaVu Sans,11'
+set output 'hh_energy.png'
+plot 'data/hh_serkn1s2_1_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(1)', \
+  'data/hh_serkn1s2_2_energy.dat' u 1:2 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(2)', \
+  'data/hh_serkn2s3_energy.dat' u 1:2 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3', \
+  'data/hh_serkn2s4_energy.dat' u 1:2 w lp lc rgb '#9467bd' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4', \
+  'data/hh_serkn3s4_1_energy.dat' u 1:2 w lp lc rgb '#ff7f0e' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(1)', \
+  'data/hh_serkn3s4_2_energy.dat' u 1:2 w lp lc rgb '#8c564b' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(2)', \
+  'data/hh_rkn1s2_1_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(1)', \
+  'data/hh_rkn1s2_2_energy.dat' u 1:2 w lp lc rgb '#d62728' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(2)', \
+  'data/hh_rkn2s3_energy.dat' u 1:2 w lp lc rgb '#2ca02c' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s3', \
+  'data/hh_rkn2s4_energy.dat' u 1:2 w lp lc rgb '#9467bd' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s4', \
+  'data/hh_rkn3s4_1_energy.dat' u 1:2 w lp lc rgb '#ff7f0e' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(1)', \
+  'data/hh_rkn3s4_2_energy.dat' u 1:2 w lp lc rgb '#8c564b' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(2)', \
+  'data/hh_st_rmer_verlet_energy.dat' u 1:2 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
+  'data/hh_odeint_sb3a_mclachlan_energy.dat' u 1:2 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
+  'data/hh_odeint_sb3a_m4_mclachlan_energy.dat' u 1:2 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
+  'data/hh_gauss2_order_4_energy.dat' u 1:2 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)', \
+  'data/hh_strang_impulse_energy.dat' u 1:2 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 12 ps 1.0 t 'Strang (impulse)', \
+  'data/hh_blanes_moan_srkn6b_energy.dat' u 1:2 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
+  'data/hh_blanes_moan_srkn14a_energy.dat' u 1:2 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
+  'data/hh_aba_10_6_4_energy.dat' u 1:2 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
+  'data/hh_mollified_impulse_sinc_energy.dat' u 1:2 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/hh_omf4_4mn3f3gp_energy.dat' u 1:2 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/hh_pmlf6_processed_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
+set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
+set output 'hh_energy.svg'
+plot 'data/hh_serkn1s2_1_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(1)', \
+  'data/hh_serkn1s2_2_energy.dat' u 1:2 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN1s2(2)', \
+  'data/hh_serkn2s3_energy.dat' u 1:2 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3', \
+  'data/hh_serkn2s4_energy.dat' u 1:2 w lp lc rgb '#9467bd' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4', \
+  'data/hh_serkn3s4_1_energy.dat' u 1:2 w lp lc rgb '#ff7f0e' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(1)', \
+  'data/hh_serkn3s4_2_energy.dat' u 1:2 w lp lc rgb '#8c564b' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4(2)', \
+  'data/hh_rkn1s2_1_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(1)', \
+  'data/hh_rkn1s2_2_energy.dat' u 1:2 w lp lc rgb '#d62728' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN1s2(2)', \
+  'data/hh_rkn2s3_energy.dat' u 1:2 w lp lc rgb '#2ca02c' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s3', \
+  'data/hh_rkn2s4_energy.dat' u 1:2 w lp lc rgb '#9467bd' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN2s4', \
+  'data/hh_rkn3s4_1_energy.dat' u 1:2 w lp lc rgb '#ff7f0e' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(1)', \
+  'data/hh_rkn3s4_2_energy.dat' u 1:2 w lp lc rgb '#8c564b' dt (8,5) lw 1.6 pt 6 ps 0.9 t 'RKN3s4(2)', \
+  'data/hh_st_rmer_verlet_energy.dat' u 1:2 w lp lc rgb '#e377c2' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
+  'data/hh_odeint_sb3a_mclachlan_energy.dat' u 1:2 w lp lc rgb '#17becf' dt (2,4) lw 2.2 pt 6 ps 1.0 t 'Odeint sb3a (McLachlan)', \
+  'data/hh_odeint_sb3a_m4_mclachlan_energy.dat' u 1:2 w lp lc rgb '#7f7f7f' dt (2,4) lw 2.2 pt 8 ps 1.0 t 'Odeint sb3a-m4 (McLachlan)', \
+  'data/hh_gauss2_order_4_energy.dat' u 1:2 w lp lc rgb '#bcbd22' dt (2,4) lw 2.2 pt 10 ps 1.0 t 'Gauss2 (order 4)', \
+  'data/hh_strang_impulse_energy.dat' u 1:2 w lp lc rgb '#393b79' dt (2,4) lw 2.2 pt 12 ps 1.0 t 'Strang (impulse)', \
+  'data/hh_blanes_moan_srkn6b_energy.dat' u 1:2 w lp lc rgb '#637939' dt (2,4) lw 2.2 pt 14 ps 1.0 t 'Blanes–Moan SRKN6b', \
+  'data/hh_blanes_moan_srkn14a_energy.dat' u 1:2 w lp lc rgb '#8c6d31' dt (2,4) lw 2.2 pt 16 ps 1.0 t 'Blanes–Moan SRKN14a', \
+  'data/hh_aba_10_6_4_energy.dat' u 1:2 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 18 ps 1.0 t 'ABA(10,6,4)', \
+  'data/hh_mollified_impulse_sinc_energy.dat' u 1:2 w lp lc rgb '#7b4173' dt (2,4) lw 2.2 pt 20 ps 1.0 t 'mollified impulse (sinc)', \
+  'data/hh_omf4_4mn3f3gp_energy.dat' u 1:2 w lp lc rgb '#000000' dt (2,4) lw 2.2 pt 22 ps 1.0 t 'OMF4 (4MN3F3GP)', \
+  'data/hh_pmlf6_processed_energy.dat' u 1:2 w lp lc rgb '#1f77b4' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
+unset output
