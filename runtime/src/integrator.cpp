@@ -37,12 +37,14 @@ void require_state(const System& system, const Eigen::VectorXd& q, const Eigen::
 }
 
 // Circulant M: the explicit Fourier basis (folded matrix-vector products, O(N^2)) up to N =
-// kFourierBasisMaxN, beyond it the real FFT's half spectrum (FFTW's r2c, or else Eigen's); explicit
-// methods built with FFTW use it from N = kFftwMinN on. Thread CPU time per step (median of 15 x
+// kFourierBasisMaxN, beyond it the real FFT's half spectrum (FFTW's r2c, or else Eigen's); every
+// method built with FFTW uses it from N = kFftwMinN on. Thread CPU time per step (median of 15 x
 // 2000 steps, sine-Gordon, h = 0.8/N), basis vs FFTW: SABA2 N = 4 289 vs 217 ns, N = 32 1415 vs
 // 1139 ns, N = 64 3064 vs 2276 ns; SERKN3s4(1) N = 4 1025 vs 775 ns, N = 32 2573 vs 2091 ns,
-// N = 64 5560 vs 4066 ns (implicit methods keep the basis for now: their circulant and dense
-// trajectories then agree to 1e-13 over 50 steps, with FFTW SERKN3s4pf(1) reached 1.5e-13).
+// N = 64 5560 vs 4066 ns. Implicit methods kept the basis until the stage solver's checks agreed
+// (StructureAgreement: circulant and dense within 1e-13 over 50 steps, every method); with FFTW
+// their CPU per grad U on sine-Gordon N = 32 fell from 700-760 to 575-640 ns (construct +
+// integrate, 100 steps, h = 1/40; processes alternated on a loaded machine).
 // Basis vs Eigen's FFT (erkn_step_benchmark, BM_StepCirculant, SERKN3s4(1)): N = 32 5.9 vs
 // 6.1 us, N = 64 12.5 vs 13.3 us, N = 128 35 vs 24 us.
 constexpr Eigen::Index kFftwMinN = 4, kFourierBasisMaxN = 64;
@@ -97,7 +99,7 @@ std::unique_ptr<detail::StepperBase> make_stepper(const Method& method, System s
           lambda);
     case Stiffness::Structure::circulant: {
       const std::vector<GridAxis> axis{{d, 1.0, GridAxis::Boundary::periodic}};
-      if (d < (x && grid_backend_is_fftw() ? kFftwMinN : kFourierBasisMaxN + 1) ||
+      if (d < (grid_backend_is_fftw() ? kFftwMinN : kFourierBasisMaxN + 1) ||
           !half_spectrum_available(axis))
         return stepper_of<FourierBasisTransform, Eigen::ArrayXd>(
             x, d, method, std::move(system), h, options, FourierBasisTransform(d),
