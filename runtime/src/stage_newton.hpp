@@ -94,7 +94,7 @@ void StageSolver<Space, Coef>::check_contraction(int i, const char* solver, doub
 template <class Space, class Coef>
 void StageSolver<Space, Coef>::not_converged(int i, double residual, int iterations,
                                              const std::string& why) const {
-  throw Error("step " + std::to_string(at_.step) + " at t = " + format(at_.t) + ": stage " +
+  throw Error("step " + std::to_string(at_->step) + " at t = " + format(at_->t) + ": stage " +
               std::to_string(i + 1) + " of " + std::string(method_.name()) +
               " did not converge (fixed-point iteration failed; Newton left a relative residual " +
               format(residual, 3) + " after " +
@@ -113,7 +113,7 @@ void StageSolver<Space, Coef>::jacobian(int i, Statistics& stats) {
     if (w.H.rows() != d || w.H.cols() != d || !w.H.allFinite())
       throw Error("the Hessian callback returned a non-finite value or a size other than " +
                   std::to_string(d) + "x" + std::to_string(d) + " at step " +
-                  std::to_string(at_.step));
+                  std::to_string(at_->step));
   } else {
     for (Eigen::Index j = 0; j < d; ++j) {
       const double saved = x_.Q[j], step = 1e-7 * std::max(1.0, std::abs(saved));

@@ -121,7 +121,7 @@ class StageSolver {
     space_.add_MQ(Q, x_.g);
   }
   void gradient(const Eigen::VectorXd& Q, Eigen::VectorXd& g, int i, Statistics& stats) {
-    space_.gradient(system_, Q, g, i, at_, stats.gradient_evaluations);
+    space_.gradient(system_, Q, g, i, *at_, stats.gradient_evaluations);
   }
   // The square roots of sums over the space (a norm of each vector).
   template <class... V>
@@ -160,7 +160,9 @@ class StageSolver {
   StagePredictor<Space> predictor_;
   std::array<StageRecord, kMaxStages> record_{};
   Arrays x_;
-  StepPlace at_;  // the step being taken (for messages)
+  // The step being taken (for messages; solve's argument, kept by address: a copy loaded the
+  // caller's separate stores as one wide load, which waits for them to retire).
+  const StepPlace* at_ = nullptr;
   std::optional<NewtonWork> newton_;
   std::optional<KrylovWork> krylov_;
 };
@@ -210,7 +212,7 @@ template <class Space, class Coef>
 template <class State>
 void StageSolver<Space, Coef>::solve(const State& q_hat, const State& p_hat, const StepPlace& at,
                                      Statistics& stats) {
-  at_ = at;
+  at_ = &at;
   for (int i = 0; i < s_; ++i) {
     start_stage(i, q_hat, p_hat);
     solve_stage(i, stats);
