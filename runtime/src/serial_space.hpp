@@ -107,17 +107,10 @@ class SerialSpace {
     to_eigen(g, G_hat);
   }
 
-  // |inverse(y)|^2 (orthonormal eigenbases: the eigen coordinates' own, without a square root).
+  // |inverse(y)|^2.
   template <class Y>
   double squared_norm(const Y& y) const {
-    if constexpr (std::is_same_v<Transform, IdentityTransform> ||
-                  std::is_same_v<Transform, OrthogonalTransform> ||
-                  std::is_same_v<Transform, FourierBasisTransform>) {
-      return y.matrix().squaredNorm();
-    } else {
-      const double norm = transform_.norm(y);
-      return norm * norm;
-    }
+    return transform_.squared_norm(y);
   }
   // Physical vectors.
   template <class A, class B>

@@ -1,5 +1,6 @@
 // The eigenbases of M. forward: physical x -> eigen coordinates; inverse: back. Functions of V
-// act on eigen coordinates as coefficient-wise products; norm(y) is the 2-norm of inverse(y).
+// act on eigen coordinates as coefficient-wise products; squared_norm(y) is |inverse(y)|^2 (no
+// square root: the stage solver's sums are squares).
 // None of them allocates after setup. They take Eigen arrays, vectors and maps over them.
 #pragma once
 
@@ -27,8 +28,8 @@ struct IdentityTransform {
     x = y.matrix();
   }
   template <class Y>
-  double norm(const Y& y) const {
-    return y.matrix().norm();
+  double squared_norm(const Y& y) const {
+    return y.matrix().squaredNorm();
   }
 };
 
@@ -46,8 +47,8 @@ struct OrthogonalTransform {
     x.noalias() = *E * y.matrix();
   }
   template <class Y>
-  double norm(const Y& y) const {
-    return y.matrix().norm();
+  double squared_norm(const Y& y) const {
+    return y.matrix().squaredNorm();
   }
 };
 
@@ -104,8 +105,8 @@ struct FourierBasisTransform {
     x.tail(ns) = (even.segment(1, ns) - odd).reverse();
   }
   template <class Y>
-  double norm(const Y& y) const {
-    return y.matrix().norm();
+  double squared_norm(const Y& y) const {
+    return y.matrix().squaredNorm();
   }
 };
 
@@ -139,10 +140,10 @@ struct HalfSpectrumTransform {
   void inverse_staged(X&& x) {
     backend->inverse_staged(x.data());
   }
-  /// The 2-norm of the physical vector.
+  /// The squared 2-norm of the physical vector.
   template <class Y>
-  double norm(const Y& y) const {
-    return std::sqrt((weight * y.abs2()).sum());
+  double squared_norm(const Y& y) const {
+    return (weight * y.abs2()).sum();
   }
 };
 
@@ -174,8 +175,8 @@ struct GridTransform {
     backend->inverse(y.data(), x.data());
   }
   template <class Y>
-  double norm(const Y& y) const {
-    return std::sqrt((weight * y.square()).sum());
+  double squared_norm(const Y& y) const {
+    return (weight * y.square()).sum();
   }
 };
 
