@@ -2,10 +2,11 @@
 """Designs symmetric plain-kick splitting methods for H = A + eps B: the free parameters of a
 family (splitting_family.py) left after its imposed order conditions minimize the predicted
 work to a tolerance (gradients per unit time at the step where sum_K eps^K C_K h^(g_K) = tol,
-C_K the generator's generalized error constants). Deterministic: random starts from a fixed
-seed, feasibility by Gauss-Newton (scipy least_squares), then SLSQP on log(work) with the
-independent imposed conditions as equalities; the best feasible optimum is printed as a
-methods.spec block (17 significant digits: erkn-generate polishes them onto the conditions).
+C_K the generator's generalized error constants). Deterministic (search_core.py): random
+starts from a fixed seed, feasibility by Gauss-Newton (scipy least_squares), then SLSQP on
+log(work) with the independent imposed conditions as equalities; the best feasible optimum is
+printed as a methods.spec block (17 significant digits: erkn-generate polishes them onto the
+conditions).
 
   /usr/bin/python3 generator/search/near_integrable.py DESIGN [--starts N]
 
@@ -17,9 +18,9 @@ import os
 import sys
 
 import numpy as np
-from scipy.optimize import least_squares, minimize
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import search_core  # noqa: E402
 import sen_conditions as sc  # noqa: E402
 from splitting_family import Family, work  # noqa: E402
 
@@ -38,10 +39,6 @@ def residuals(fam, x):
     return sc.residuals(c, d, fam.max_power, kmax=fam.kmax)
 
 
-def imposed(fam, x):
-    return np.array(fam.imposed(residuals(fam, x)))
-
-
 def objective(fam, x, eps, tol):
     """log of the predicted work; eps = 0: the general case, gradients * C^(1/order) with C the
     generator's error constant (all trees at power order + 1), the standard effective error."""
@@ -51,49 +48,21 @@ def objective(fam, x, eps, tol):
     return math.log(work(fam.constants(res), fam.gradients, eps, tol))
 
 
-def independent_rows(fam, x):
-    """Indices of a maximal independent set of imposed conditions at x (pivoted QR of J^T)."""
-    from scipy.linalg import qr
-    r0, h = imposed(fam, x), 1e-7
-    J = np.array([(imposed(fam, x + h * e) - r0) / h for e in np.eye(len(x))]).T
-    _, R, piv = qr(J.T, pivoting=True)
-    rank = int(np.sum(np.abs(np.diag(R)) > 1e-6 * abs(R[0, 0])))
-    return sorted(piv[:rank])
+class Problem:
+    """The family at (eps, tol) as search_core.py searches it."""
 
+    def __init__(self, fam, eps, tol):
+        self.fam, self.eps, self.tol, self.free = fam, eps, tol, fam.free()
 
-def feasible(fam, rng):
-    x0 = np.concatenate([rng.uniform(-0.2, 0.6, fam.n_nodes),
-                         rng.uniform(-0.2, 0.5, fam.n_weights)])
-    sol = least_squares(lambda x: imposed(fam, x), x0, xtol=1e-15, ftol=1e-15, gtol=1e-15,
-                        max_nfev=400)
-    return sol.x if np.max(np.abs(imposed(fam, sol.x))) < 1e-12 else None
+    def imposed(self, x):
+        return np.array(self.fam.imposed(residuals(self.fam, x)))
 
+    def objective(self, x):
+        return objective(self.fam, x, self.eps, self.tol)
 
-def optimize(fam, x, eps, tol):
-    rows = independent_rows(fam, x)
-    cons = {"type": "eq", "fun": lambda y: imposed(fam, y)[rows]}
-    out = minimize(lambda y: objective(fam, y, eps, tol), x, method="SLSQP", constraints=[cons],
-                   options={"ftol": 1e-14, "maxiter": 300})
-    y = least_squares(lambda y: imposed(fam, y), out.x, xtol=1e-15, ftol=1e-15,
-                      gtol=1e-15).x  # back onto the conditions to round-off
-    return y if np.max(np.abs(imposed(fam, y))) < 1e-13 else None
-
-
-def search(fam, eps, tol, starts, seed=1):
-    rng = np.random.default_rng(seed)
-    best = None
-    for _ in range(starts):
-        x = feasible(fam, rng)
-        if x is None:
-            continue
-        if fam.free() > len(independent_rows(fam, x)):
-            x = optimize(fam, x, eps, tol)
-            if x is None:
-                continue
-        f = objective(fam, x, eps, tol)
-        if best is None or f < best[0] - 1e-12:
-            best = (f, x)
-    return best
+    def start(self, rng):
+        return np.concatenate([rng.uniform(-0.2, 0.6, self.fam.n_nodes),
+                               rng.uniform(-0.2, 0.5, self.fam.n_weights)])
 
 
 def spec_block(name, fam, x, design, command):
@@ -119,7 +88,7 @@ def main():
     a = ap.parse_args()
     s, layout, order, gen, eps, tol = DESIGNS[a.design]
     fam = Family(s, layout, order, gen, kmax=None if eps == 0 else max(3, len(gen)))
-    best = search(fam, eps, tol, a.starts)
+    best = search_core.search(Problem(fam, eps, tol), a.starts)
     if best is None:
         sys.exit("no feasible method from %d starts" % a.starts)
     command = "generator/search/near_integrable.py '%s' --starts %d (eps = %g, tol = %g)" % (
