@@ -33,8 +33,10 @@ def onto_conditions(problem, x, max_nfev=None, method="trf"):
 
 
 def feasible(problem, rng, tol=1e-12, method="trf"):
-    x = onto_conditions(problem, np.asarray(problem.start(rng), float),
-                        max_nfev=400 if method == "trf" else 1000, method=method)
+    x = np.asarray(problem.start(rng), float)
+    if len(problem.imposed(x)) < len(x):
+        method = "trf"  # Levenberg-Marquardt needs as many residuals as unknowns
+    x = onto_conditions(problem, x, max_nfev=400 if method == "trf" else 1000, method=method)
     return x if np.max(np.abs(problem.imposed(x))) < tol else None
 
 
@@ -55,25 +57,30 @@ def optimize_leading(problem, x, tol=1e-13, weights=(1e2, 1e4, 1e6)):
             return np.concatenate([weight * problem.imposed(y), problem.leading(y)])
         x = least_squares(stacked, x, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
                           max_nfev=3000).x
-    y = onto_conditions(problem, x, method="lm")
+    y = onto_conditions(problem, x, method="lm" if len(problem.imposed(x)) >= len(x) else "trf")
     return y if np.max(np.abs(problem.imposed(y))) < tol else None
 
 
-def search(problem, starts, seed=1, tol=1e-12, report=None, penalty=False):
+def search(problem, starts, seed=1, tol=1e-12, report=None, penalty=False, first=None):
     """The best (objective, x) over `starts` random starts, or None. penalty: feasibility by
-    Levenberg-Marquardt and optimize_leading (else trf and SLSQP)."""
+    Levenberg-Marquardt and optimize_leading (else trf and SLSQP). first: a starting point
+    tried before the random ones (e.g. a published method of the family)."""
     rng = np.random.default_rng(seed)
     best = None
-    for n in range(starts):
-        x = feasible(problem, rng, tol, method="lm" if penalty else "trf")
+    for n in range(starts + (first is not None)):
+        if n == 0 and first is not None:
+            x = onto_conditions(problem, np.asarray(first, float))
+            x = x if np.max(np.abs(problem.imposed(x))) < tol else None
+        else:
+            x = feasible(problem, rng, tol, method="lm" if penalty else "trf")
         if x is None:
             continue
         if penalty:
             x = optimize_leading(problem, x, tol=tol / 10)
         elif problem.free > len(independent_rows(problem, x)):
             x = optimize(problem, x, tol=tol / 10)
-            if x is None:
-                continue
+        if x is None:
+            continue
         f = problem.objective(x)
         if report:
             report(n, f)
