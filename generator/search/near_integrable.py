@@ -29,6 +29,8 @@ DESIGNS = {
     # 9 kicks, generalized order (10, 6, 4) (one more kick than ABA(10,6,4), one free
     # parameter), for the general case eps = 1 at tol = 1e-8: the sine-Gordon cells.
     "SD9(10,6,4)": (9, "ABA", 4, [10, 6, 4], 1.0, 1e-8),
+    # One kick more (two free parameters), for tol = 1e-10 (the 2-D sine-Gordon cell).
+    "SD10(10,6,4)": (10, "ABA", 4, [10, 6, 4], 1.0, 1e-10),
 }
 
 
@@ -67,7 +69,6 @@ class Problem:
 
 def spec_block(name, fam, x, design, command):
     c, d = fam.method(list(x))
-    drifts = [c[0]] + [c[i + 1] - c[i] for i in range(fam.s - 1)] + [1 - c[-1]]
     g = ", ".join(str(v) for v in fam.generalized)
     fmt = lambda v: ", ".join("%.17g" % t for t in v)
     consts = fam.constants(residuals(fam, x))
