@@ -32,16 +32,19 @@ bool StageSolver<Space, Coef>::fixed_point(int i, Statistics& stats) {
                    measure ? space_.squared_norm(x_.g_first_hat) : 0.0});
     const double change2 = sums[0], norm2_new = sums[1];
     if (it == 1) norm2_Q = sums[2];
-    delta = relative_change(change2, std::max(norm2_new, norm2_Q));
+    const double delta2 = relative_change2(change2, std::max(norm2_new, norm2_Q));
     norm2_Q = norm2_new;
     swap_views(x_.Q_hat, x_.Q_hat_new);
+    // (Tested on delta^2, so a first iteration that stops waits for no square root: P3's stages
+    // mostly stop there.)
+    if (it == 1 && delta2 > 0 && contraction_proves(i, delta2)) return true;
+    delta = std::sqrt(delta2);
     if (it == 2 && change_first > 0)
       record_contraction(i, change_first, delta, delta_old, std::sqrt(sums[3]));
     // A first update below round-off (delta = 0) proves nothing: the guess then holds the
     // extrapolation's error below round-off, and stopping there let RKN3s4(2) drift in energy
     // over 1e6 steps of P3 (h = 1e-3).
     if (delta == 0 && it > 1) return true;
-    if (it == 1 && delta > 0 && contraction_proves(i, delta)) return true;
     if (it == 1) change_first = std::sqrt(change2), x_.g_first_hat = G(i);
     if (it > 1) {
       if (delta < delta_old && delta * delta <= options_.tolerance * (delta_old - delta)) {
@@ -78,13 +81,14 @@ bool StageSolver<Space, Coef>::reset_tightening(double delta, double delta_old, 
   return true;
 }
 
-// sqrt(change2 / norm2), norm2 the larger squared norm of the two iterates (floored: an
+// change2 / norm2 (delta^2), norm2 the larger squared norm of the two iterates (floored: an
 // iterate of norm below 1e-300 counts as 1e-300).
 template <class Space, class Coef>
-double StageSolver<Space, Coef>::relative_change(double change2, double norm2) {
+double StageSolver<Space, Coef>::relative_change2(double change2, double norm2) {
   if (change2 == 0) return 0;
-  if (norm2 >= std::numeric_limits<double>::min()) return std::sqrt(change2 / norm2);
-  return std::sqrt(change2) / std::max(std::sqrt(norm2), 1e-300);
+  if (norm2 >= std::numeric_limits<double>::min()) return change2 / norm2;
+  const double delta = std::sqrt(change2) / std::max(std::sqrt(norm2), 1e-300);
+  return delta * delta;
 }
 
 // Whether reaching the tolerance at theta = delta / delta_old (< max_theta) would take more
@@ -111,12 +115,12 @@ bool StageSolver<Space, Coef>::too_slow(int i, int it, double delta, double delt
 // extrapolation's, systematic, so it adds up over the steps (a converged second iteration leaves
 // round-off): at the full tolerance P1's error at 1e-9 changed by up to 25% against stages
 // iterated to round-off (erkn_stage_evaluations, "vs tol 0"), at a hundredth of it by < 2e-11.
-// theta/(1-theta) delta weight_i <= kFirstShare * tolerance, as delta <= first_limit.
+// theta/(1-theta) delta weight_i <= kFirstShare * tolerance, as delta^2 <= first_limit2.
 template <class Space, class Coef>
-bool StageSolver<Space, Coef>::contraction_proves(int i, double delta) {
+bool StageSolver<Space, Coef>::contraction_proves(int i, double delta2) {
   StageRecord& r = record_[i];
   if (r.theta < 0 || ++r.theta_age >= kThetaRefresh) return false;
-  return delta <= r.first_limit;
+  return delta2 <= r.first_limit2;
 }
 
 // theta along the first update, |h^2 abar_ii (g(Q_1) - g(Q_0))| / |Q_1 - Q_0|, with g(Q_0) in
@@ -146,9 +150,10 @@ void StageSolver<Space, Coef>::record_contraction(int i, double change_first, do
   r.theta = measure / change_first;
   r.theta_age = 0;
   const double theta = kThetaSafety * r.theta;
-  r.first_limit = !(theta < 0.5) ? -1.0
-                  : theta > 0 ? kFirstShare * options_.tolerance * (1 - theta) / (theta * r.weight)
-                              : std::numeric_limits<double>::max();
+  const double limit = kFirstShare * options_.tolerance * (1 - theta) / (theta * r.weight);
+  r.first_limit2 = !(theta < 0.5) ? -1.0
+                   : theta > 0    ? limit * limit
+                                  : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace erkn::detail

@@ -61,7 +61,7 @@ class StageSolver {
   struct StageRecord {
     double theta = -1;            // the contraction measured; < 0: none
     int theta_age = 0;            // stage solves since the measurement
-    double first_limit = 0;       // the largest delta a first iteration may stop at
+    double first_limit2 = 0;      // the largest delta^2 a first iteration may stop at
     double weight = 0;            // max(1, |bbar_i| / |abar_ii|, |b_i| / (h |abar_ii|))
     double newton_cost = 0;       // evaluations of its last Newton solve; 0: none
     bool explicit_stage = false;  // abar_ii = 0: Q_i = r_i, one evaluation
@@ -85,9 +85,9 @@ class StageSolver {
   void start_stage(int i, const State& q_hat, const State& p_hat);
   bool fixed_point(int i, Statistics& stats);
   bool reset_tightening(double delta, double delta_old, int& extra) const;
-  static double relative_change(double change2, double norm2);
+  static double relative_change2(double change2, double norm2);
   bool too_slow(int i, int it, double delta, double delta_old) const;
-  bool contraction_proves(int i, double delta);
+  bool contraction_proves(int i, double delta2);
   static bool measures_contraction(double delta_first);
   void record_contraction(int i, double change_first, double delta, double delta_first,
                           double measure);
