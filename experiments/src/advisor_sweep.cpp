@@ -1,17 +1,21 @@
-// erkn_advisor_sweep [--steps N] [--points K] [--threads T] [--csv FILE] [OUT.md]: the step-size
+// erkn_advisor_sweep [--steps N] [--points K] [--offset X] [--trial T] [--threads T] [--csv FILE]
+// [OUT.md]: the step-size
 // advisor's false-alarm and miss rates (docs/advisor.md is this program's output). For each scene
 // (FPU, sine-Gordon P1, a 1-D (n = 15) and a 2-D (4^2) Dirichlet wave grid with a cubic force:
 // the advisor's logic is the same as at n = 255, and the implicit methods' dense Newton fallback,
 // which large h needs on every step, stays affordable) and every method of the registry (ERKN,
-// explicit splittings and the RKN limits: the advisor covers them all), at h omega = 4 pi k / K,
-// k = 1..K (omega = sqrt of M's largest eigenvalue):
+// explicit splittings and the RKN limits: the advisor covers them all), at
+// h omega = 4 pi (k - X) / K, k = 1..K (omega = sqrt of M's largest eigenvalue; X in [0, 1): a
+// training sweep and a measured one share no step size):
 //   verdict   advise_step_size(method, system, h, q0, p0) with AdvisorOptions::steps = N flags h
 //             (StepSizeAdvice::safe() is false): what Options::check_stability refuses and `erkn
 //             advise --problem` reports (Hessian range and mode energies at the start, then the
-//             trial run: its first 4096 steps). For comparison, the linear model alone
+//             trial run: its first --trial steps, default AdvisorOptions::trial_steps). For
+//             comparison, the linear model alone
 //             (AdvisorOptions::trial_steps = 0: every finding flags h) is scored too.
 //   criterion the relative energy error E = max |H_n - H_0| / |H_0| over N = 1e5 steps of h
-//             (sampled every 50 steps, blow-up guard off) against 0.5, docs/stability-advisor.md's
+//             (sampled every step up to 2^14 steps, then every 50; blow-up guard off) against 0.5,
+//             docs/stability-advisor.md's
 //             "runs clean" bound (twice the guard's limit). A run BLOWS UP when E >= 0.5 (it stops
 //             there: the rest cannot undo that) or when a step throws an erkn::Error (a non-finite
 //             state, or a stage solver that fails: the method cannot run at that h); else it is
@@ -20,7 +24,9 @@
 // the false-alarm rate is false alarms / bounded runs, the miss rate misses / blown-up runs.
 // Step sizes the integrator refuses at construction (h^2 lambda on a pole) are counted apart.
 #include <algorithm>
+#include <array>
 #include <atomic>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -43,6 +49,11 @@ using std::numbers::pi;
 
 constexpr double kBlowUp = 0.5;    // the criterion on the relative energy error
 constexpr long kSampleEvery = 50;  // energy samples, in steps
+// The sweep the trial's constants were chosen on: h omega = 4 pi (k - kTrainingOffset) / 16.
+constexpr double kTrainingOffset = 0.5;
+// The error curve kept for the CSV (for choosing the trial's constants on a training sweep): the
+// largest error over the first 2^k steps, k < kCurve, sampled every step up to 2^kDense steps.
+constexpr int kCurve = 18, kDense = 14;
 
 struct Scene {
   std::string name;
@@ -99,6 +110,7 @@ struct Run {
   double error = 0;  // max relative energy error sampled (up to the stop); inf after an Error
   long steps = 0;    // steps taken
   std::string why;   // the erkn::Error that stopped it, if one did
+  std::array<double, kCurve> curve{};  // the largest error over the first 2^k steps
 };
 
 // One run of `steps` steps of h against the criterion, stopping as soon as it is met.
@@ -116,13 +128,17 @@ Run run(const Method& m, const Scene& s, double h, long steps) {
   try {
     for (r.steps = 1; r.steps <= steps; ++r.steps) {
       it->step();
-      if (r.steps % kSampleEvery == 0)
+      if (r.steps % kSampleEvery == 0 || r.steps <= (1L << kDense))
         r.error = std::max(r.error, std::abs(it->energy() - H0) / std::abs(H0));
+      if (std::has_single_bit(size_t(r.steps)) && std::bit_width(size_t(r.steps)) <= kCurve)
+        r.curve[std::bit_width(size_t(r.steps)) - 1] = r.error;
       if (!(r.error < kBlowUp)) break;  // (NaN too)
     }
   } catch (const Error& e) {
     r.error = INFINITY, r.why = e.what();
   }
+  for (int k = 1; k < kCurve; ++k)  // (after a stop, the curve stays at the stop's error)
+    if (r.steps < (1L << k)) r.curve[k] = std::max(r.curve[k - 1], r.error);
   r.steps = std::min(r.steps, steps);
   if (!(r.error < kBlowUp)) r.outcome = Outcome::blew_up, r.error = std::max(r.error, kBlowUp);
   return r;
@@ -133,6 +149,8 @@ struct Point {
   double h_omega = 0;
   bool flagged = false, linear_flagged = false;  // the verdict; the linear model's alone
   std::string finding;                           // the advisor's first finding, when flagged
+  TrialRun trial;                                // the verdict's trial run
+  std::string linear;                            // the linear model's first hazard ("": none)
   Run at;                                        // the run at h
   double seconds = 0;
 };
@@ -144,16 +162,18 @@ std::string first_finding(const StepSizeAdvice& advice, const Method& m) {
 }
 
 // The advisor's verdict and the runs at one point.
-void measure(Point& pt, const Scene& s, const Method& m, long steps) {
+void measure(Point& pt, const Scene& s, const Method& m, long steps, long trial) {
   const auto start = std::chrono::steady_clock::now();
   const double h = pt.h_omega / s.omega;
   AdvisorOptions verdict_only;
   verdict_only.max_change = 0;  // (no search for a suggestion: only the verdict at h counts)
-  verdict_only.steps = steps;
+  verdict_only.steps = steps, verdict_only.trial_steps = trial;
   const StepSizeAdvice advice = advise_step_size(m, s.system, h, s.q0, s.p0, verdict_only);
-  pt.flagged = !advice.safe();
+  pt.flagged = !advice.safe(), pt.trial = advice.trial;
   verdict_only.trial_steps = 0;
-  pt.linear_flagged = !advise_step_size(m, s.system, h, s.q0, s.p0, verdict_only).safe();
+  const StepSizeAdvice linear = advise_step_size(m, s.system, h, s.q0, s.p0, verdict_only);
+  pt.linear_flagged = !linear.safe();
+  if (pt.linear_flagged) pt.linear = to_string(linear.findings.front().hazard);
   if (pt.flagged) pt.finding = first_finding(advice, m);
   pt.at = run(m, s, h, steps);
   pt.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -162,6 +182,8 @@ void measure(Point& pt, const Scene& s, const Method& m, long steps) {
 struct Args {
   long steps = 100000;
   int points = 16, threads = 2;
+  double offset = 0;  // h omega = 4 pi (k - offset) / points
+  long trial = AdvisorOptions{}.trial_steps;
   std::string out, csv;
 };
 
@@ -173,6 +195,10 @@ Args parse(int argc, char** argv) {
       a.steps = std::stol(argv[++i]);
     else if (i + 1 < argc && arg == "--points")
       a.points = std::stoi(argv[++i]);
+    else if (i + 1 < argc && arg == "--trial")
+      a.trial = std::stol(argv[++i]);
+    else if (i + 1 < argc && arg == "--offset")
+      a.offset = std::stod(argv[++i]);
     else if (i + 1 < argc && arg == "--threads")
       a.threads = std::stoi(argv[++i]);
     else if (i + 1 < argc && arg == "--csv")
@@ -182,8 +208,10 @@ Args parse(int argc, char** argv) {
     else
       a.out = arg;
   }
-  if (a.steps < 1 || a.points < 1 || a.threads < 1)
-    throw Error("erkn_advisor_sweep: --steps, --points and --threads must be >= 1");
+  if (a.steps < 1 || a.points < 1 || a.threads < 1 || a.trial < 1)
+    throw Error("erkn_advisor_sweep: --steps, --points, --threads and --trial must be >= 1");
+  if (!(a.offset >= 0 && a.offset < 1))
+    throw Error("erkn_advisor_sweep: --offset must lie in [0, 1)");
   return a;
 }
 
@@ -196,13 +224,13 @@ std::vector<Point> sweep(const std::vector<Scene>& sc, const std::vector<Method>
     for (size_t m = 0; m < ms.size(); ++m)
       for (int k = a.points; k >= 1; --k) {
         Point p;
-        p.scene = s, p.method = m, p.h_omega = 4 * pi * k / a.points;
+        p.scene = s, p.method = m, p.h_omega = 4 * pi * (k - a.offset) / a.points;
         points.push_back(p);
       }
   std::atomic<size_t> next = 0, done = 0;
   auto work = [&] {
     for (size_t i; (i = next++) < points.size();) {
-      measure(points[i], sc[points[i].scene], ms[points[i].method], a.steps);
+      measure(points[i], sc[points[i].scene], ms[points[i].method], a.steps, a.trial);
       if (++done % 100 == 0) std::cerr << done << "/" << points.size() << " points\n";
     }
   };
@@ -272,6 +300,24 @@ std::string rates_table(const std::vector<Point>& points, const std::vector<Scen
   return s.str();
 }
 
+// Which sweep the trial's constants were chosen on, and whether this one is another.
+std::string sample_note(const Args& a) {
+  std::ostringstream s;
+  const AdvisorOptions o;
+  s << "The trial run's constants (AdvisorOptions: trial_steps = " << o.trial_steps
+    << ", explained_margin = " << o.explained_margin << ", trial_margin = " << o.trial_margin
+    << "; the quiet mode's least growth, advisor_trial.cpp) were chosen on a "
+       "training sweep, `erkn_advisor_sweep --offset "
+    << kTrainingOffset << "` (h omega = 4 pi (k - " << kTrainingOffset
+    << ") / 16), from its per-point error curves (--csv). This run's step sizes are h omega = 4 "
+       "pi (k - "
+    << a.offset << ") / " << a.points << ": ";
+  const bool training = a.offset == kTrainingOffset && a.points == 16;
+  s << (training ? "the training set itself, so the rates below are in-sample."
+                 : "none of them is in the training set, so the rates below are out of sample.");
+  return s.str();
+}
+
 std::string report(const std::vector<Point>& points, const std::vector<Scene>& sc,
                    const std::vector<Method>& ms, const Args& a, double seconds, double cpu) {
   std::ostringstream s;
@@ -279,14 +325,11 @@ std::string report(const std::vector<Point>& points, const std::vector<Scene>& s
        "advisor_sweep.cpp, whose header defines verdict, criterion and rates; scripts/main.sh "
        "runs it): "
     << ms.size() << " methods of the registry x " << sc.size() << " scenes x " << a.points
-    << " step sizes h omega = 4 pi k / " << a.points << ", runs of " << a.steps
-    << " steps; a run blows up when its relative energy error reaches " << kBlowUp
+    << " step sizes h omega = 4 pi (k - " << a.offset << ") / " << a.points << ", runs of "
+    << a.steps << " steps; a run blows up when its relative energy error reaches " << kBlowUp
     << " or a step fails. The sweep took " << std::lround(seconds) << " s on " << a.threads
-    << " threads (" << std::lround(cpu)
-    << " s of CPU time). The trial run's constants (4096 steps, the growth exponent from its "
-       "errors after n and n / 16 steps, the limit 0.5 / 10) were chosen on an earlier run of "
-       "these same runs: the rates below are in-sample.\n\nThe verdict (with the trial "
-       "run):\n\n"
+    << " threads (" << std::lround(cpu) << " s of CPU time). " << sample_note(a)
+    << "\n\nThe verdict (with the trial run of " << a.trial << " steps):\n\n"
     << rates_table(points, sc, ms, false)
     << "\nThe linear model alone (AdvisorOptions::trial_steps = 0), for comparison:\n\n"
     << rates_table(points, sc, ms, true)
@@ -304,12 +347,23 @@ std::string report(const std::vector<Point>& points, const std::vector<Scene>& s
 void write_csv(const std::string& file, const std::vector<Point>& points,
                const std::vector<Scene>& sc, const std::vector<Method>& ms) {
   std::ofstream out(file);
-  out << "scene,method,h_omega_over_pi,flagged,linear_flagged,outcome,error,steps,seconds\n";
+  out << "scene,method,kind,h_omega_over_pi,flagged,linear_flagged,linear,outcome,error,steps,"
+         "seconds,trial_error,trial_early,trial_predicted,trial_failed,mode_rate,mode_share,"
+         "takeover";
+  for (int k = 0; k < kCurve; ++k) out << ",max_" << (1L << k);
+  out << '\n';
   const char* outcome[] = {"refused", "blew_up", "bounded"};
-  for (const Point& p : points)
-    out << '"' << sc[p.scene].name << "\"," << ms[p.method].name() << ',' << p.h_omega / pi << ','
-        << p.flagged << ',' << p.linear_flagged << ',' << outcome[int(p.at.outcome)] << ','
-        << p.at.error << ',' << p.at.steps << ',' << p.seconds << '\n';
+  for (const Point& p : points) {
+    out << '"' << sc[p.scene].name << "\",\"" << ms[p.method].name() << "\","
+        << (ms[p.method].kind() == Kind::rkn ? "rkn" : "erkn") << ',' << p.h_omega / pi << ','
+        << p.flagged << ',' << p.linear_flagged << ',' << p.linear << ','
+        << outcome[int(p.at.outcome)] << ',' << p.at.error << ',' << p.at.steps << ',' << p.seconds
+        << ',' << p.trial.error << ',' << p.trial.early << ',' << p.trial.predicted << ','
+        << !p.trial.failure.empty() << ',' << p.trial.mode_rate << ',' << p.trial.mode_share << ','
+        << p.trial.takeover;
+    for (double e : p.at.curve) out << ',' << e;
+    out << '\n';
+  }
 }
 
 }  // namespace

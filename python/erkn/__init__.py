@@ -458,7 +458,7 @@ def mode_energies(M, q, p):
 
 
 # AdvisorOptions fields only the trial run reads (erkn/advisor.hpp, "Severity").
-_TRIAL_OPTIONS = ("steps", "energy_tolerance", "trial_steps", "trial_margin")
+_TRIAL_OPTIONS = ("steps", "energy_tolerance", "trial_steps", "trial_margin", "explained_margin")
 
 
 def advise_step_size(method, M, h, grad=None, *, q0=None, p0=None, hessian_steps=0,
@@ -469,14 +469,17 @@ def advise_step_size(method, M, h, grad=None, *, q0=None, p0=None, hessian_steps
     With the problem -- grad, q0 and p0 (and no hessian_bounds or hessian_steps) -- the verdict is
     `erkn advise --problem`'s: the linear model at q0 judged by a trial run of the problem itself
     (the first min(trial_steps, steps) steps at h; its energy error extrapolated to a run of
-    `steps` steps, default 1e5, is held against energy_tolerance / trial_margin; U from the
-    built-in potential, a problem's System or `potential`, else 1/2|p|^2 + 1/2 q'Mq's growth).
+    `steps` steps, default 1e5, is held against energy_tolerance / explained_margin where the
+    linear model finds a resonance or an unstable band at h, else energy_tolerance /
+    trial_margin; a quiet mode growing exponentially to take over within the run flags h too; U
+    from the built-in potential, a problem's System or `potential`, else 1/2|p|^2 + 1/2 q'Mq's
+    growth).
     Otherwise the linear model alone, with the bounds (lo, hi) on U's Hessian: hessian_bounds if
     given; else, with grad, at q0 or along `hessian_steps` steps from (q0, p0); else (0, 0). With
     q0 and p0 a resonance is flagged only at eigenvalues the state excites (erkn.mode_energies).
     advisor_options: potential_degree, pole_margin, trace_tolerance, z_samples, max_change,
     search_step, min_excitation, and for the trial steps, energy_tolerance, trial_steps (0: no
-    trial), trial_margin. Returns an erkn.StepSizeAdvice: safe, findings, equation (the
+    trial), trial_margin, explained_margin. Returns an erkn.StepSizeAdvice: safe, findings, equation (the
     differential equation's own growth: information), notes (linear findings the trial clears),
     trial, suggested_h, hessian, report."""
     options = _erkn._AdvisorOptions()

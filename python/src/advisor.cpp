@@ -47,7 +47,8 @@ py::object trial(const TrialRun& t) {
   py::dict d;
   d["steps"] = t.steps, d["error"] = t.error, d["early"] = t.early;
   d["predicted"] = t.predicted, d["horizon"] = t.horizon, d["limit"] = t.limit;
-  d["failure"] = t.failure, d["flagged"] = t.flagged;
+  d["explained"] = t.explained, d["mode_rate"] = t.mode_rate, d["mode_share"] = t.mode_share;
+  d["takeover"] = t.takeover, d["failure"] = t.failure, d["flagged"] = t.flagged;
   return d;
 }
 
@@ -64,7 +65,8 @@ void bind_advice(py::module_& m) {
       .def_readwrite("steps", &AdvisorOptions::steps)
       .def_readwrite("energy_tolerance", &AdvisorOptions::energy_tolerance)
       .def_readwrite("trial_steps", &AdvisorOptions::trial_steps)
-      .def_readwrite("trial_margin", &AdvisorOptions::trial_margin);
+      .def_readwrite("trial_margin", &AdvisorOptions::trial_margin)
+      .def_readwrite("explained_margin", &AdvisorOptions::explained_margin);
   py::class_<Advice>(m, "StepSizeAdvice", "erkn::StepSizeAdvice: findings for h, a suggestion")
       .def_property_readonly("h", [](const Advice& a) { return a.advice.h; })
       .def_property_readonly("method", [](const Advice& a) { return a.method; })

@@ -40,13 +40,15 @@ void validate(const Eigen::VectorXd& eigenvalues, double h, HessianBounds k,
                   o.search_step > 0 && o.search_step <= 1 && std::isfinite(o.trace_tolerance) &&
                   o.min_excitation >= 0 && o.min_excitation <= 1 && o.steps >= 1 &&
                   o.energy_tolerance > 0 && std::isfinite(o.energy_tolerance) &&
-                  o.trial_steps >= 0 && o.trial_margin >= 1 && std::isfinite(o.trial_margin);
+                  o.trial_steps >= 0 && o.trial_margin >= 1 && std::isfinite(o.trial_margin) &&
+                  o.explained_margin >= 1 && std::isfinite(o.explained_margin);
   if (!ok)
     throw Error(
         "advise_step_size: invalid AdvisorOptions (need 1 <= potential_degree <= 64, 0 <= "
         "pole_margin < 1, finite trace_tolerance >= 0, 2 <= z_samples <= 100000, 0 <= "
         "max_change < 1, 0 < search_step <= 1, 0 <= min_excitation <= 1, steps >= 1, finite "
-        "energy_tolerance > 0, trial_steps >= 0, finite trial_margin >= 1)");
+        "energy_tolerance > 0, trial_steps >= 0, finite trial_margin >= 1, finite "
+        "explained_margin >= 1)");
   // The search tries 2 max_change / search_step step sizes: bounded, so the advice ends.
   if (o.max_change / o.search_step > kMaxSearchSteps)
     throw Error("advise_step_size: AdvisorOptions max_change / search_step = " +
@@ -305,8 +307,16 @@ std::string trial_line(const TrialRun& t) {
   if (!t.failure.empty()) return s.str() + ", then stopped: " + t.failure + "\n";
   s << ", largest relative energy error " << format(t.error, 3) << " (" << format(t.early, 3)
     << " over its first 1/16), predicted " << format(t.predicted, 3) << " over " << t.horizon
-    << " steps against the limit " << format(t.limit, 3) << ": "
-    << (t.flagged ? "flagged" : "within it") << "\n";
+    << " steps against the limit " << format(t.limit, 3)
+    << (t.explained ? " (a linear hazard explains the error)" : "") << ": "
+    << (t.predicted >= t.limit ? "flagged" : "within it") << "\n";
+  if (t.mode_rate > 0)
+    s << "  a quiet mode (" << format(t.mode_share, 3)
+      << " of the linear energy) grows exponentially, " << format(t.mode_rate, 3)
+      << " per step: it takes over " << format(t.takeover, 3) << " steps after the trial"
+      << (double(t.steps) + t.takeover <= double(t.horizon) ? ", within the run: flagged"
+                                                            : ", after the run")
+      << "\n";
   return s.str();
 }
 
@@ -397,7 +407,9 @@ StepSizeAdvice advise_step_size(const Method& method, const System& system, doub
   StepSizeAdvice advice = advise_step_size(method, system.M.eigenvalues(), h,
                                            hessian_bounds_at(system, q0), options, energy);
   if (options.trial_steps == 0) return advice;
-  advice.trial = detail::trial_run(method, system, h, q0, p0, options);
+  const bool explained = std::ranges::any_of(
+      advice.findings, [](const AdvisorFinding& f) { return f.hazard != Hazard::pole; });
+  advice.trial = detail::trial_run(method, system, h, q0, p0, options, explained);
   detail::judge_by_trial(advice);
   if (advice.safe())
     advice.suggested_h = h;

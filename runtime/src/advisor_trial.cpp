@@ -35,6 +35,39 @@ struct Measure {
   }
 };
 
+// A quiet mode holds below kQuietShare of E_2 at the trial's end; its growth counts as steady
+// (exponential, not the slowing growth of round-off noise or of energy trickling in through the
+// nonlinearity: a power law n^k has early/late rates 2) when the rate over the trial's second
+// quarter is at most kSteadyRatio times that over its second half, and large enough: at least
+// kMinGrowth-fold over the second half (round-off in a quiet mode wanders by less). kMinGrowth was
+// chosen on the training sweep (docs/advisor.md); the others are the definitions above.
+constexpr double kQuietShare = 1e-3, kTakeoverShare = 1e-2, kSteadyRatio = 1.5, kMinGrowth = 400;
+
+// The mode energies at n / 4, n / 2 and n steps.
+struct ModeCheckpoints {
+  Eigen::VectorXd quarter, half, end;
+};
+
+// The quiet mode that reaches kTakeoverShare soonest at its steady rate: sets t.mode_rate,
+// t.mode_share, t.takeover (steps after the trial; 0 with mode_rate 0: none).
+void quiet_growth(const ModeCheckpoints& e, long n, TrialRun& t) {
+  const double total = e.end.sum();
+  if (!(total > 0) || n < 4) return;
+  double soonest = std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < e.end.size(); ++i) {
+    const double share = e.end[i] / total;
+    if (!(share < kQuietShare) || !(e.quarter[i] > 0) || !(e.half[i] > 0) || !(e.end[i] > 0))
+      continue;
+    const double early = std::log(e.half[i] / e.quarter[i]) / double(n / 2 - n / 4);
+    const double late = std::log(e.end[i] / e.half[i]) / double(n - n / 2);
+    const bool steady = early > 0 && early <= kSteadyRatio * late;
+    if (!steady || !(late * double(n - n / 2) >= std::log(kMinGrowth))) continue;
+    const double takeover = std::log(kTakeoverShare / share) / late;
+    if (takeover < soonest) soonest = takeover, t.mode_rate = late, t.mode_share = share;
+  }
+  if (t.mode_rate > 0) t.takeover = soonest;
+}
+
 // error (steps / n)^alpha, alpha = log(error / early) / log kEarly clamped to [0, 1].
 double predicted(const TrialRun& t, long steps) {
   if (t.steps >= steps || t.error == 0) return t.error;
@@ -44,31 +77,57 @@ double predicted(const TrialRun& t, long steps) {
   return t.error * std::pow(double(steps) / double(t.steps), alpha);
 }
 
+// n steps of the trial: the largest error, the one over the first n / kEarly steps, and the mode
+// energies at n / 4, n / 2 and n (the state being finite).
+void take_steps(Integrator& run, const System& system, const Measure& measure, long n, TrialRun& t,
+                ModeCheckpoints& modes) {
+  const long early = std::max(1L, n / kEarly);
+  while (t.steps < n && std::isfinite(t.error)) {
+    run.step();
+    t.error = std::max(t.error, measure(run, system));
+    if (++t.steps == early) t.early = t.error;
+    const bool checkpoint = t.steps == n / 4 || t.steps == n / 2 || t.steps == n;
+    if (checkpoint && run.q().allFinite() && run.p().allFinite())
+      (t.steps == n       ? modes.end
+       : t.steps == n / 2 ? modes.half
+                          : modes.quarter) = mode_energies(system.M, run.q(), run.p());
+  }
+  if (!std::isfinite(t.error)) t.failure = "the energy is no longer finite";
+}
+
+// The prediction, the limit it is held against and the verdict (see erkn/advisor.hpp).
+void judge(TrialRun& t, const System& system, const AdvisorOptions& o) {
+  t.predicted = t.failure.empty() ? predicted(t, o.steps) : std::numeric_limits<double>::infinity();
+  t.horizon = o.steps;
+  t.limit = !system.potential ? BlowupGuard::kGrowthLimit
+            : t.explained     ? o.energy_tolerance / o.explained_margin
+                              : o.energy_tolerance / o.trial_margin;
+  const bool takeover = t.mode_rate > 0 && double(t.steps) + t.takeover <= double(o.steps);
+  t.flagged = !t.failure.empty() || t.predicted >= t.limit || takeover;
+}
+
 }  // namespace
 
 TrialRun trial_run(const Method& method, const System& system, double h, const Eigen::VectorXd& q0,
-                   const Eigen::VectorXd& p0, const AdvisorOptions& o) {
+                   const Eigen::VectorXd& p0, const AdvisorOptions& o, bool explained) {
   TrialRun t;
-  const long n = std::min(o.trial_steps, o.steps), early = std::max(1L, n / kEarly);
+  t.explained = explained;
+  const long n = std::min(o.trial_steps, o.steps);
   Options unguarded;
   unguarded.blowup_guard = false;
   try {
     Integrator run(method, system, h, q0, p0, unguarded);
     const Measure measure(run, system, q0, p0);
     if (!(measure.scale > 0)) return t;  // (a state at rest: nothing to measure against)
-    while (t.steps < n && std::isfinite(t.error)) {
-      run.step();
-      t.error = std::max(t.error, measure(run, system));
-      if (++t.steps == early) t.early = t.error;
-    }
-    if (!std::isfinite(t.error)) t.failure = "the energy is no longer finite";
+    ModeCheckpoints modes;
+    take_steps(run, system, measure, n, t, modes);
+    if (t.failure.empty() && modes.quarter.size() > 0 && modes.half.size() > 0 &&
+        modes.end.size() > 0)
+      quiet_growth(modes, n, t);
   } catch (const Error& e) {
     t.failure = e.what();
   }
-  t.predicted = t.failure.empty() ? predicted(t, o.steps) : std::numeric_limits<double>::infinity();
-  t.horizon = o.steps;
-  t.limit = system.potential ? o.energy_tolerance / o.trial_margin : BlowupGuard::kGrowthLimit;
-  t.flagged = !t.failure.empty() || t.predicted >= t.limit;
+  judge(t, system, o);
   return t;
 }
 

@@ -9,9 +9,11 @@
 namespace erkn::detail {
 
 /// min(o.trial_steps, o.steps) steps of `method` at h from (q0, p0), blow-up guard off; an
-/// erkn::Error of a step ends it as a failure (the run cannot go on at h).
+/// erkn::Error of a step ends it as a failure (the run cannot go on at h). `explained`: the
+/// linear model found a resonance or an unstable band at h (the limit is then
+/// energy_tolerance / explained_margin).
 TrialRun trial_run(const Method& method, const System& system, double h, const Eigen::VectorXd& q0,
-                   const Eigen::VectorXd& p0, const AdvisorOptions& o);
+                   const Eigen::VectorXd& p0, const AdvisorOptions& o, bool explained);
 
 /// The verdict of the trial on the linear findings: unstable and resonance findings move to
 /// `notes` unless the trial flags h; pole findings stay.

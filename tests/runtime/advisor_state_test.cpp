@@ -162,7 +162,9 @@ TEST(AdvisorState, WaveGridFlagsOnlyExcitedResonantModes) {
     const double driven = energy_error(m, excited.s, h, excited.q0, excited.p0, 2000);
     EXPECT_LT(clean, 1e-4);
     EXPECT_GT(driven, 10 * clean);
-    EXPECT_EQ(b.safe(), b.trial.error < verdict_only.energy_tolerance / verdict_only.trial_margin);
+    ASSERT_TRUE(b.trial.explained);  // (the resonance explains the trial's error)
+    EXPECT_EQ(b.trial.limit, verdict_only.energy_tolerance / verdict_only.explained_margin);
+    EXPECT_EQ(b.safe(), b.trial.error < b.trial.limit);
     std::printf("%s: smooth %.2e, resonant mode excited %.2e\n", std::string(m.name()).c_str(),
                 clean, driven);
   }

@@ -5,7 +5,9 @@
 // a potential the trial measures E_2's growth; bad options are refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "problems.hpp"
@@ -44,9 +46,11 @@ AdvisorOptions whole_run() {
 }
 
 // At h omega = pi (a resonance for every ERKN method) and 0.999 pi (unstable for the low-order
-// ones): flagged exactly when the run's own error reaches energy_tolerance / trial_margin; the
-// linear finding is kept either as a finding (flagged) or as a note (information). Negative
-// control: the linear model alone (trial_steps = 0) flags every one of them. Both verdicts occur.
+// ones): flagged exactly when the run's own error reaches the trial's limit, energy_tolerance /
+// explained_margin where the linear model finds a resonance or an unstable band (the trial's
+// `explained`), else energy_tolerance / trial_margin; the linear finding is kept either as a
+// finding (flagged) or as a note (information). Negative control: the linear model alone
+// (trial_steps = 0) flags every one of them. Both verdicts occur.
 TEST(AdvisorTrial, WholeRunTrialFlagsExactlyTheRunsBeyondTheLimit) {
   const System s = problems::system(stiff_fpu());
   int flagged = 0, noted = 0;
@@ -57,12 +61,17 @@ TEST(AdvisorTrial, WholeRunTrialFlagsExactlyTheRunsBeyondTheLimit) {
       const AdvisorOptions o = whole_run();
       const StepSizeAdvice a = advise_step_size(m, s, h, stiff_fpu().q0, stiff_fpu().p0, o);
       const double error = run_error(m, s, h, kSteps);
-      ASSERT_EQ(a.trial.horizon, kSteps);
-      EXPECT_EQ(a.safe(), error < o.energy_tolerance / o.trial_margin) << a.report(m);
-      if (std::isfinite(error)) EXPECT_NEAR(a.trial.error, error, 1e-12 * (1 + error));
       AdvisorOptions linear = o;
       linear.trial_steps = 0;
       const StepSizeAdvice b = advise_step_size(m, s, h, stiff_fpu().q0, stiff_fpu().p0, linear);
+      const bool explained = std::ranges::any_of(
+          b.findings, [](const AdvisorFinding& f) { return f.hazard != Hazard::pole; });
+      ASSERT_EQ(a.trial.horizon, kSteps);
+      EXPECT_EQ(a.trial.explained, explained);
+      EXPECT_EQ(a.trial.limit,
+                o.energy_tolerance / (explained ? o.explained_margin : o.trial_margin));
+      EXPECT_EQ(a.safe(), error < a.trial.limit) << a.report(m);
+      if (std::isfinite(error)) EXPECT_NEAR(a.trial.error, error, 1e-12 * (1 + error));
       if (m.kind() != Kind::erkn || b.safe()) continue;
       EXPECT_EQ(a.findings.size() + a.notes.size(), b.findings.size()) << a.report(m);
       if (a.safe()) EXPECT_NE(a.report(m).find("information"), std::string::npos) << a.report(m);
@@ -109,6 +118,82 @@ TEST(AdvisorTrial, WithoutAPotentialTheTrialMeasuresTheLinearEnergy) {
   EXPECT_LT(calm.trial.error, 1.0);
 }
 
+// u_tt = u_xx - u^3 on (0, 1), Dirichlet, n = 15 interior points (M held dense), u0 = sin pi x,
+// u_t(0) = 0: the antisymmetric modes hold nothing but round-off.
+struct QuietGrid {
+  System s;
+  Eigen::VectorXd q0, p0;
+  double omega = 0;
+  QuietGrid() {
+    constexpr int n = 15;
+    const double dx = 1.0 / (n + 1);
+    s.M = Stiffness::dense(Stiffness::grid({{n, dx, GridAxis::Boundary::dirichlet}}).to_dense(n));
+    s.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = q.array().cube(); };
+    s.potential = [](const Eigen::VectorXd& q) { return 0.25 * q.array().pow(4).sum(); };
+    s.hessian = [](const Eigen::VectorXd& q, Eigen::MatrixXd& H) {
+      H = (3 * q.array().square()).matrix().asDiagonal();
+    };
+    s.hessian_vector_product = [](const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                  Eigen::VectorXd& hv) { hv = 3 * q.array().square() * v.array(); };
+    q0.resize(n), p0 = Eigen::VectorXd::Zero(n);
+    for (int i = 0; i < n; ++i) q0[i] = std::sin(kPi * (i + 1) * dx);
+    omega = std::sqrt(s.M.eigenvalues().maxCoeff());
+  }
+};
+
+// The steps until the relative energy error reaches 0.5 (checked every 50 steps) or a step
+// fails; steps + 1 when neither happens.
+long steps_to_blow_up(const Method& m, const QuietGrid& g, double h, long steps) {
+  Options unguarded;
+  unguarded.blowup_guard = false;
+  try {
+    Integrator run(m, g.s, h, g.q0, g.p0, unguarded);
+    const double H0 = run.energy();
+    for (long k = 1; k <= steps; ++k) {
+      run.step();
+      if (k % 50 == 0 && !(std::abs(run.energy() - H0) < 0.5 * H0)) return k;
+    }
+  } catch (const Error&) {
+    return 0;
+  }
+  return steps + 1;
+}
+
+// At h omega = 3.625 pi the quiet antisymmetric modes are unstable: the energy error stays small
+// for thousands of steps, then the run blows up (after 13000 to 50000 steps on the training
+// sweep, docs/advisor.md), a miss of the energy prediction. For every explicit method, where the
+// trial finds a quiet mode that takes over within the 1e5-step run, h is flagged and the run
+// does blow up within 1e5 steps; at least 5 methods are. Negative controls: the energy
+// prediction alone stays within its limit for them (only the quiet mode flags h), and for a run
+// that ends before the takeover the quiet mode does not flag h.
+TEST(AdvisorTrial, QuietModeTakeoverFlagsTheLateBlowUp) {
+  const QuietGrid g;
+  const double h = 3.625 * kPi / g.omega;
+  int taken_over = 0;
+  for (const Method& m : Method::all()) {
+    if (!m.is_explicit()) continue;  // (the implicit ones' 1e5 steps cost seconds each)
+    SCOPED_TRACE(std::string(m.name()));
+    AdvisorOptions o;
+    o.max_change = 0;
+    const StepSizeAdvice a = advise_step_size(m, g.s, h, g.q0, g.p0, o);
+    if (!(a.trial.mode_rate > 0 && a.trial.steps + a.trial.takeover <= o.steps)) continue;
+    ++taken_over;
+    EXPECT_FALSE(a.safe()) << a.report(m);
+    EXPECT_LT(a.trial.predicted, a.trial.limit) << a.report(m);
+    const long blown = steps_to_blow_up(m, g, h, o.steps);
+    EXPECT_LE(blown, o.steps) << a.report(m);
+    std::printf(
+        "%s: trial energy error %.2g, quiet mode at %.2g of E_2 growing %.3g per step, "
+        "takeover %.0f steps after the trial; the run blows up after %ld steps\n",
+        std::string(m.name()).c_str(), a.trial.error, a.trial.mode_share, a.trial.mode_rate,
+        a.trial.takeover, blown);
+    AdvisorOptions shorter = o;
+    shorter.steps = a.trial.steps + long(a.trial.takeover / 2);
+    EXPECT_TRUE(advise_step_size(m, g.s, h, g.q0, g.p0, shorter).safe()) << a.report(m);
+  }
+  EXPECT_GE(taken_over, 5);
+}
+
 TEST(AdvisorTrial, RefusesInvalidTrialOptions) {
   const System s = problems::system(stiff_fpu());
   const Method m = Method::by_name("SABA2");
@@ -123,6 +208,8 @@ TEST(AdvisorTrial, RefusesInvalidTrialOptions) {
   refused([](AdvisorOptions& o) { o.trial_steps = -1; });
   refused([](AdvisorOptions& o) { o.trial_margin = 0.5; });
   refused([](AdvisorOptions& o) { o.trial_margin = INFINITY; });
+  refused([](AdvisorOptions& o) { o.explained_margin = 0.5; });
+  refused([](AdvisorOptions& o) { o.explained_margin = NAN; });
   EXPECT_NO_THROW(advise_step_size(m, s, 0.01, stiff_fpu().q0, stiff_fpu().p0, whole_run()));
 }
 

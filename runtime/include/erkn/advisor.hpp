@@ -43,10 +43,15 @@
 // E(n) after n steps and E(n / 16) give the growth exponent alpha = log(E(n) / E(n / 16)) / log 16
 // in [0, 1] (0: a bounded error, 1/2: a random walk, 1: a drift) and the prediction
 //     E(steps) = E(n) (steps / n)^alpha.
-// h is flagged when the trial fails (a stage solver or a non-finite state) or the prediction
-// reaches energy_tolerance / trial_margin; pole findings always flag; the other linear findings
-// are kept as `notes` (information) unless the trial flags h (then they are its likely cause).
-// Cost: the trial's steps plus one U per step (4096 steps by default: 4 % of a 1e5-step run).
+// h is flagged when the trial fails (a stage solver or a non-finite state), when the prediction
+// reaches energy_tolerance / explained_margin (the linear model found a resonance or an unstable
+// band at h: the error is that hazard's, and saturates) or energy_tolerance / trial_margin
+// (nothing linear explains it: a nonlinear growth, extrapolated with a margin), or when a quiet
+// mode grows steadily and exponentially and would take over within the run (an instability seeded
+// by round-off, invisible in the energy error until then: the symmetric modes of a wave grid).
+// Pole findings always flag; the other linear findings are kept as `notes` (information) unless
+// the trial flags h (then they are its likely cause). Cost: the trial's steps plus one U per step
+// and three mode-energy transforms (8192 steps by default: 8 % of a 1e5-step run).
 // An h it accepts is not a proof of bounded energy, and a flagged h is not a proof of blow-up.
 // Its false-alarm and miss rates on a sweep of step sizes against 1e5-step runs: docs/advisor.md.
 #pragma once
@@ -91,25 +96,41 @@ struct AdvisorOptions {
   double energy_tolerance = 0.5;
   /// Steps of the trial run (with the System; at most `steps`); 0: no trial, and every linear
   /// finding flags h (as advise_step_size without the System does).
-  long trial_steps = 4096;
-  /// The trial flags h when its predicted error reaches energy_tolerance / trial_margin: near
-  /// its limit the energy error of a chaotic exchange between modes jumps (sine-Gordon: 10-fold
-  /// between 4096 and 1e5 steps).
-  double trial_margin = 10;
+  long trial_steps = 8192;
+  /// Where the linear model finds no hazard at h, the trial flags h when its predicted error
+  /// reaches energy_tolerance / trial_margin: an error growth nothing linear explains is the
+  /// nonlinearity's (a chaotic exchange between modes, which jumps: sine-Gordon 10-fold between
+  /// 4096 and 1e5 steps), and a power law extrapolates it poorly.
+  double trial_margin = 16;
+  /// Where it finds a resonance or an unstable band, against energy_tolerance / explained_margin:
+  /// the trial's error is then that hazard's, which saturates at its level where it does not
+  /// grow within the trial. (Both margins, trial_steps and the quiet-mode check were chosen on a
+  /// training sweep: docs/advisor.md.)
+  double explained_margin = 2;
 };
 
 /// The trial run's evidence (advise_step_size with the System; see the top of this header).
 /// Without System::potential it measures E_2 = 1/2 |p|^2 + 1/2 q^T M q against its start
 /// (error = the largest E_2 / E_2(0) - 1) and flags growth beyond the blow-up guard's 1e4.
 struct TrialRun {
-  long steps = 0;        ///< steps taken (0: no trial)
-  double error = 0;      ///< the largest relative energy error over the trial
-  double early = 0;      ///< the same over its first steps / 16
-  double predicted = 0;  ///< error extrapolated to AdvisorOptions::steps
-  long horizon = 0;      ///< AdvisorOptions::steps: the run predicted
-  double limit = 0;      ///< what predicted is held against
-  std::string failure;   ///< the erkn::Error that stopped the trial, or why it stopped
-  bool flagged = false;  ///< failure, or predicted at or beyond the limit
+  long steps = 0;          ///< steps taken (0: no trial)
+  double error = 0;        ///< the largest relative energy error over the trial
+  double early = 0;        ///< the same over its first steps / 16
+  double predicted = 0;    ///< error extrapolated to AdvisorOptions::steps
+  long horizon = 0;        ///< AdvisorOptions::steps: the run predicted
+  double limit = 0;        ///< what predicted is held against
+  bool explained = false;  ///< the linear model found a resonance or an unstable band at h
+  std::string failure;     ///< the erkn::Error that stopped the trial, or why it stopped
+  /// A quiet mode (below 1e-3 of E_2 at the trial's end) whose energy grows steadily and
+  /// exponentially, at least 400-fold over the trial's second half (an instability seeded by
+  /// round-off, which the energy error shows only when the mode takes over): its growth rate per
+  /// step (0: none), its share of E_2 at the trial's end, and the steps after the trial until it
+  /// holds 1e-2 of E_2 at that rate (it flags h when that happens within the run).
+  double mode_rate = 0;
+  double mode_share = 0;
+  double takeover = 0;
+  bool flagged =
+      false;  ///< failure, predicted at or beyond the limit, or a takeover within the run
 };
 
 /// The method's hazards (unstable, resonance, pole), and `equation`: the differential

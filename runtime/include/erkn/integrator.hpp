@@ -60,8 +60,10 @@ struct Options {
   /// the step and the drift, and leaves the state before that step. Needs System::potential.
   double energy_tolerance = 0;
   /// Construction (and set_step_size) refuses an h that erkn::advise_step_size flags at the
-  /// current state: a pole, or a trial run of 4096 steps whose energy error, extrapolated to 1e5
-  /// steps, reaches 0.05 (see erkn/advisor.hpp, "Severity"); off by default.
+  /// current state: a pole, or a trial run of 8192 steps that fails, whose energy error,
+  /// extrapolated to 1e5 steps, reaches 0.25 (a resonance or an unstable band at h) or 0.5 / 16
+  /// (none), or in which a quiet mode grows to take over within the run (see erkn/advisor.hpp,
+  /// "Severity"); off by default.
   bool check_stability = false;
   /// Blow-up guard, on by default: every 1024 steps, a relative energy error |H - H_0| above 0.25
   /// (with System::potential; relative to 1/2|p0|^2 + 1/2 q0^T M q0 + |U(q0)|), else a 1e4-fold
