@@ -100,7 +100,8 @@ struct AdvisorOptions {
   /// Where the linear model finds no hazard at h, the trial flags h when its predicted error
   /// reaches energy_tolerance / trial_margin: an error growth nothing linear explains is the
   /// nonlinearity's (a chaotic exchange between modes, which jumps: docs/advisor.md lists the
-  /// sine-Gordon runs that blow up long after a calm trial), and a power law extrapolates it poorly.
+  /// sine-Gordon runs that blow up long after a calm trial), and a power law extrapolates it
+  /// poorly.
   double trial_margin = 16;
   /// Where it finds a resonance or an unstable band, against energy_tolerance / explained_margin:
   /// the trial's error is then that hazard's, which saturates at its level where it does not
