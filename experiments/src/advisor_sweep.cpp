@@ -75,20 +75,13 @@ Scene from_library(const problems::Problem& p, std::string name) {
 // u0 = prod sin(pi x_a), u_t(0) = 0.
 Scene wave_grid(int n, int k) {
   const double dx = 1.0 / (n + 1);
-  System s;
   const Eigen::Index d = k == 1 ? n : n * n;
   // (The grid's matrix, held dense: at d <= 25 every FFTW r2r call allocates its buffers, and
   // the implicit methods' Newton fallback builds each Jacobian from d such calls.)
   const Stiffness grid =
       Stiffness::grid(std::vector<GridAxis>(k, {n, dx, GridAxis::Boundary::dirichlet}));
-  s.M = Stiffness::dense(grid.to_dense(d));
-  s.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = q.array().cube(); };
-  s.potential = [](const Eigen::VectorXd& q) { return 0.25 * q.array().pow(4).sum(); };
-  s.hessian = [](const Eigen::VectorXd& q, Eigen::MatrixXd& H) {
-    H = (3 * q.array().square()).matrix().asDiagonal();
-  };
-  s.hessian_vector_product = [](const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                                Eigen::VectorXd& hv) { hv = 3 * q.array().square() * v.array(); };
+  const System s =
+      problems::system(Stiffness::dense(grid.to_dense(d)), problems::quartic_potential(1));
   Eigen::VectorXd q0(d);
   for (Eigen::Index i = 0; i < d; ++i)  // (row-major: i = i0 n + i1)
     q0[i] = std::sin(pi * (i % n + 1) * dx) * (k == 1 ? 1 : std::sin(pi * (i / n + 1) * dx));

@@ -226,13 +226,17 @@ Stiffness stiffness(const LinearPart& m) {
 }
 
 System system(const Problem& p) {
+  return system(stiffness(p.M), {p.grad_u, p.potential, p.hessian_u, p.hessian_vector_u});
+}
+
+System system(Stiffness M, const Potential& u) {
   System s;
-  s.M = stiffness(p.M);
-  s.gradient = p.grad_u;
-  s.potential = p.potential;
-  if (p.hessian_u)  // (the grid problems have none: no d x d matrix there)
-    s.hessian = [h = p.hessian_u](const Vec& q, Eigen::MatrixXd& hess) { hess = h(q); };
-  s.hessian_vector_product = p.hessian_vector_u;
+  s.M = std::move(M);
+  s.gradient = u.grad_u;
+  s.potential = u.potential;
+  if (u.hessian_u)  // (the grid problems have none: no d x d matrix there)
+    s.hessian = [h = u.hessian_u](const Vec& q, Eigen::MatrixXd& hess) { hess = h(q); };
+  s.hessian_vector_product = u.hessian_vector_u;
   return s;
 }
 

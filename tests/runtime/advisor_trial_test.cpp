@@ -127,14 +127,9 @@ struct QuietGrid {
   QuietGrid() {
     constexpr int n = 15;
     const double dx = 1.0 / (n + 1);
-    s.M = Stiffness::dense(Stiffness::grid({{n, dx, GridAxis::Boundary::dirichlet}}).to_dense(n));
-    s.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = q.array().cube(); };
-    s.potential = [](const Eigen::VectorXd& q) { return 0.25 * q.array().pow(4).sum(); };
-    s.hessian = [](const Eigen::VectorXd& q, Eigen::MatrixXd& H) {
-      H = (3 * q.array().square()).matrix().asDiagonal();
-    };
-    s.hessian_vector_product = [](const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                                  Eigen::VectorXd& hv) { hv = 3 * q.array().square() * v.array(); };
+    s = problems::system(
+        Stiffness::dense(Stiffness::grid({{n, dx, GridAxis::Boundary::dirichlet}}).to_dense(n)),
+        problems::quartic_potential(1));
     q0.resize(n), p0 = Eigen::VectorXd::Zero(n);
     for (int i = 0; i < n; ++i) q0[i] = std::sin(kPi * (i + 1) * dx);
     omega = std::sqrt(s.M.eigenvalues().maxCoeff());

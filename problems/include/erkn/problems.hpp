@@ -117,5 +117,8 @@ Stiffness stiffness(const LinearPart& m);
 /// The problem as the runtime's System: M, gradient, potential, Hessian (where the problem has
 /// one) and Hessian-vector product.
 System system(const Problem& p);
+/// M with the potential u: a System for scenes built outside this library (a test's grid, a
+/// sweep's wave grid) that reuse one of its potentials.
+System system(Stiffness M, const Potential& u);
 
 }  // namespace erkn::problems
