@@ -2,7 +2,8 @@
 //   mpirun -np N erkn-mpi run [--grid 256x256] [--boundary periodic] [--shift 0]
 //                             [--method SERKN2s4] [--h 1e-3] [--steps 20] [--repeats 3]
 //   mpirun -np N erkn-mpi scaling --table FILE   appends this rank count's strong- and
-//                                                weak-scaling rows to FILE (tab-separated)
+//                                                weak-scaling rows to FILE (tab-separated);
+//                                                on 1 rank also the serial Integrator's row
 //   mpirun -np N erkn-mpi guard-cost [--rounds 5] [the options of run]   the blow-up guard's
 //                                                cost: runs with it on and off, alternated
 //   erkn-mpi report --table FILE --out FILE.md   the scaling tables and the model beyond them
@@ -67,14 +68,17 @@ scene::Settings settings(std::map<std::string, std::string>& o) {
 }
 
 void print(const std::string& kind, const scene::Settings& s, const scene::Timing& t) {
+  char transforms[160] = "transforms not counted";  // (the serial Integrator's)
+  if (kind != "serial")
+    std::snprintf(transforms, sizeof transforms,
+                  "%.0f %% in transforms, %.1f transforms per step, all-to-all %.3g MB per step",
+                  100 * t.transform_seconds_per_step / t.seconds_per_step, t.transforms_per_step,
+                  report::alltoall_bytes(t.d, t.ranks, t.transforms_per_step) / 1e6);
   std::printf(
-      "%s: ranks %d, grid %s (d = %ld), %s, h = %g: %.3e s per step (%.0f %% in transforms), "
-      "%.1f transforms and %.1f grad U per step, all-to-all %.3g MB per step, energy drift "
-      "%.2e, sum q = %.15e\n",
+      "%s: ranks %d, grid %s (d = %ld), %s, h = %g: %.3e s per step (%s), %.1f grad U per step, "
+      "energy drift %.2e, sum q = %.15e\n",
       kind.c_str(), t.ranks, scene::describe(s.axes).c_str(), t.d, s.method.c_str(), s.h,
-      t.seconds_per_step, 100 * t.transform_seconds_per_step / t.seconds_per_step,
-      t.transforms_per_step, t.gradients_per_step,
-      report::alltoall_bytes(t.d, t.ranks, t.transforms_per_step) / 1e6, t.energy_drift, t.sum_q);
+      t.seconds_per_step, transforms, t.gradients_per_step, t.energy_drift, t.sum_q);
 }
 
 int scaling(std::map<std::string, std::string>& o, int rank, int ranks) {
@@ -89,6 +93,11 @@ int scaling(std::map<std::string, std::string>& o, int rank, int ranks) {
     std::ofstream table(required(o, "--table"), std::ios::app);
     report::append(table, "strong", scene::describe(strong.axes), strong.method, ts);
     report::append(table, "weak", scene::describe(weak.axes), weak.method, tw);
+    if (ranks == 1) {  // the serial library on the strong grid: the baseline a user has without MPI
+      const scene::Timing serial = scene::run_serial(strong);
+      print("serial", strong, serial);
+      report::append(table, "serial", scene::describe(strong.axes), strong.method, serial);
+    }
     if (!table) throw erkn::Error("cannot write " + required(o, "--table"));
   }
   return 0;

@@ -37,32 +37,44 @@ std::string format(const char* f, double x) {
   return buf;
 }
 
+// One row of a measured table; versus: the serial Integrator's time per step (strong scaling),
+// else 0 (no such column); the serial row has no transforms counted.
+void measured_row(std::ostream& md, const Row& r, const Row* one, double versus) {
+  const scene::Timing& t = r.t;
+  const bool serial = r.kind == "serial", strong = r.kind != "weak";
+  md << "| " << (serial ? "serial Integrator" : std::to_string(t.ranks)) << " | " << r.grid << " | "
+     << t.d << " | " << t.d / t.ranks << " | " << format("%.2f", 1e3 * t.seconds_per_step) << " | "
+     << (one && !serial ? format("%.2f", one->t.seconds_per_step / t.seconds_per_step) : "-")
+     << " | ";
+  if (versus > 0) md << format("%.2f", versus / t.seconds_per_step) << " | ";
+  md << format("%.2f", t.cpu_seconds_per_step / t.seconds_per_step) << " | "
+     << (serial ? "-" : format("%.0f %%", 100 * t.transform_seconds_per_step / t.seconds_per_step))
+     << " | " << (serial ? "-" : format("%.1f", t.transforms_per_step)) << " | "
+     << (serial ? "-"
+                : format("%.2f", alltoall_bytes(double(t.d), t.ranks, t.transforms_per_step) / 1e6))
+     << " | " << format("%.1e", t.energy_drift) << " | "
+     << (one && strong ? format("%.1e", std::abs(t.sum_q - one->t.sum_q) / std::abs(one->t.sum_q))
+                       : "-")
+     << " |\n";
+}
+
+// The rows of one kind ("strong" with the serial Integrator's row first, "weak").
 void measured_table(std::ostream& md, const std::map<std::pair<std::string, int>, Row>& rows,
                     const std::string& kind) {
   const auto one = rows.find({kind, 1});
+  const Row* base = one != rows.end() ? &one->second : nullptr;
+  const auto serial = kind == "strong" ? rows.find({"serial", 1}) : rows.end();
+  const double versus = serial != rows.end() ? serial->second.t.seconds_per_step : 0;
   md << "| ranks | grid | d | d per rank | time per step [ms] | "
-     << (kind == "strong" ? "speedup" : "time(1)/time(P)")
-     << " | CPU time / wall time | in transforms | transforms per step | all-to-all per step [MB] "
-        "| "
+     << (kind == "strong" ? "speedup" : "time(1)/time(P)") << " | "
+     << (versus > 0 ? "serial Integrator's time / time | " : "")
+     << "CPU time / wall time | in transforms | transforms per step | all-to-all per step [MB] | "
         "relative energy drift | sum of q, relative to 1 rank |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const auto& [key, r] : rows) {
-    if (key.first != kind) continue;
-    const scene::Timing& t = r.t;
-    const bool base = one != rows.end();
-    md << "| " << t.ranks << " | " << r.grid << " | " << t.d << " | " << t.d / t.ranks << " | "
-       << format("%.2f", 1e3 * t.seconds_per_step) << " | "
-       << (base ? format("%.2f", one->second.t.seconds_per_step / t.seconds_per_step) : "-")
-       << " | " << format("%.2f", t.cpu_seconds_per_step / t.seconds_per_step) << " | "
-       << format("%.0f %%", 100 * t.transform_seconds_per_step / t.seconds_per_step) << " | "
-       << format("%.1f", t.transforms_per_step) << " | "
-       << format("%.2f", alltoall_bytes(double(t.d), t.ranks, t.transforms_per_step) / 1e6) << " | "
-       << format("%.1e", t.energy_drift) << " | "
-       << (base && kind == "strong" ? format("%.1e", std::abs(t.sum_q - one->second.t.sum_q) /
-                                                         std::abs(one->second.t.sum_q))
-                                    : "-")
-       << " |\n";
-  }
+        "|---|---|---|---|---|---|"
+     << (versus > 0 ? "---|" : "") << "---|---|---|---|---|---|\n";
+  if (versus > 0) measured_row(md, serial->second, base, versus);
+  for (const auto& [key, r] : rows)
+    if (key.first == kind) measured_row(md, r, base, versus);
 }
 
 // Time per step predicted for d unknowns (grid side n) on P ranks: the measured local costs per
@@ -148,6 +160,11 @@ void write(const std::string& table, const std::string& markdown) {
           "session, so while other sessions keep the cores busy more ranks share the same CPU "
           "time and every all-to-all waits for descheduled ranks.";
   md << "\n\n## Strong scaling (fixed grid)\n\n";
+  if (rows.count({"serial", 1}))
+    md << "The first row is the serial library (erkn::Integrator in one process, no MPI: "
+          "`Integrator::step(n)`) on the same grid, method and step: what a user without MPI "
+          "runs. Its column \"serial Integrator's time / time\" is the speedup over it (below 1: "
+          "the distributed run is slower).\n\n";
   measured_table(md, rows, "strong");
   md << "\n## Weak scaling (fixed rows per rank)\n\n";
   measured_table(md, rows, "weak");

@@ -63,28 +63,48 @@ std::string describe(const std::vector<GridAxis>& axes) {
   return s;
 }
 
-Timing run(MPI_Comm comm, const Settings& s) {
-  const Stiffness M = Stiffness::grid(s.axes, s.shift);
-  const Slab slab = mpi::slab(comm, M);
-  Eigen::VectorXd q0(slab.size), p0 = Eigen::VectorXd::Zero(slab.size);
-  for (Eigen::Index k = 0; k < slab.size; ++k) {  // Gaussian bump exp(-8|x|^2)
+namespace {
+
+// The Gaussian bump exp(-8|x|^2) on the unknowns first .. first + size - 1 of the grid
+// (row-major, axis 0 slowest): a rank's slab, or the whole grid.
+Eigen::VectorXd bump(const std::vector<GridAxis>& axes, Eigen::Index first, Eigen::Index size) {
+  Eigen::VectorXd q0(size);
+  for (Eigen::Index k = 0; k < size; ++k) {
     Eigen::Index rest = k;
     double r2 = 0;
-    for (std::size_t a = s.axes.size(); a-- > 1;) {
-      const double x = coordinate(s.axes[a], rest % s.axes[a].n);
-      r2 += x * x, rest /= s.axes[a].n;
+    for (std::size_t a = axes.size(); a-- > 1;) {
+      const double x = coordinate(axes[a], rest % axes[a].n);
+      r2 += x * x, rest /= axes[a].n;
     }
-    const double x0 = coordinate(s.axes[0], slab.first + rest);
+    const double x0 = coordinate(axes[0], first + rest);
     r2 += x0 * x0;
     q0[k] = 2 * std::exp(-8 * r2);
   }
+  return q0;
+}
+
+System sine_gordon(const Stiffness& M) {
   System sys;
   sys.M = M;
   sys.gradient = [](const Eigen::VectorXd& q, Eigen::VectorXd& g) { g = q.array().sin(); };
   sys.potential = [](const Eigen::VectorXd& q) { return (1 - q.array().cos()).sum(); };
-  Options options;
-  options.blowup_guard = s.guard;
-  GridIntegrator run(comm, Method::by_name(s.method), sys, s.h, q0, p0, options);
+  return sys;
+}
+
+Options options(const Settings& s) {
+  Options o;
+  o.blowup_guard = s.guard;
+  return o;
+}
+
+}  // namespace
+
+Timing run(MPI_Comm comm, const Settings& s) {
+  const Stiffness M = Stiffness::grid(s.axes, s.shift);
+  const Slab slab = mpi::slab(comm, M);
+  const Eigen::VectorXd q0 = bump(s.axes, slab.first, slab.size);
+  GridIntegrator run(comm, Method::by_name(s.method), sine_gordon(M), s.h, q0,
+                     Eigen::VectorXd::Zero(slab.size), options(s));
   Timing t;
   MPI_Comm_size(comm, &t.ranks);
   t.d = long(M.dim());
@@ -115,6 +135,32 @@ Timing run(MPI_Comm comm, const Settings& s) {
   std::array<double, 2> sums{run.q().sum(), run.q().squaredNorm()};
   MPI_Allreduce(MPI_IN_PLACE, sums.data(), 2, MPI_DOUBLE, MPI_SUM, comm);
   t.sum_q = sums[0], t.norm_q = std::sqrt(sums[1]);
+  return t;
+}
+
+Timing run_serial(const Settings& s) {
+  const Stiffness M = Stiffness::grid(s.axes, s.shift);
+  Integrator run(Method::by_name(s.method), sine_gordon(M), s.h, bump(s.axes, 0, M.dim()),
+                 Eigen::VectorXd::Zero(M.dim()), options(s));
+  Timing t;
+  t.d = long(M.dim());
+  const double H0 = run.energy();
+  run.step();  // warm-up
+  t.seconds_per_step = 1e300;
+  for (int r = 0; r < s.repeats; ++r) {
+    const Statistics before = run.statistics();
+    const double start = MPI_Wtime();
+    const std::clock_t cpu_start = std::clock();
+    run.step(s.steps);  // (what a serial user calls: the state is loaded once, after the steps)
+    const double wall = (MPI_Wtime() - start) / s.steps;
+    if (wall < t.seconds_per_step)
+      t.seconds_per_step = wall,
+      t.cpu_seconds_per_step = double(std::clock() - cpu_start) / CLOCKS_PER_SEC / s.steps;
+    t.gradients_per_step =
+        double(run.statistics().gradient_evaluations - before.gradient_evaluations) / s.steps;
+  }
+  t.energy_drift = std::abs(run.energy() - H0) / std::abs(H0);
+  t.sum_q = run.q().sum(), t.norm_q = run.q().norm();
   return t;
 }
 

@@ -38,5 +38,8 @@ struct Timing {
 
 /// Integrates repeats x steps (after one warm-up step) and times each block (collective).
 Timing run(MPI_Comm comm, const Settings& s);
+/// The same scene through the serial library (erkn::Integrator, this process alone, step(steps)
+/// per block): what the distributed runs are measured against. Transforms are not counted (0).
+Timing run_serial(const Settings& s);
 
 }  // namespace erkn::mpi::scene
