@@ -97,6 +97,35 @@ Options options(const Settings& s) {
   return o;
 }
 
+// One timed block of s.steps steps: wall, transform and CPU seconds, transforms executed.
+struct Block {
+  double wall = 0, transform_seconds = 0, cpu = 0;
+  long transforms = 0;
+};
+
+// The energy drift and the best of s.repeats blocks (take() runs one) after one warm-up step.
+template <class Run, class Take>
+Timing timed(Run& run, const Settings& s, Take take) {
+  Timing t;
+  const double H0 = run.energy();
+  run.step();  // warm-up
+  t.seconds_per_step = 1e300;
+  for (int r = 0; r < s.repeats; ++r) {
+    const Statistics before = run.statistics();
+    const Block b = take();
+    if (b.wall / s.steps < t.seconds_per_step) {
+      t.seconds_per_step = b.wall / s.steps;
+      t.transform_seconds_per_step = b.transform_seconds / s.steps;
+      t.cpu_seconds_per_step = b.cpu / s.steps;
+    }
+    t.transforms_per_step = double(b.transforms) / s.steps;
+    t.gradients_per_step =
+        double(run.statistics().gradient_evaluations - before.gradient_evaluations) / s.steps;
+  }
+  t.energy_drift = std::abs(run.energy() - H0) / std::abs(H0);
+  return t;
+}
+
 }  // namespace
 
 Timing run(MPI_Comm comm, const Settings& s) {
@@ -105,14 +134,7 @@ Timing run(MPI_Comm comm, const Settings& s) {
   const Eigen::VectorXd q0 = bump(s.axes, slab.first, slab.size);
   GridIntegrator run(comm, Method::by_name(s.method), sine_gordon(M), s.h, q0,
                      Eigen::VectorXd::Zero(slab.size), options(s));
-  Timing t;
-  MPI_Comm_size(comm, &t.ranks);
-  t.d = long(M.dim());
-  const double H0 = run.energy();
-  run.step();  // warm-up
-  t.seconds_per_step = 1e300;
-  for (int r = 0; r < s.repeats; ++r) {
-    const Statistics before = run.statistics();
+  Timing t = timed(run, s, [&] {  // (times of the slowest rank)
     const long transforms = run.transforms();
     const double transform_seconds = run.transform_seconds();
     MPI_Barrier(comm);
@@ -122,16 +144,10 @@ Timing run(MPI_Comm comm, const Settings& s) {
     std::array<double, 3> times{MPI_Wtime() - start, run.transform_seconds() - transform_seconds,
                                 double(std::clock() - cpu_start) / CLOCKS_PER_SEC};
     MPI_Allreduce(MPI_IN_PLACE, times.data(), 3, MPI_DOUBLE, MPI_MAX, comm);
-    if (times[0] / s.steps < t.seconds_per_step) {
-      t.seconds_per_step = times[0] / s.steps;
-      t.transform_seconds_per_step = times[1] / s.steps;
-      t.cpu_seconds_per_step = times[2] / s.steps;
-    }
-    t.transforms_per_step = double(run.transforms() - transforms) / s.steps;
-    t.gradients_per_step =
-        double(run.statistics().gradient_evaluations - before.gradient_evaluations) / s.steps;
-  }
-  t.energy_drift = std::abs(run.energy() - H0) / std::abs(H0);
+    return Block{times[0], times[1], times[2], run.transforms() - transforms};
+  });
+  MPI_Comm_size(comm, &t.ranks);
+  t.d = long(M.dim());
   std::array<double, 2> sums{run.q().sum(), run.q().squaredNorm()};
   MPI_Allreduce(MPI_IN_PLACE, sums.data(), 2, MPI_DOUBLE, MPI_SUM, comm);
   t.sum_q = sums[0], t.norm_q = std::sqrt(sums[1]);
@@ -142,24 +158,13 @@ Timing run_serial(const Settings& s) {
   const Stiffness M = Stiffness::grid(s.axes, s.shift);
   Integrator run(Method::by_name(s.method), sine_gordon(M), s.h, bump(s.axes, 0, M.dim()),
                  Eigen::VectorXd::Zero(M.dim()), options(s));
-  Timing t;
-  t.d = long(M.dim());
-  const double H0 = run.energy();
-  run.step();  // warm-up
-  t.seconds_per_step = 1e300;
-  for (int r = 0; r < s.repeats; ++r) {
-    const Statistics before = run.statistics();
+  Timing t = timed(run, s, [&] {  // (transforms not counted)
     const double start = MPI_Wtime();
     const std::clock_t cpu_start = std::clock();
     run.step(s.steps);  // (what a serial user calls: the state is loaded once, after the steps)
-    const double wall = (MPI_Wtime() - start) / s.steps;
-    if (wall < t.seconds_per_step)
-      t.seconds_per_step = wall,
-      t.cpu_seconds_per_step = double(std::clock() - cpu_start) / CLOCKS_PER_SEC / s.steps;
-    t.gradients_per_step =
-        double(run.statistics().gradient_evaluations - before.gradient_evaluations) / s.steps;
-  }
-  t.energy_drift = std::abs(run.energy() - H0) / std::abs(H0);
+    return Block{MPI_Wtime() - start, 0, double(std::clock() - cpu_start) / CLOCKS_PER_SEC, 0};
+  });
+  t.d = long(M.dim());
   t.sum_q = run.q().sum(), t.norm_q = run.q().norm();
   return t;
 }
