@@ -6,6 +6,7 @@
 
 #include "circulant_transform.hpp"
 #include "erkn/error.hpp"
+#include "periodic_slab_transform.hpp"
 #include "slab_transform.hpp"
 
 namespace erkn::mpi::detail {
@@ -25,12 +26,17 @@ LocalPart local_part(MPI_Comm comm, const Stiffness& M) {
     const CirculantLayout l = circulant_layout(comm, ptrdiff_t(M.dim()));
     return {Eigen::Index(l.first_in), Eigen::Index(l.count_in), Eigen::Index(l.count_in)};
   }
+  if (all_periodic(M)) {
+    const PeriodicSlabLayout l = periodic_slab_layout(comm, M);
+    return {Eigen::Index(l.first0), Eigen::Index(l.rows0), l.physical_size};
+  }
   const SlabLayout l = slab_layout(comm, M);  // (refuses other forms of M)
   return {Eigen::Index(l.first0), Eigen::Index(l.rows0), l.physical_size};
 }
 
 std::unique_ptr<DistributedTransform> distributed_transform(MPI_Comm comm, const Stiffness& M) {
   if (circulant(M)) return std::make_unique<CirculantTransform>(comm, M);
+  if (all_periodic(M)) return std::make_unique<PeriodicSlabTransform>(comm, M);
   return std::make_unique<SlabTransform>(comm, M);
 }
 

@@ -3,8 +3,10 @@
 // unknowns (rows first_row() .. of axis 0 of a grid, entries first_row() .. of a circulant
 // vector; physical_size() unknowns) and a part of the eigen coordinates (spectral_size(), each
 // with its eigenvalue of M and its norm weight: |x|^2 = the sum over every rank of W y^2).
-// Implementations: SlabTransform (grids of two or more axes, slab_transform.hpp) and
-// CirculantTransform (circulant M, circulant_transform.hpp); a new form of M is one more.
+// Implementations: PeriodicSlabTransform (grids of two or more axes, all periodic:
+// periodic_slab_transform.hpp), SlabTransform (other grids of two or more axes,
+// slab_transform.hpp) and CirculantTransform (circulant M, circulant_transform.hpp); a new form
+// of M is one more.
 #pragma once
 
 #include <mpi.h>

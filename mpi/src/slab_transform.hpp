@@ -1,4 +1,6 @@
-// The transforms into M's eigenbasis for a tensor grid distributed in slabs, with FFTW-MPI.
+// The transforms into M's eigenbasis for a tensor grid distributed in slabs, with FFTW-MPI (grids
+// with a Dirichlet or Neumann axis; all-periodic grids take periodic_slab_transform.hpp's faster
+// real-to-complex DFT).
 //
 // Per axis the real transform of erkn::GridAxis (periodic: R2HC / HC2R; Dirichlet: RODFT00 both
 // ways; Neumann: REDFT10 / REDFT01). The forward transform ends transposed
