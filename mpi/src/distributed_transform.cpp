@@ -16,6 +16,17 @@ bool circulant(const Stiffness& M) { return M.structure() == Stiffness::Structur
 
 }  // namespace
 
+Eigen::ArrayXd outer(const std::vector<Eigen::ArrayXd>& factors, bool product) {
+  Eigen::ArrayXd acc = Eigen::ArrayXd::Constant(1, product ? 1.0 : 0.0);
+  for (const Eigen::ArrayXd& f : factors) {
+    Eigen::ArrayXd next(acc.size() * f.size());
+    for (Eigen::Index i = 0; i < acc.size(); ++i)
+      next.segment(i * f.size(), f.size()) = product ? (acc[i] * f).eval() : (acc[i] + f).eval();
+    acc.swap(next);
+  }
+  return acc;
+}
+
 void init_fftw_mpi() {
   static std::once_flag once;
   std::call_once(once, [] { fftw_mpi_init(); });

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <vector>
 
 #include "erkn/stiffness.hpp"
 
@@ -73,6 +74,10 @@ LocalPart local_part(MPI_Comm comm, const Stiffness& M);
 
 /// The transform for M (collective; the same errors as local_part).
 std::unique_ptr<DistributedTransform> distributed_transform(MPI_Comm comm, const Stiffness& M);
+
+/// The outer sum (product = false: eigenvalues) or product (weights) of per-axis factors,
+/// row-major.
+Eigen::ArrayXd outer(const std::vector<Eigen::ArrayXd>& factors, bool product);
 
 /// fftw_mpi_init, once per process.
 void init_fftw_mpi();

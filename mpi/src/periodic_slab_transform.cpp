@@ -6,16 +6,9 @@
 namespace erkn::mpi::detail {
 namespace {
 
-// The outer sum (eigenvalues) or product (weights) of per-axis factors, row-major, each entry
-// twice (the real and imaginary parts of a complex entry).
+// outer() with each entry twice (the real and imaginary parts of a complex entry).
 Eigen::ArrayXd outer_pairs(const std::vector<Eigen::ArrayXd>& factors, bool product) {
-  Eigen::ArrayXd acc = Eigen::ArrayXd::Constant(1, product ? 1.0 : 0.0);
-  for (const Eigen::ArrayXd& f : factors) {
-    Eigen::ArrayXd next(acc.size() * f.size());
-    for (Eigen::Index i = 0; i < acc.size(); ++i)
-      next.segment(i * f.size(), f.size()) = product ? (acc[i] * f).eval() : (acc[i] + f).eval();
-    acc.swap(next);
-  }
+  const Eigen::ArrayXd acc = outer(factors, product);
   Eigen::ArrayXd pairs(2 * acc.size());
   for (Eigen::Index i = 0; i < acc.size(); ++i) pairs[2 * i] = pairs[2 * i + 1] = acc[i];
   return pairs;

@@ -29,18 +29,6 @@ AxisKind kind_of(const GridAxis& a) {
   throw Error("unknown grid boundary");
 }
 
-// The outer sum (eigenvalues) or product (weights) of per-axis factors, row-major.
-Eigen::ArrayXd outer(const std::vector<Eigen::ArrayXd>& factors, bool product) {
-  Eigen::ArrayXd acc = Eigen::ArrayXd::Constant(1, product ? 1.0 : 0.0);
-  for (const Eigen::ArrayXd& f : factors) {
-    Eigen::ArrayXd next(acc.size() * f.size());
-    for (Eigen::Index i = 0; i < acc.size(); ++i)
-      next.segment(i * f.size(), f.size()) = product ? (acc[i] * f).eval() : (acc[i] + f).eval();
-    acc.swap(next);
-  }
-  return acc;
-}
-
 }  // namespace
 
 SlabLayout slab_layout(MPI_Comm comm, const Stiffness& M) {
