@@ -80,17 +80,27 @@ class StageSolver {
     std::optional<Gmres> gmres;
   };
 
+  // A fixed-point iteration's change: X = |dQ|^2, N = the larger squared norm of the two
+  // iterates (delta^2 = X / N), or (delta^2, 1) at extreme norms (in_range).
+  struct Change {
+    double X, N;
+  };
+  enum class Verdict { iterate, converged, failed };
+
   void solve_stage(int i, Statistics& stats);
   template <class State>
   void start_stage(int i, const State& q_hat, const State& p_hat);
   bool fixed_point(int i, Statistics& stats);
-  bool reset_tightening(double delta, double delta_old, int& extra) const;
+  Verdict verdict(int i, int it, Change c, double delta_old, int& extra) const;
+  static bool within(Change c, double delta_old, double tol);
+  static Change in_range(double change2, double norm2);
+  bool reset_tightening(Change c, double delta_old, int& extra) const;
   static double relative_change2(double change2, double norm2);
-  bool too_slow(int i, int it, double delta, double delta_old) const;
-  bool contraction_proves(int i, double delta2);
+  bool too_slow(int i, int it, double theta, double delta_old) const;
+  bool contraction_proves(int i, Change c);
   static bool measures_contraction(double delta_first);
-  void record_contraction(int i, double change_first, double delta, double delta_first,
-                          double measure);
+  void record_contraction(int i, double change_first, Change c, double delta_first, double measure);
+  static double square(double x) { return x * x; }
 
   // stage_newton.hpp
   void newton(int i, Statistics& stats);
@@ -150,6 +160,7 @@ class StageSolver {
   static constexpr double kResetShare = 0.01;
   static constexpr int kResetExtra = 4;
   static constexpr double kEps = std::numeric_limits<double>::epsilon();
+  static constexpr double kLowNorm2 = 1e-100, kHighNorm2 = 1e100;  // (in_range)
 
   const Method& method_;
   int s_;  // stages

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <vector>
 
 #include "problems.hpp"
 
@@ -118,6 +119,77 @@ TEST(StageSolver, StepsAgreeWithADirectSolutionOfTheStageEquationsAndNewtonTakes
         }
       }
   }
+}
+
+// The fixed point's stopping rule (tested on squared sums, no divide or square root: stage_fixed_
+// point.hpp) stops only once the stage has converged to the stated tolerance. On q'' + 9 q = -k q
+// (g = k Q: each stage's iteration Q <- r - theta Q contracts by theta = h^2 abar_ii k, and
+// Q* = r / (1 + theta) is exact), the calls of the gradient are replayed stage by stage: a call is
+// the next iterate of the stage when it is r - theta times the call before (that segments the
+// calls; every call must find its stage). The stage's result is the iterate its last gradient
+// defines, r - theta Q_last; property: within tolerance |Q*| of Q* (tolerance 1e-8, far above
+// round-off), for every implicit method, k = 5 and 30, first steps and first-iteration stops
+// included (steps where a stage fell back to Newton, whose calls are no fixed point, are not
+// replayed: at k = 30 some, where Newton's last solve was cheaper than the iterations left).
+// Negative control: the result one iteration earlier (Q_last itself) misses the tolerance in
+// some stages, so the rule did not just iterate to round-off.
+TEST(StageSolver, FixedPointStopsOnlyWhenTheStageIsWithinTheTolerance) {
+  const double w2 = 9, h = 0.1, tolerance = 1e-8;
+  long stages = 0, earlier_misses = 0;
+  for (const Method& m : Method::all()) {
+    if (m.is_explicit()) continue;
+    for (const double k : {5.0, 30.0}) {
+      SCOPED_TRACE(std::string(m.name()) + " k = " + std::to_string(k));
+      std::vector<double> calls;
+      System s;
+      s.M = Stiffness::scalar(w2);
+      s.gradient = [k, &calls](const Eigen::VectorXd& q, Eigen::VectorXd& g) {
+        calls.push_back(q[0]);
+        g = k * q;
+      };
+      Options o;
+      o.tolerance = tolerance;
+      Integrator run(m, s, h, Eigen::VectorXd::Constant(1, 0.8), Eigen::VectorXd::Constant(1, -0.3),
+                     o);
+      const bool rkn = m.kind() == Kind::rkn;
+      const double v = rkn ? 0 : h * h * w2, ke = rkn ? k + w2 : k;  // (RKN: G = (k + w2) Q)
+      const Coefficients co = m.at(v);
+      auto phi0 = [](double v) { return std::cos(std::sqrt(v)); };
+      auto phi1 = [](double v) { return v == 0 ? 1.0 : std::sin(std::sqrt(v)) / std::sqrt(v); };
+      for (int n = 0; n < 30; ++n) {
+        const double q = run.q()[0], p = run.p()[0];
+        calls.clear();
+        const long fallbacks = run.statistics().newton_fallbacks;
+        run.step();
+        if (run.statistics().newton_fallbacks > fallbacks) continue;  // (Newton's calls: no replay)
+        double g[kMaxStages];
+        size_t next = 0;  // the stage's first call
+        for (int i = 0; i < co.s; ++i) {
+          const double c = co.c[i], theta = h * h * co.abar(i, i) * ke;
+          double r = phi0(c * c * v) * q + h * c * phi1(c * c * v) * p;
+          for (int j = 0; j < i; ++j) r -= h * h * co.abar(i, j) * g[j];
+          const double exact = r / (1 + theta), scale = std::abs(exact) + std::abs(r);
+          size_t last = next;
+          while (last + 1 < calls.size() &&
+                 std::abs(calls[last + 1] - (r - theta * calls[last])) <= 1e-12 * scale)
+            ++last;
+          ASSERT_LT(last, calls.size());
+          EXPECT_LE(std::abs(r - theta * calls[last] - exact),
+                    1.01 * tolerance * std::abs(exact) + 1e-15 * scale);
+          earlier_misses +=
+              last > next && std::abs(calls[last] - exact) > tolerance * std::abs(exact);
+          g[i] = ke * calls[last];
+          next = last + 1;
+          ++stages;
+        }
+        EXPECT_EQ(next, calls.size());  // (every call replayed)
+      }
+    }
+  }
+  std::printf("%ld stages; one iteration earlier %ld would miss the tolerance\n", stages,
+              earlier_misses);
+  EXPECT_GT(stages, 1000);
+  EXPECT_GT(earlier_misses, 0);
 }
 
 // A first iteration stops when the contraction theta, measured along the first update of an
