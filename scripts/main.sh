@@ -17,8 +17,11 @@ cmake --build "$build" -j 2
 "$build"/scaling/erkn-ensemble-speedup --out docs
 # What users call (Integrator construction + integrate) against the loop a specialist writes
 # (issue 17; built with FFTW), short mode, twice: the second run writes docs/benchmarks.md with
-# its per-cell spread against the first.
+# its per-cell spread against the first. Both plan their FFTW transforms from one wisdom file
+# (ERKN_FFTW_WISDOM, runtime/src/fftw_backend.cpp), so their implicit runs do the same
+# iterations rather than differ at round-off with each process's FFTW_MEASURE plans.
 if [ -x "$build"/bench/erkn_integrate_benchmark ]; then
+  export ERKN_FFTW_WISDOM="$build"/fftw_wisdom
   "$build"/bench/erkn_integrate_benchmark --short --csv "$build"/benchmarks_first.csv > /dev/null
   "$build"/bench/erkn_integrate_benchmark --short --csv "$build"/benchmarks_second.csv \
     --compare "$build"/benchmarks_first.csv --markdown docs/benchmarks.md > /dev/null
