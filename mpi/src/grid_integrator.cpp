@@ -2,9 +2,12 @@
 // the library's stage solver (runtime/src/stage_solver.hpp: predictor, fixed point with the
 // first-iteration stop, Newton-Krylov fallback) over the slab space (slab_space.hpp), whose
 // reduce is one MPI_Allreduce that also carries the check that every rank's gradient was good, so
-// all ranks take every decision together. The state stays in physical coordinates between steps
-// (q() and p() are this rank's slab without a collective call). The blow-up guard is
-// erkn::Integrator's (runtime/src/blowup_guard.hpp), its sums reduced by the same reduce.
+// all ranks take every decision together. Between the steps of one call the state stays in M's
+// eigenbasis (with the compensated sums' errors there), as erkn::Integrator keeps it: a step
+// transforms only its stages, and the physical state is loaded (two inverse transforms) when a
+// call returns, before a check of the blow-up guard and for energy(), so q() and p() are this
+// rank's slab without a collective call. The blow-up guard is erkn::Integrator's
+// (runtime/src/blowup_guard.hpp), its sums reduced by the same reduce.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -52,14 +55,15 @@ struct Stages {
   Solver solver;
 };
 
-/// This rank's slab of the state and of a step's increments, physical and in eigen coordinates.
+/// This rank's slab of the state: in eigen coordinates (q_hat, p_hat and their compensated
+/// sums' errors) while stepping, physical (q, p) when loaded; and a step's increments.
 struct SlabState {
-  explicit SlabState(Eigen::Index n, Eigen::Index m) {
-    for (Eigen::VectorXd* x : {&q_error, &p_error, &dq, &dp}) x->setZero(n);
-    for (Eigen::ArrayXd* a : {&q_hat, &p_hat, &dq_hat, &dp_hat}) a->setZero(m);
+  explicit SlabState(Eigen::Index m) {
+    for (Eigen::ArrayXd* a : {&q_hat, &p_hat, &q_error, &p_error, &dq_hat, &dp_hat}) a->setZero(m);
   }
-  Eigen::VectorXd q, p, q_error, p_error, dq, dp;
-  Eigen::ArrayXd q_hat, p_hat, dq_hat, dp_hat;
+  Eigen::VectorXd q, p;
+  Eigen::ArrayXd q_hat, p_hat, q_error, p_error, dq_hat, dp_hat;
+  bool physical = true, spectral = false;  // which of the two is the current state
 };
 
 class GridStepper {
@@ -79,7 +83,7 @@ class GridStepper {
         lambda_(method.kind() == Kind::rkn ? Eigen::VectorXd::Zero(T_.spectral_size()).eval()
                                            : Eigen::VectorXd(T_.eigenvalues().matrix())),
         stages_(method_, system_, options_, space_, h, lambda_),
-        x_(T_.physical_size(), T_.spectral_size()) {
+        x_(T_.spectral_size()) {
     slab_ = {T_.first_row(), T_.rows(), T_.physical_size()};
     x_.q = q0, x_.p = p0;
     guard_.start(options_.blowup_guard);  // (its reference, at the checkpoint: when first needed)
@@ -104,8 +108,12 @@ class GridStepper {
   void step(bool short_step = false) {
     Stages& st = short_step ? *short_ : stages_;
     if (short_step) st.solver.reset();
-    space_.forward(x_.q, x_.q_hat);
-    space_.forward(x_.p, x_.p_hat);
+    if (!x_.spectral) {  // (after construction or a restored checkpoint)
+      space_.forward(x_.q, x_.q_hat);
+      space_.forward(x_.p, x_.p_hat);
+      x_.q_error.setZero(), x_.p_error.setZero();
+      x_.spectral = true;
+    }
     Statistics counts;  // (added once the step has succeeded)
     st.solver.solve(x_.q_hat, x_.p_hat, {&method_, statistics_.steps + 1, grid_.t()}, counts);
     update(st);
@@ -129,7 +137,31 @@ class GridStepper {
 
   double energy() {
     if (!system_.potential) throw Error("energy() needs System::potential");
+    load();
     return sums(x_.q, x_.p, true).H();
+  }
+
+  /// steps(), then the physical state loaded, also when steps() throws (its errors are thrown
+  /// on every rank alike): the state of the last step that succeeded.
+  template <class Steps>
+  void loaded(Steps&& steps) {
+    try {
+      steps();
+    } catch (...) {
+      load();
+      throw;
+    }
+    load();
+  }
+
+  /// The physical state from the eigen coordinates, if it is not current (collective).
+  void load() {
+    if (x_.physical) return;
+    x_.dq_hat = x_.q_hat + x_.q_error;  // (the increments' storage is free between steps)
+    x_.dp_hat = x_.p_hat + x_.p_error;
+    space_.inverse(x_.dq_hat, x_.q);
+    space_.inverse(x_.dp_hat, x_.p);
+    x_.physical = true;
   }
 
   Eigen::VectorXd gather(const Eigen::VectorXd& local) const {
@@ -156,11 +188,11 @@ class GridStepper {
 
  private:
   // E_2 = 1/2|p|^2 + 1/2 q'M q (q'M q by Parseval in eigen coordinates) and, with_U, U(q) over
-  // every rank (the slabs' parts summed by the space's reduce). x_.q_hat is free between steps.
+  // every rank (the slabs' parts summed by the space's reduce). x_.dq_hat is free between steps.
   BlowupGuard::Sums sums(const Eigen::VectorXd& q, const Eigen::VectorXd& p, bool with_U) {
-    T_.forward(q, x_.q_hat);
+    T_.forward(q, x_.dq_hat);
     std::array<double, 2> local{
-        0.5 * p.squaredNorm() + 0.5 * (T_.weights() * T_.eigenvalues() * x_.q_hat.square()).sum(),
+        0.5 * p.squaredNorm() + 0.5 * (T_.weights() * T_.eigenvalues() * x_.dq_hat.square()).sum(),
         0.0};
     if (with_U) collectively(comm_, [&] { local[1] = system_.potential(q); });
     const std::array<double, 2> all = space_.reduce(local);
@@ -172,6 +204,7 @@ class GridStepper {
   // the run stops. After a step that failed with `failure`, a passed check changes nothing (the
   // caller rethrows the failure).
   void check_guard(const char* failure = nullptr) {
+    load();  // (a failed step changed nothing: the state before it)
     const bool potential = bool(system_.potential);
     if (guard_.pending()) {
       const BlowupGuard::Checkpoint& c = guard_.checkpoint();
@@ -197,7 +230,7 @@ class GridStepper {
   void restore_checkpoint() {
     const BlowupGuard::Checkpoint& c = guard_.checkpoint();
     x_.q = c.q, x_.p = c.p;
-    x_.q_error.setZero(), x_.p_error.setZero();
+    x_.physical = true, x_.spectral = false;
     grid_ = c.grid, statistics_.steps = c.steps;
     stages_.solver.reset();  // (its history is of the steps after the checkpoint)
   }
@@ -209,7 +242,7 @@ class GridStepper {
         grid_.h());
   }
 
-  // Eq. (d)'s update from the solved stages, added to the state (physical) at the end.
+  // Eq. (d)'s update from the solved stages, added to the state (eigen coordinates) at the end.
   void update(Stages& st) {
     const StepCoefficients<Eigen::ArrayXd>& k = st.k;
     x_.dq_hat = k.phi0m1() * x_.q_hat + k.hphi1() * x_.p_hat;
@@ -218,14 +251,13 @@ class GridStepper {
       x_.dq_hat -= k.h2bbar(i) * st.solver.G(i);
       x_.dp_hat -= k.hb(i) * st.solver.G(i);
     }
-    space_.inverse(x_.dq_hat, x_.dq);
-    space_.inverse(x_.dp_hat, x_.dp);
-    add(x_.q, x_.q_error, x_.dq);
-    add(x_.p, x_.p_error, x_.dp);
+    add(x_.q_hat, x_.q_error, x_.dq_hat);
+    add(x_.p_hat, x_.p_error, x_.dp_hat);
+    x_.physical = false;
   }
 
   // x += dx, Kahan-compensated when enabled (the library's update, compensated_sum.hpp).
-  void add(Eigen::VectorXd& x, Eigen::VectorXd& error, Eigen::VectorXd& dx) {
+  void add(Eigen::ArrayXd& x, Eigen::ArrayXd& error, Eigen::ArrayXd& dx) {
     if (options_.compensated_summation)
       erkn::detail::compensated_add(x, error, dx);
     else
@@ -290,7 +322,8 @@ GridIntegrator& GridIntegrator::operator=(GridIntegrator&&) noexcept = default;
 void GridIntegrator::step() {
   // A failed step leaves q, p unchanged (they are only written at its end); a failed check of the
   // blow-up guard restores the state of the last check that passed.
-  stepper_->guarded_step();
+  detail::GridStepper& s = *stepper_;
+  s.loaded([&] { s.guarded_step(); });
 }
 
 void GridIntegrator::integrate(double t_end) {
@@ -301,8 +334,10 @@ void GridIntegrator::integrate(double t_end) {
   const TimeGrid::Plan plan = s.grid_.plan_to(t_end);
   if (plan.shorter)
     detail::collectively(s.comm_, [&] { s.prepare_short(t_end - s.grid_.ahead(plan.whole)); });
-  for (long k = 0; k < plan.whole; ++k) s.guarded_step();
-  if (plan.shorter) s.guarded_step(t_end);
+  s.loaded([&] {
+    for (long k = 0; k < plan.whole; ++k) s.guarded_step();
+    if (plan.shorter) s.guarded_step(t_end);
+  });
 }
 
 const Eigen::VectorXd& GridIntegrator::q() const { return stepper_->x_.q; }

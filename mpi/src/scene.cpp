@@ -140,7 +140,7 @@ Timing run(MPI_Comm comm, const Settings& s) {
     MPI_Barrier(comm);
     const double start = MPI_Wtime();
     const std::clock_t cpu_start = std::clock();
-    for (int k = 0; k < s.steps; ++k) run.step();
+    run.integrate(run.t() + s.steps * s.h);  // (what a user calls: the state loaded once)
     std::array<double, 3> times{MPI_Wtime() - start, run.transform_seconds() - transform_seconds,
                                 double(std::clock() - cpu_start) / CLOCKS_PER_SEC};
     MPI_Allreduce(MPI_IN_PLACE, times.data(), 3, MPI_DOUBLE, MPI_MAX, comm);
@@ -161,7 +161,7 @@ Timing run_serial(const Settings& s) {
   Timing t = timed(run, s, [&] {  // (transforms not counted)
     const double start = MPI_Wtime();
     const std::clock_t cpu_start = std::clock();
-    run.step(s.steps);  // (what a serial user calls: the state is loaded once, after the steps)
+    run.step(s.steps);  // (what a serial user calls: the state loaded once)
     return Block{MPI_Wtime() - start, 0, double(std::clock() - cpu_start) / CLOCKS_PER_SEC, 0};
   });
   t.d = long(M.dim());

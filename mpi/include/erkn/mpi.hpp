@@ -3,16 +3,16 @@
 // GridIntegrator integrates q'' + M q = -grad U(q) for M = Stiffness::grid (two or more axes)
 // with the state distributed in slabs along axis 0 over the ranks of a communicator (FFTW-MPI's
 // layout), or for M = Stiffness::circulant (a 1-D periodic operator) with the vector distributed
-// in contiguous blocks (FFTW-MPI's 1-D DFT; slab() says which entries a rank owns). Per step the only communication is the transforms into M's eigenbasis (FFTW-MPI,
-// transposed output: one all-to-all per transform) and one MPI_Allreduce per stage iteration
-// (the stage solver's norms); the coefficients act on each rank's spectral rows and grad U on
-// each rank's slab. The step is eq. (d) of the paper with erkn::Integrator's stage solver
-// (runtime/src/stage_solver.hpp, the same code over a distributed space): fixed-point iteration
-// from predicted starting values, with its first-iteration stop, and matrix-free Newton-Krylov
-// where it fails, every norm and dot product summed over the ranks. With the stages solved to
-// round-off the result agrees with erkn::Integrator's on the whole grid to round-off (the sums
-// over the ranks and FFTW-MPI round differently); at the default tolerance the two differ by
-// about that tolerance.
+// in contiguous blocks (FFTW-MPI's 1-D DFT; slab() says which entries a rank owns). Per step the
+// only communication is the transforms into M's eigenbasis (FFTW-MPI, transposed output: one
+// all-to-all per transform) and one MPI_Allreduce per stage iteration (the stage solver's norms);
+// the coefficients act on each rank's spectral rows and grad U on each rank's slab. The step is eq.
+// (d) of the paper with erkn::Integrator's stage solver (runtime/src/stage_solver.hpp, the same
+// code over a distributed space): fixed-point iteration from predicted starting values, with its
+// first-iteration stop, and matrix-free Newton-Krylov where it fails, every norm and dot product
+// summed over the ranks. With the stages solved to round-off the result agrees with
+// erkn::Integrator's on the whole grid to round-off (the sums over the ranks and FFTW-MPI round
+// differently); at the default tolerance the two differ by about that tolerance.
 //
 // The System's callbacks see the rank's slab: gradient must be pointwise (grad U(q)_j depends on
 // q_j only, as for sine-Gordon or phi^4), and potential returns the slab's part of U (the
@@ -108,7 +108,9 @@ class GridIntegrator {
   void step();
   /// Steps to t_end as Integrator::integrate does: whole steps of h to the last grid point before
   /// t_end, then (off the grid) one shorter step with the method's coefficients at its size; the
-  /// blow-up guard stops it as step() does.
+  /// blow-up guard stops it as step() does. Between its steps the state stays in M's eigenbasis
+  /// (a step transforms only its stages; step() in a loop also loads the physical state after
+  /// each step: two more transforms).
   void integrate(double t_end);
 
   /// This rank's slab of the state.
