@@ -44,8 +44,12 @@ Run automatic(const Scene& s, double tol) {
   const double t0 = bench::thread_seconds();
   const erkn::Solution sol = erkn::solve(erkn::problems::system(s.problem), s.problem.q0,
                                          s.problem.p0, 0, s.problem.t_error, r);
-  Run out{sol.method, sol.h, (sol.q - s.reference).lpNorm<Eigen::Infinity>(),
-          bench::thread_seconds() - t0, sol.choice->pilot_cpu};
+  Run out{sol.method,
+          sol.h,
+          (sol.q - s.reference).lpNorm<Eigen::Infinity>(),
+          bench::thread_seconds() - t0,
+          sol.choice->pilot_cpu,
+          sol.choice->estimated_error};
   return out;
 }
 
@@ -141,6 +145,7 @@ std::string fixed_digits(double x, int digits = 2) {
 std::string markdown_row(const Row& r) {
   return "| " + r.scene + " | " + sci(r.tol, 0) + " | " + r.automatic.method + " | " +
          sci(r.automatic.h) + " | " + sci(r.automatic.error) + " | " +
+         fixed_digits(r.automatic.estimate / r.automatic.error) + " | " +
          (r.window ? "met" : "**NOT met**") + " | " + r.best.method + " | " + sci(r.best.h) +
          " | " + sci(r.best.error) + " | " + fixed_digits(r.ratios.choice) + " | " +
          fixed_digits(r.ratios.one_pilot) + " | " + fixed_digits(r.ratios.whole) + " | " +
@@ -234,13 +239,16 @@ std::string markdown(const std::vector<Row>& rows, const std::string& notes, con
       "best': the least a choice that measures the problem can spend (one step-doubling "
       "attempt of the chosen method and h over t_end/32: two integrators built, no search, no "
       "advisor) over the best run; where it exceeds 0.5, 1.5x needs a run cheaper than the "
-      "best, i.e. is out of reach for such a choice.\n\n"
+      "best, i.e. is out of reach for such a choice. 'estimate / error': the choice's estimated "
+      "error at t_end (the pilot's step-doubling estimate grown linearly over t_end, carried to "
+      "the chosen h by the error model) over the achieved error; above 1 the step is smaller "
+      "than tol needs.\n\n"
       "Error window met in " +
       std::to_string(window) + " / " + std::to_string(rows.size()) + " cases, CPU <= 1.5x in " +
       std::to_string(cheap) + " / " + std::to_string(rows.size()) +
-      ".\n\n| scene | tol | auto | h | error | window | sweep's best | h | error | choice "
-      "CPU / best | one pilot attempt / best | CPU ratio | <= 1.5x "
-      "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      ".\n\n| scene | tol | auto | h | error | estimate / error | window | sweep's best | h | "
+      "error | choice CPU / best | one pilot attempt / best | CPU ratio | <= 1.5x "
+      "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Row& r : rows) out += markdown_row(r);
   return out + "\n" + notes + tally_table(tally);
 }

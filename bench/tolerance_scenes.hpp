@@ -56,6 +56,7 @@ struct Run {
   std::string method;
   double h = 0, error = kInf, cpu = kInf;
   double choice_cpu = 0;  // of erkn::solve: the choice (pilot, Hessian bounds, advisor) within cpu
+  double estimate = 0;    // of erkn::solve: the choice's estimated error at t_end
 };
 
 /// One fixed-step run as a user calls it: construction + integrate; error at t_error.

@@ -81,6 +81,8 @@ struct Search {
   double F = 1;                 // the problem factor of the model, from the first pilot
   double cpu_per_gradient = 0;  // of the first pilot
   std::map<const Method*, detail::ErrorShape> shapes;  // each candidate's, at r (made once)
+  std::map<const Method*, Candidate> modelled;  // each candidate's model prediction (fixed by F)
+  double relief = 1;  // the growth probe's measured growth over the pilot's linear one
 };
 
 const detail::ErrorShape& shape_of(const Search& s, const Method& m) { return s.shapes.at(&m); }
@@ -98,6 +100,15 @@ detail::PilotRequest shaped(const Search& s, const Method& m) {
   return r;
 }
 
+// m's step and CPU from the model calibrated by the first pilot (F, cost per gradient).
+Candidate modelled(const Method& m, const Search& s) {
+  Candidate c{std::string(m.name()), false, 0, s.target, 0};
+  const double span = s.pilot.span;
+  c.h = shape_of(s, m).step_at(s.target / (span * s.F), span);
+  c.predicted_cpu = s.cpu_per_gradient * gradients_per_step(m) * std::ceil(span / c.h);
+  return c;
+}
+
 // The predicted step, error and CPU of m: from its own pilot, else from the calibrated model.
 Candidate predict(const Method& m, const Search& s) {
   Candidate c{std::string(m.name()), false, 0, s.target, 0};
@@ -110,9 +121,7 @@ Candidate predict(const Method& m, const Search& s) {
     c.predicted_cpu = pl->cpu_per_gradient * gradients_per_step(m) * std::ceil(span / c.h);
     return c;
   }
-  c.h = shape_of(s, m).step_at(s.target / (span * s.F), span);
-  c.predicted_cpu = s.cpu_per_gradient * gradients_per_step(m) * std::ceil(span / c.h);
-  return c;
+  return s.modelled.at(&m);
 }
 
 // Pilots m from h_start; records it (and its cost) when it succeeds. Returns success.
@@ -128,6 +137,7 @@ bool run_pilot(Search& s, const Method& m, double h_start, std::string& failures
     const double base = shape_of(s, m)(pl.h) * s.pilot.span;
     s.F = base > 0 && pl.error > 0 ? pl.error / base : 1;
     s.cpu_per_gradient = pl.cpu_per_gradient;
+    for (const Method* other : s.methods) s.modelled.emplace(other, modelled(*other, s));
   }
   s.piloted.emplace_back(&m, pl);
   return true;
@@ -170,6 +180,38 @@ void more_pilots(Search& s) {
     if (!run_pilot(s, m, std::min(s.pilot.pilot / 2, 2 * list.front().h), failures))
       s.methods.erase(std::find(s.methods.begin(), s.methods.end(), &m));
   }
+}
+
+// The candidate with the fewest gradients per step (the growth probe: any method shows the
+// growth law, the cheapest per step shows it for the least).
+const Method* cheapest_per_step(const Search& s) {
+  const Method* out = nullptr;
+  for (const Method* m : s.methods)
+    if (!out || gradients_per_step(*m) < gradients_per_step(*out)) out = m;
+  return out;
+}
+
+// The chosen candidate with its estimate's linear growth replaced by the probe's measured growth
+// (detail::growth_relief) and its step for the target; unchanged when the probe would cost more
+// than a tenth of the run (3 probe steps per step over 1/8 of the span at 2 h) or the pilot sat at
+// round-off. The probe's step is 2 h: clear of round-off, still asymptotic on the scenes.
+Candidate with_measured_growth(Search& s, Candidate c) {
+  const Method& m = Method::by_name(c.method);
+  const Method* probe = cheapest_per_step(s);
+  const Pilot* pl = pilot_of(s, &m);
+  const double span = s.pilot.span, h_probe = 2 * c.h;
+  if (!pl || pl->at_roundoff || c.estimated_error <= 0) return c;
+  const double probe_cost =
+      3.0 * gradients_per_step(*probe) * double(detail::probe_steps(s.pilot, h_probe));
+  if (probe_cost > 0.1 * gradients_per_step(m) * span / c.h) return c;
+  const detail::Growth g = detail::growth_relief(*probe, s.pilot, h_probe, pl->interval);
+  s.gradients += g.gradients;
+  s.relief = g.relief;
+  const detail::ErrorShape& shape = shape_of(s, m);
+  const double h = shape.step_at(shape(c.h) * s.target / (g.relief * c.estimated_error), span);
+  c.estimated_error *= g.relief * shape(h) / shape(c.h);
+  c.h = h;
+  return c;
 }
 
 // A user-given h: the cheapest candidate predicted to reach the target with it, else the most
@@ -227,7 +269,9 @@ std::string reason_of(const Choice& c, const Search& s, const std::string& advic
   if (pl)
     out += ": its pilot over " + format(s.pilot.pilot, 4) + " of " + format(s.pilot.span, 4) +
            " at h = " + format(pl->h, 4) + " and h/2 estimates " + format(pl->error, 3) +
-           " at t_end (step doubling, error grown as t^beta, beta in [1/2, 1] from the pilot)";
+           " at t_end (step doubling, error grown linearly in t)";
+  if (s.relief < 1)
+    out += "; a probe over 1/8 of the span measures " + format(s.relief, 3) + " of that growth";
   out += "; h = " + format(c.h, 6) + " aims at " + format(s.target, 3) + " (estimated " +
          format(c.estimated_error, 3) + ")";
   if (c.candidates.size() > 1)
@@ -262,6 +306,13 @@ Choice choose_method_and_step(const System& system, const Eigen::VectorXd& q0,
   std::string advice = "h given by the user";
   const Method& m = Method::by_name(c.method);
   if (request.h == 0) {
+    const Candidate grown = with_measured_growth(s, best);
+    for (Candidate& listed : c.candidates) {
+      if (listed.method != grown.method) continue;
+      listed.predicted_cpu *= best.h / grown.h;
+      listed.h = grown.h, listed.estimated_error = grown.estimated_error;
+    }
+    best = grown, c.estimated_error = grown.estimated_error;
     const double h = advised(m, system, s.bounds, best.h, advice);
     c.h = s.pilot.span / std::ceil(s.pilot.span / h * (1 - 1e-12));  // whole steps to t_end
     const detail::ErrorShape& shape = shape_of(s, m);

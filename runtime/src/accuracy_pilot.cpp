@@ -57,6 +57,7 @@ Pilot attempt(const Method& method, const PilotRequest& r, double h, long n) {
                                         a.q[i].lpNorm<Eigen::Infinity>());
     }
     out.at_roundoff = out.error * a.t.back() / r.span <= roundoff;
+    out.interval = a.t.back();
     out.ok = true;
   } catch (const Error& e) {  // a step the method refuses or that blows up at this h
     out.failure = e.what();
@@ -137,20 +138,24 @@ double ErrorShape::operator()(double h) const {
 }
 
 double ErrorShape::step_at(double level, double h_max) const {
+  // Start at the smallest h where one term alone reaches the level: the sum is >= level there,
+  // so Newton (convex in ln h) descends monotonically from it, in a few steps when one term
+  // dominates (was from h_max: ~10 steps more, 20-29 % of a choice's CPU on FPU and HH by perf).
   double x = std::log(h_max);
+  for (size_t k = 0; k < c.size(); ++k) x = std::min(x, std::log(level / c[k]) / g[k]);
   for (int it = 0; it < 100; ++it) {
     double sum = 0, slope = 0;  // shape and d shape / d ln h at h = e^x
     for (size_t k = 0; k < c.size(); ++k) {
       const double term = c[k] * std::exp(g[k] * x);
       sum += term, slope += g[k] * term;
     }
-    if (sum <= level && it == 0) return h_max;
+    if (sum <= level && it == 0) return std::min(h_max, std::exp(x));
     const double dx = (std::log(sum) - std::log(level)) * sum / slope;
     if (!std::isfinite(dx)) break;
     x -= dx;
     if (std::abs(dx) < 1e-10) break;
   }
-  return std::exp(x);
+  return std::min(h_max, std::exp(x));
 }
 
 }  // namespace erkn::detail

@@ -17,7 +17,8 @@ struct ErrorShape {
   std::vector<double> c, g;
   double operator()(double h) const;
   /// The h <= h_max with shape(h) = level (h_max when shape(h_max) <= level): Newton's method
-  /// on ln shape in ln h, which from h_max converges monotonically (convexity) in a few steps.
+  /// on ln shape in ln h from the smallest h where one term alone reaches the level (or h_max),
+  /// which converges monotonically from there (ln shape is convex, and above the level).
   double step_at(double level, double h_max) const;
 };
 
@@ -45,6 +46,7 @@ struct Pilot {
   bool ok = false;
   std::string failure;  ///< why the last attempt failed (ok == false)
   double h = 0;
+  double interval = 0;          ///< the accepted attempt's pilot interval (n h)
   double error = 0;             ///< estimated max-norm error of q at t_end of the run with step h
   bool at_roundoff = false;     ///< the h and h/2 runs differ only by round-off
   double cpu = 0;               ///< CPU seconds of all attempts
@@ -61,6 +63,21 @@ Pilot calibrated_pilot(const Method& method, const PilotRequest& request, double
 /// The step reaching `target` from a pilot: shape(h) = shape(h_pilot) target / error, at most
 /// 4 h_pilot when the pilot sat at round-off, at most the span.
 double step_for(const PilotRequest& request, const Pilot& pilot, double target);
+
+/// The growth probe (accuracy_growth.cpp): `probe` stepped with h and h/2 over 1/8 of the span
+/// (at least 16 steps); its step-doubling envelope's growth from the pilot interval to the
+/// probe's end, extrapolated as t^beta (beta in [0, 1] from the probe's last two octaves), over
+/// the linear growth span / pilot_interval the pilot assumed: relief in [pilot / span, 1].
+/// 1 when the probe would not reach past 2 pilot intervals, blows up or sits at round-off.
+struct Growth {
+  double relief = 1;   ///< the measured growth over the pilot's linear one
+  long gradients = 0;  ///< of the probe
+};
+Growth growth_relief(const Method& probe, const PilotRequest& request, double h,
+                     double pilot_interval);
+
+/// The probe's number of steps of h.
+long probe_steps(const PilotRequest& request, double h);
 
 /// The order the shape has at h: log2(shape(h) / shape(h/2)), at least 1.
 double order_at(const PilotRequest& request, double h);

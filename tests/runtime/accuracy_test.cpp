@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "accuracy_pilot.hpp"  // runtime/src: the error shape the choice solves
@@ -33,7 +34,8 @@ Eigen::VectorXd reference(const problems::Problem& p, double h) {
 }
 
 TEST(Accuracy, AutoReachesTheToleranceWithinTheWindow) {
-  for (const problems::Problem& p : {problems::duffing(), problems::stellar_orbits()})
+  for (const problems::Problem& p : {problems::duffing(), problems::stellar_orbits(),
+                                     problems::sine_gordon(32), problems::henon_heiles()})
     for (double tol : {1e-4, 1e-8}) {
       AccuracyRequest r;
       r.tol = tol;
@@ -103,6 +105,47 @@ TEST(Accuracy, AdvisorVerdictOnDistinctEigenvaluesIsTheSame) {
     }
   }
   EXPECT_GT(changed_without_top, 0);
+}
+
+// The growth probe (detail::growth_relief) measures how the error grows after the pilot
+// interval: on every scene its relief (growth over the pilot's linear one) lies within 4x of the
+// growth a high-order method's error shows against the same method at h/8 (the late half's
+// envelope over the pilot interval's). Negative control: the linear growth the pilot assumes
+// alone (relief 1) misses it by more than 4x on some scene (bounded error: sine-Gordon, Duffing).
+TEST(Accuracy, GrowthProbeMeasuresTheErrorsGrowth) {
+  const Method *probe = nullptr, *m = nullptr;  // the fewest stages; the highest order
+  for (const Method& x : Method::all()) {
+    if (!x.is_explicit() || x.has_modified_kicks()) continue;
+    if (!probe || x.stages() < probe->stages()) probe = &x;
+    if (!m || x.order() > m->order() || (x.order() == m->order() && x.stages() < m->stages()))
+      m = &x;
+  }
+  struct Scene {
+    problems::Problem p;
+    double h;  // in the method's asymptotic range
+  };
+  int linear_misses = 0;
+  for (const auto& [p, h] : {Scene{problems::sine_gordon(32), 0.05}, Scene{problems::fpu(), 0.02},
+                             Scene{problems::henon_heiles(), 0.15}, Scene{problems::duffing(), 0.1},
+                             Scene{problems::stellar_orbits(), 0.5}}) {
+    const System sys = problems::system(p);
+    const double span = p.t_error, pilot = span / 32;
+    Integrator a(*m, sys, h, p.q0, p.p0), fine(*m, sys, h / 8, p.q0, p.p0);
+    double early = 0, late = 0;  // error envelopes over [0, pilot] and [span / 2, span]
+    for (long k = 1, n = a.steps_until(span); k <= n; ++k) {
+      a.step(1), fine.step(8);
+      const double e = (a.q() - fine.q()).lpNorm<Eigen::Infinity>(), t = double(k) * h;
+      if (t <= pilot * (1 + 1e-12)) early = std::max(early, e);
+      if (t >= span / 2) late = std::max(late, e);
+    }
+    const double truth = std::min(1.0, late / early * pilot / span);
+    const detail::PilotRequest r{&sys, &p.q0, &p.p0, {}, span, pilot, {}};
+    const double relief = detail::growth_relief(*probe, r, 2 * h, pilot).relief;
+    EXPECT_GT(relief, truth / 4) << p.key;
+    EXPECT_LT(relief, truth * 4) << p.key;
+    linear_misses += 1 > 4 * truth;
+  }
+  EXPECT_GT(linear_misses, 0);
 }
 
 TEST(Accuracy, KeepsAGivenMethodAndAGivenStep) {

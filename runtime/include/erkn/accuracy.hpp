@@ -21,10 +21,16 @@
 //  3. With F, the model predicts every candidate's step and CPU (cost per gradient measured in
 //     the pilot); a cheaper-looking method is piloted too; the one with the least predicted CPU
 //     at E = safety * tol wins, its h from E_m(h) / E_m(h_pilot) = target / E(h_pilot).
-//  4. The advisor (erkn/advisor.hpp) checks h on M's spectrum and the Hessian bounds at q0;
+//  4. Growth probe: the pilot's linear growth bounds errors that never cancel; on many orbits
+//     they do (the error after the pilot stays bounded: sine-Gordon, FPU, Duffing). The
+//     cheapest method per step is stepped with 2h and h over 1/8 of the span; its step-doubling
+//     envelope's growth from the pilot interval on (extrapolated as t^beta, beta in [0, 1] from
+//     its last two octaves) replaces the linear growth when smaller, and h is solved again.
+//     Skipped when it would cost more than a tenth of the run.
+//  5. The advisor (erkn/advisor.hpp) checks h on M's spectrum and the Hessian bounds at q0;
 //     a flagged h is replaced by its suggestion when that is smaller.
 // A user-given method or h is kept. The estimate assumes the error grows at most linearly after
-// the pilot interval (symplectic methods on regular motion): on chaotic orbits it can be low.
+// the probe (symplectic methods on regular motion): on chaotic orbits it can be low.
 // The pilot costs a few hundred steps: on runs of microseconds it dominates the CPU.
 #pragma once
 
