@@ -240,9 +240,9 @@ std::string markdown(const std::vector<Row>& rows, const std::string& notes, con
       "attempt of the chosen method and h over t_end/32: two integrators built, no search, no "
       "advisor) over the best run; where it exceeds 0.5, 1.5x needs a run cheaper than the "
       "best, i.e. is out of reach for such a choice. 'estimate / error': the choice's estimated "
-      "error at t_end (the pilot's step-doubling estimate grown linearly over t_end, carried to "
-      "the chosen h by the error model) over the achieved error; above 1 the step is smaller "
-      "than tol needs.\n\n"
+      "error at t_end (the pilot's step-doubling estimate grown linearly over t_end, or as the "
+      "growth probe measured where it ran, carried to the chosen h by the error model) over the "
+      "achieved error; above 1 the step is smaller than tol needs.\n\n"
       "Error window met in " +
       std::to_string(window) + " / " + std::to_string(rows.size()) + " cases, CPU <= 1.5x in " +
       std::to_string(cheap) + " / " + std::to_string(rows.size()) +

@@ -236,10 +236,14 @@ Candidate with_given_step(const Search& s, double h) {
 }
 
 // The advisor's word on h (M's spectrum, Hessian bounds at q0 when affordable): a flagged h is
-// replaced by the suggestion when that is smaller.
+// replaced by the suggestion when that is smaller. The suggestion is searched in 1 % steps of h
+// (the advisor's default 0.1 %): a step up to 1 % shorter costs up to 1 % more run; the search
+// checks every mode at each step it tries (FPU at 1e-4: 0.49 ms of a 0.05 ms run with 0.1 %).
 double advised(const Method& m, const System& sys, const HessianBounds& bounds, double h,
                std::string& note) {
-  const StepSizeAdvice a = advise_step_size(m, detail::distinct(sys.M.eigenvalues()), h, bounds);
+  AdvisorOptions o;
+  o.search_step = 1e-2;
+  const StepSizeAdvice a = advise_step_size(m, detail::distinct(sys.M.eigenvalues()), h, bounds, o);
   if (a.safe()) {
     note = "the advisor finds no pole, instability or resonance at this h";
     return h;
