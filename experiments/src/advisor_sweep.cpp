@@ -10,7 +10,8 @@
 //   verdict   advise_step_size(method, system, h, q0, p0) with AdvisorOptions::steps = N flags h
 //             (StepSizeAdvice::safe() is false): what Options::check_stability refuses and `erkn
 //             advise --problem` reports (Hessian range and mode energies at the start, then the
-//             trial run: its first --trial steps, default AdvisorOptions::trial_steps). For
+//             trial run: its first --trial steps, default AdvisorOptions::trial_steps, extended
+//             to AdvisorOptions::extended_trial_steps where ambiguous). For
 //             comparison, the linear model alone
 //             (AdvisorOptions::trial_steps = 0: every finding flags h) is scored too.
 //   criterion the relative energy error E = max |H_n - H_0| / |H_0| over N = 1e5 steps of h
@@ -298,8 +299,11 @@ std::string sample_note(const Args& a) {
   std::ostringstream s;
   const AdvisorOptions o;
   s << "The trial run's constants (AdvisorOptions: trial_steps = " << o.trial_steps
+    << ", extended_trial_steps = " << o.extended_trial_steps << ", ambiguity = " << o.ambiguity
+    << ", saturated_margin = " << o.saturated_margin
     << ", explained_margin = " << o.explained_margin << ", trial_margin = " << o.trial_margin
-    << "; the quiet mode's least growth, advisor_trial.cpp) were chosen on a "
+    << "; the saturated growth and the quiet mode's least growth, advisor_trial.cpp) were "
+       "chosen on a "
        "training sweep, `erkn_advisor_sweep --offset "
     << kTrainingOffset << "` (h omega = 4 pi (k - " << kTrainingOffset
     << ") / 16), from its per-point error curves (--csv). This run's step sizes are h omega = 4 "
@@ -309,6 +313,18 @@ std::string sample_note(const Args& a) {
   s << (training ? "the training set itself, so the rates below are in-sample."
                  : "none of them is in the training set, so the rates below are out of sample.");
   return s.str();
+}
+
+// The trial's mean length over the sweep, in steps and against the runs' length.
+std::string mean_trial(const std::vector<Point>& points) {
+  double sum = 0;
+  long extended = 0;
+  for (const Point& p : points)
+    sum += double(p.trial.steps), extended += p.trial.steps > p.trial.first_steps;
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "%ld of %zu points extended, %.0f steps on average", extended,
+                points.size(), sum / double(points.size()));
+  return buf;
 }
 
 std::string report(const std::vector<Point>& points, const std::vector<Scene>& sc,
@@ -322,7 +338,9 @@ std::string report(const std::vector<Point>& points, const std::vector<Scene>& s
     << a.steps << " steps; a run blows up when its relative energy error reaches " << kBlowUp
     << " or a step fails. The sweep took " << std::lround(seconds) << " s on " << a.threads
     << " threads (" << std::lround(cpu) << " s of CPU time). " << sample_note(a)
-    << "\n\nThe verdict (with the trial run of " << a.trial << " steps):\n\n"
+    << "\n\nThe verdict (with the trial run of " << a.trial << " steps, extended to "
+    << AdvisorOptions{}.extended_trial_steps << " where ambiguous: " << mean_trial(points)
+    << "):\n\n"
     << rates_table(points, sc, ms, false)
     << "\nThe linear model alone (AdvisorOptions::trial_steps = 0), for comparison:\n\n"
     << rates_table(points, sc, ms, true)
@@ -341,8 +359,8 @@ void write_csv(const std::string& file, const std::vector<Point>& points,
                const std::vector<Scene>& sc, const std::vector<Method>& ms) {
   std::ofstream out(file);
   out << "scene,method,kind,h_omega_over_pi,flagged,linear_flagged,linear,outcome,error,steps,"
-         "seconds,trial_error,trial_early,trial_predicted,trial_failed,mode_rate,mode_share,"
-         "takeover";
+         "seconds,trial_steps,trial_first_steps,trial_first_predicted,trial_error,trial_early,"
+         "trial_predicted,trial_saturated,trial_failed,mode_rate,mode_share,takeover";
   for (int k = 0; k < kCurve; ++k) out << ",max_" << (1L << k);
   out << '\n';
   const char* outcome[] = {"refused", "blew_up", "bounded"};
@@ -351,9 +369,10 @@ void write_csv(const std::string& file, const std::vector<Point>& points,
         << (ms[p.method].kind() == Kind::rkn ? "rkn" : "erkn") << ',' << p.h_omega / pi << ','
         << p.flagged << ',' << p.linear_flagged << ',' << p.linear << ','
         << outcome[int(p.at.outcome)] << ',' << p.at.error << ',' << p.at.steps << ',' << p.seconds
+        << ',' << p.trial.steps << ',' << p.trial.first_steps << ',' << p.trial.first_predicted
         << ',' << p.trial.error << ',' << p.trial.early << ',' << p.trial.predicted << ','
-        << !p.trial.failure.empty() << ',' << p.trial.mode_rate << ',' << p.trial.mode_share << ','
-        << p.trial.takeover;
+        << p.trial.saturated << ',' << !p.trial.failure.empty() << ',' << p.trial.mode_rate << ','
+        << p.trial.mode_share << ',' << p.trial.takeover;
     for (double e : p.at.curve) out << ',' << e;
     out << '\n';
   }

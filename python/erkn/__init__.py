@@ -458,7 +458,8 @@ def mode_energies(M, q, p):
 
 
 # AdvisorOptions fields only the trial run reads (erkn/advisor.hpp, "Severity").
-_TRIAL_OPTIONS = ("steps", "energy_tolerance", "trial_steps", "trial_margin", "explained_margin")
+_TRIAL_OPTIONS = ("steps", "energy_tolerance", "trial_steps", "trial_margin", "explained_margin",
+                  "saturated_margin", "extended_trial_steps", "ambiguity")
 
 
 def advise_step_size(method, M, h, grad=None, *, q0=None, p0=None, hessian_steps=0,
@@ -469,9 +470,11 @@ def advise_step_size(method, M, h, grad=None, *, q0=None, p0=None, hessian_steps
     With the problem -- grad, q0 and p0 (and no hessian_bounds or hessian_steps) -- the verdict is
     `erkn advise --problem`'s: the linear model at q0 judged by a trial run of the problem itself
     (the first min(trial_steps, steps) steps at h; its energy error extrapolated to a run of
-    `steps` steps, default 1e5, is held against energy_tolerance / explained_margin where the
-    linear model finds a resonance or an unstable band at h, else energy_tolerance /
-    trial_margin; a quiet mode growing exponentially to take over within the run flags h too; U
+    `steps` steps, default 1e5, is held against energy_tolerance / saturated_margin where it has
+    stopped growing, else energy_tolerance / explained_margin where the linear model finds a
+    resonance or an unstable band at h, else energy_tolerance / trial_margin; a trial whose
+    prediction comes within a factor `ambiguity` of its limit goes on to extended_trial_steps; a
+    quiet mode growing exponentially to take over within the run flags h too; U
     from the built-in potential, a problem's System or `potential`, else 1/2|p|^2 + 1/2 q'Mq's
     growth).
     Otherwise the linear model alone, with the bounds (lo, hi) on U's Hessian: hessian_bounds if
@@ -479,7 +482,8 @@ def advise_step_size(method, M, h, grad=None, *, q0=None, p0=None, hessian_steps
     q0 and p0 a resonance is flagged only at eigenvalues the state excites (erkn.mode_energies).
     advisor_options: potential_degree, pole_margin, trace_tolerance, z_samples, max_change,
     search_step, min_excitation, and for the trial steps, energy_tolerance, trial_steps (0: no
-    trial), trial_margin, explained_margin. Returns an erkn.StepSizeAdvice: safe, findings, equation (the
+    trial), trial_margin, explained_margin, saturated_margin, extended_trial_steps, ambiguity.
+    Returns an erkn.StepSizeAdvice: safe, findings, equation (the
     differential equation's own growth: information), notes (linear findings the trial clears),
     trial, suggested_h, hessian, report."""
     options = _erkn._AdvisorOptions()

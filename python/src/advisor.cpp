@@ -47,6 +47,8 @@ py::object trial(const TrialRun& t) {
   py::dict d;
   d["steps"] = t.steps, d["error"] = t.error, d["early"] = t.early;
   d["predicted"] = t.predicted, d["horizon"] = t.horizon, d["limit"] = t.limit;
+  d["first_steps"] = t.first_steps, d["first_predicted"] = t.first_predicted;
+  d["saturated"] = t.saturated;
   d["explained"] = t.explained, d["mode_rate"] = t.mode_rate, d["mode_share"] = t.mode_share;
   d["takeover"] = t.takeover, d["failure"] = t.failure, d["flagged"] = t.flagged;
   return d;
@@ -66,7 +68,10 @@ void bind_advice(py::module_& m) {
       .def_readwrite("energy_tolerance", &AdvisorOptions::energy_tolerance)
       .def_readwrite("trial_steps", &AdvisorOptions::trial_steps)
       .def_readwrite("trial_margin", &AdvisorOptions::trial_margin)
-      .def_readwrite("explained_margin", &AdvisorOptions::explained_margin);
+      .def_readwrite("explained_margin", &AdvisorOptions::explained_margin)
+      .def_readwrite("saturated_margin", &AdvisorOptions::saturated_margin)
+      .def_readwrite("extended_trial_steps", &AdvisorOptions::extended_trial_steps)
+      .def_readwrite("ambiguity", &AdvisorOptions::ambiguity);
   py::class_<Advice>(m, "StepSizeAdvice", "erkn::StepSizeAdvice: findings for h, a suggestion")
       .def_property_readonly("h", [](const Advice& a) { return a.advice.h; })
       .def_property_readonly("method", [](const Advice& a) { return a.method; })
@@ -90,8 +95,9 @@ void bind_advice(py::module_& m) {
           "within the energy criterion (with the problem only)")
       .def_property_readonly(
           "trial", [](const Advice& a) { return trial(a.advice.trial); },
-          "the trial run (with the problem): a dict of steps, error, early, predicted, horizon, "
-          "limit, failure, flagged; None without one")
+          "the trial run (with the problem): a dict of steps, first_steps, first_predicted, error, "
+          "early, predicted, horizon, limit, explained, saturated, mode_rate, mode_share, "
+          "takeover, failure, flagged; None without one")
       .def_property_readonly(
           "suggested_h", [](const Advice& a) { return a.advice.suggested_h; },
           "the nearest h without findings (NaN when none within max_change)")

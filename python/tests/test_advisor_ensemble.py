@@ -98,6 +98,7 @@ TRIAL = 2048  # steps of the trial, and of the whole run it judges
 # The default margins (AdvisorOptions), read from the binding: energy_tolerance 0.5 over them.
 TRIAL_MARGIN = erkn._erkn._AdvisorOptions().trial_margin
 EXPLAINED_MARGIN = erkn._erkn._AdvisorOptions().explained_margin
+SATURATED_MARGIN = erkn._erkn._AdvisorOptions().saturated_margin
 
 
 def whole_run_error(problem, method, h):
@@ -121,9 +122,10 @@ def advise_fpu(problem, method, h, **options):
 def test_the_trial_run_flags_exactly_the_runs_beyond_the_limit():
     # With the problem, erkn.advise_step_size judges h by a trial run (erkn advise --problem's
     # C++ call). When the trial is the whole run (steps = trial_steps) it flags h exactly when
-    # the run's own energy error reaches the trial's limit: energy_tolerance / explained_margin
-    # where the linear model finds a resonance or an unstable band ("explained"), else
-    # energy_tolerance / trial_margin: every method of the registry on FPU (omega = 50) at
+    # the run's own energy error reaches the trial's limit: energy_tolerance / saturated_margin
+    # where the error has stopped growing (less than 1.5-fold over the trial's last 15/16),
+    # else energy_tolerance / explained_margin where the linear model finds a resonance or an
+    # unstable band ("explained"), else energy_tolerance / trial_margin: every method of the registry on FPU (omega = 50) at
     # h omega = 0.999 pi, where some blow up and some stay clean (both occur). Negative controls:
     # the linear model alone (trial_steps = 0) flags runs that stay clean; at h omega = 0.1 no
     # method is flagged.
@@ -137,7 +139,10 @@ def test_the_trial_run_flags_exactly_the_runs_beyond_the_limit():
         trial = advice.trial
         linear = advise_fpu(fpu, name, h, trial_steps=0)
         explained = any(f["hazard"] != "pole" for f in linear.findings)
-        margin = EXPLAINED_MARGIN if explained else TRIAL_MARGIN
+        saturated = trial["failure"] == "" and 0 < trial["error"] <= 1.5 * trial["early"]
+        margin = (SATURATED_MARGIN if saturated else
+                  EXPLAINED_MARGIN if explained else TRIAL_MARGIN)
+        assert trial["saturated"] == saturated, (name, trial)
         assert trial["steps"] <= TRIAL and trial["horizon"] == TRIAL
         assert trial["explained"] == explained and trial["limit"] == 0.5 / margin, (name, trial)
         assert trial["flagged"] == (error >= trial["limit"]), (name, error, trial)

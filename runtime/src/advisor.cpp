@@ -41,14 +41,17 @@ void validate(const Eigen::VectorXd& eigenvalues, double h, HessianBounds k,
                   o.min_excitation >= 0 && o.min_excitation <= 1 && o.steps >= 1 &&
                   o.energy_tolerance > 0 && std::isfinite(o.energy_tolerance) &&
                   o.trial_steps >= 0 && o.trial_margin >= 1 && std::isfinite(o.trial_margin) &&
-                  o.explained_margin >= 1 && std::isfinite(o.explained_margin);
+                  o.explained_margin >= 1 && std::isfinite(o.explained_margin) &&
+                  o.saturated_margin >= 1 && std::isfinite(o.saturated_margin) &&
+                  o.extended_trial_steps >= 0 && o.ambiguity >= 1 && std::isfinite(o.ambiguity);
   if (!ok)
     throw Error(
         "advise_step_size: invalid AdvisorOptions (need 1 <= potential_degree <= 64, 0 <= "
         "pole_margin < 1, finite trace_tolerance >= 0, 2 <= z_samples <= 100000, 0 <= "
         "max_change < 1, 0 < search_step <= 1, 0 <= min_excitation <= 1, steps >= 1, finite "
         "energy_tolerance > 0, trial_steps >= 0, finite trial_margin >= 1, finite "
-        "explained_margin >= 1)");
+        "explained_margin >= 1, finite saturated_margin >= 1, extended_trial_steps >= 0, finite "
+        "ambiguity >= 1)");
   // The search tries 2 max_change / search_step step sizes: bounded, so the advice ends.
   if (o.max_change / o.search_step > kMaxSearchSteps)
     throw Error("advise_step_size: AdvisorOptions max_change / search_step = " +
@@ -304,18 +307,24 @@ std::string trial_line(const TrialRun& t) {
   if (t.steps == 0 && t.failure.empty()) return "";
   std::ostringstream s;
   s << "  trial run: " << t.steps << " steps at h";
+  if (t.steps > t.first_steps)
+    s << " (extended: the first " << t.first_steps << " predicted " << format(t.first_predicted, 3)
+      << ", near their limit)";
   if (!t.failure.empty()) return s.str() + ", then stopped: " + t.failure + "\n";
   s << ", largest relative energy error " << format(t.error, 3) << " (" << format(t.early, 3)
     << " over its first 1/16), predicted " << format(t.predicted, 3) << " over " << t.horizon
     << " steps against the limit " << format(t.limit, 3)
-    << (t.explained ? " (a linear hazard explains the error)" : "") << ": "
-    << (t.predicted >= t.limit ? "flagged" : "within it") << "\n";
+    << (t.saturated   ? " (saturated: held at its level)"
+        : t.explained ? " (a linear hazard explains the growth)"
+                      : "")
+    << ": " << (t.predicted >= t.limit ? "flagged" : "within it") << "\n";
   if (t.mode_rate > 0)
     s << "  a quiet mode (" << format(t.mode_share, 3)
       << " of the linear energy) grows exponentially, " << format(t.mode_rate, 3)
-      << " per step: it takes over " << format(t.takeover, 3) << " steps after the trial"
-      << (double(t.steps) + t.takeover <= double(t.horizon) ? ", within the run: flagged"
-                                                            : ", after the run")
+      << " per step: it takes over " << format(t.takeover, 3) << " steps after the first "
+      << t.first_steps
+      << (double(t.first_steps) + t.takeover <= double(t.horizon) ? ", within the run: flagged"
+                                                                  : ", after the run")
       << "\n";
   return s.str();
 }

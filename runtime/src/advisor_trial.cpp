@@ -68,26 +68,39 @@ void quiet_growth(const ModeCheckpoints& e, long n, TrialRun& t) {
   if (t.mode_rate > 0) t.takeover = soonest;
 }
 
-// error (steps / n)^alpha, alpha = log(error / early) / log kEarly clamped to [0, 1].
+// An error that grew less than kSaturatedGrowth-fold over the trial's last 15/16 is saturated
+// (chosen on the training sweep, docs/advisor.md).
+constexpr double kSaturatedGrowth = 1.5;
+
+// error (steps / n)^alpha, alpha = log(error / early) / log kEarly clamped to [0, 1]; the error
+// itself when saturated.
 double predicted(const TrialRun& t, long steps) {
-  if (t.steps >= steps || t.error == 0) return t.error;
+  if (t.steps >= steps || t.error == 0 || t.saturated) return t.error;
   const double alpha =
       t.early > 0 ? std::clamp(std::log(t.error / t.early) / std::log(double(kEarly)), 0.0, 1.0)
                   : 1.0;
   return t.error * std::pow(double(steps) / double(t.steps), alpha);
 }
 
-// n steps of the trial: the largest error, the one over the first n / kEarly steps, and the mode
-// energies at n / 4, n / 2 and n (the state being finite).
+// The errors over the first n / kEarly steps of the first trial and of the extended one.
+struct EarlyErrors {
+  long at[2] = {0, 0};
+  double error[2] = {0, 0};
+};
+
+// The trial on to n steps (from t.steps): the largest error, the early errors, and the mode
+// energies at n / 4, n / 2 and n (the state being finite; the first trial's, see TrialRun).
 void take_steps(Integrator& run, const System& system, const Measure& measure, long n, TrialRun& t,
-                ModeCheckpoints& modes) {
-  const long early = std::max(1L, n / kEarly);
+                EarlyErrors& early, ModeCheckpoints& modes) {
+  const bool first = t.steps == 0;
   while (t.steps < n && std::isfinite(t.error)) {
     run.step();
     t.error = std::max(t.error, measure(run, system));
-    if (++t.steps == early) t.early = t.error;
+    ++t.steps;
+    for (int k : {0, 1})
+      if (t.steps == early.at[k]) early.error[k] = t.error;
     const bool checkpoint = t.steps == n / 4 || t.steps == n / 2 || t.steps == n;
-    if (checkpoint && run.q().allFinite() && run.p().allFinite())
+    if (first && checkpoint && run.q().allFinite() && run.p().allFinite())
       (t.steps == n       ? modes.end
        : t.steps == n / 2 ? modes.half
                           : modes.quarter) = mode_energies(system.M, run.q(), run.p());
@@ -95,15 +108,36 @@ void take_steps(Integrator& run, const System& system, const Measure& measure, l
   if (!std::isfinite(t.error)) t.failure = "the energy is no longer finite";
 }
 
-// The prediction, the limit it is held against and the verdict (see erkn/advisor.hpp).
-void judge(TrialRun& t, const System& system, const AdvisorOptions& o) {
+// The prediction, the limit it is held against and the verdict (see erkn/advisor.hpp), with
+// `early` the error over the trial's first steps / kEarly.
+void judge(TrialRun& t, double early, const System& system, const AdvisorOptions& o) {
+  t.early = early;
+  t.saturated = t.failure.empty() && t.error > 0 && t.error <= kSaturatedGrowth * t.early;
   t.predicted = t.failure.empty() ? predicted(t, o.steps) : std::numeric_limits<double>::infinity();
   t.horizon = o.steps;
   t.limit = !system.potential ? BlowupGuard::kGrowthLimit
+            : t.saturated     ? o.energy_tolerance / o.saturated_margin
             : t.explained     ? o.energy_tolerance / o.explained_margin
                               : o.energy_tolerance / o.trial_margin;
-  const bool takeover = t.mode_rate > 0 && double(t.steps) + t.takeover <= double(o.steps);
+  const bool takeover = t.mode_rate > 0 && double(t.first_steps) + t.takeover <= double(o.steps);
   t.flagged = !t.failure.empty() || t.predicted >= t.limit || takeover;
+}
+
+// The first trial of n steps, then (when it is ambiguous) the extended one of `longer` steps.
+void trials(Integrator& run, const System& system, const Measure& measure, long n, long longer,
+            const AdvisorOptions& o, TrialRun& t) {
+  EarlyErrors early{{std::max(1L, n / kEarly), std::max(1L, longer / kEarly)}};
+  ModeCheckpoints modes;
+  take_steps(run, system, measure, n, t, early, modes);
+  t.first_steps = t.steps;
+  if (t.failure.empty() && modes.quarter.size() > 0 && modes.half.size() > 0 &&
+      modes.end.size() > 0)
+    quiet_growth(modes, n, t);
+  judge(t, early.error[0], system, o);
+  t.first_predicted = t.predicted;
+  if (t.flagged || longer <= n || t.predicted < t.limit / o.ambiguity) return;
+  take_steps(run, system, measure, longer, t, early, modes);
+  judge(t, early.error[1], system, o);
 }
 
 }  // namespace
@@ -113,21 +147,21 @@ TrialRun trial_run(const Method& method, const System& system, double h, const E
   TrialRun t;
   t.explained = explained;
   const long n = std::min(o.trial_steps, o.steps);
+  const long longer = std::clamp(o.extended_trial_steps, n, o.steps);
   Options unguarded;
   unguarded.blowup_guard = false;
   try {
     Integrator run(method, system, h, q0, p0, unguarded);
     const Measure measure(run, system, q0, p0);
     if (!(measure.scale > 0)) return t;  // (a state at rest: nothing to measure against)
-    ModeCheckpoints modes;
-    take_steps(run, system, measure, n, t, modes);
-    if (t.failure.empty() && modes.quarter.size() > 0 && modes.half.size() > 0 &&
-        modes.end.size() > 0)
-      quiet_growth(modes, n, t);
+    trials(run, system, measure, n, longer, o, t);
   } catch (const Error& e) {
     t.failure = e.what();
+    const bool first = t.first_steps == 0;  // (the first trial failed)
+    if (first) t.first_steps = t.steps;
+    judge(t, t.early, system, o);
+    if (first) t.first_predicted = t.predicted;
   }
-  judge(t, system, o);
   return t;
 }
 

@@ -163,7 +163,9 @@ TEST(AdvisorState, WaveGridFlagsOnlyExcitedResonantModes) {
     EXPECT_LT(clean, 1e-4);
     EXPECT_GT(driven, 10 * clean);
     ASSERT_TRUE(b.trial.explained);  // (the resonance explains the trial's error)
-    EXPECT_EQ(b.trial.limit, verdict_only.energy_tolerance / verdict_only.explained_margin);
+    EXPECT_EQ(b.trial.limit,
+              verdict_only.energy_tolerance / (b.trial.saturated ? verdict_only.saturated_margin
+                                                                 : verdict_only.explained_margin));
     EXPECT_EQ(b.safe(), b.trial.error < b.trial.limit);
     std::printf("%s: smooth %.2e, resonant mode excited %.2e\n", std::string(m.name()).c_str(),
                 clean, driven);

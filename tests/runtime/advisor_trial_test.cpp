@@ -47,10 +47,11 @@ AdvisorOptions whole_run() {
 
 // At h omega = pi (a resonance for every ERKN method) and 0.999 pi (unstable for the low-order
 // ones): flagged exactly when the run's own error reaches the trial's limit, energy_tolerance /
-// explained_margin where the linear model finds a resonance or an unstable band (the trial's
-// `explained`), else energy_tolerance / trial_margin; the linear finding is kept either as a
-// finding (flagged) or as a note (information). Negative control: the linear model alone
-// (trial_steps = 0) flags every one of them. Both verdicts occur.
+// saturated_margin where the error has stopped growing (less than 1.5-fold over the trial's last
+// 15/16), else energy_tolerance / explained_margin where the linear model finds a resonance or an
+// unstable band (the trial's `explained`), else energy_tolerance / trial_margin; the linear finding
+// is kept either as a finding (flagged) or as a note (information). Negative control: the linear
+// model alone (trial_steps = 0) flags every one of them. Both verdicts occur.
 TEST(AdvisorTrial, WholeRunTrialFlagsExactlyTheRunsBeyondTheLimit) {
   const System s = problems::system(stiff_fpu());
   int flagged = 0, noted = 0;
@@ -68,8 +69,12 @@ TEST(AdvisorTrial, WholeRunTrialFlagsExactlyTheRunsBeyondTheLimit) {
           b.findings, [](const AdvisorFinding& f) { return f.hazard != Hazard::pole; });
       ASSERT_EQ(a.trial.horizon, kSteps);
       EXPECT_EQ(a.trial.explained, explained);
-      EXPECT_EQ(a.trial.limit,
-                o.energy_tolerance / (explained ? o.explained_margin : o.trial_margin));
+      const bool saturated =
+          a.trial.failure.empty() && a.trial.error > 0 && a.trial.error <= 1.5 * a.trial.early;
+      EXPECT_EQ(a.trial.saturated, saturated);
+      EXPECT_EQ(a.trial.limit, o.energy_tolerance / (saturated   ? o.saturated_margin
+                                                     : explained ? o.explained_margin
+                                                                 : o.trial_margin));
       EXPECT_EQ(a.safe(), error < a.trial.limit) << a.report(m);
       if (std::isfinite(error)) EXPECT_NEAR(a.trial.error, error, 1e-12 * (1 + error));
       if (m.kind() != Kind::erkn || b.safe()) continue;
@@ -89,13 +94,14 @@ TEST(AdvisorTrial, PredictionLiesBetweenTheTrialsErrorAndItsDrift) {
   for (const Method& m : Method::all()) {
     SCOPED_TRACE(std::string(m.name()));
     AdvisorOptions o = whole_run();
-    o.steps = 100000;
+    o.steps = 100000, o.extended_trial_steps = 0;  // (one trial)
     const StepSizeAdvice a =
         advise_step_size(m, s, 1.0 / kOmega, stiff_fpu().q0, stiff_fpu().p0, o);
     ASSERT_EQ(a.trial.steps, kSteps);
     EXPECT_LE(a.trial.early, a.trial.error);
     EXPECT_GE(a.trial.predicted, a.trial.error);
     EXPECT_LE(a.trial.predicted, a.trial.error * 100000.0 / kSteps * (1 + 1e-12));
+    if (a.trial.saturated) EXPECT_EQ(a.trial.predicted, a.trial.error);  // (held at its level)
   }
   const Method strang = Method::by_name("Strang");
   const StepSizeAdvice blown = advise_step_size(strang, s, 0.999 * kPi / kOmega, stiff_fpu().q0,
@@ -171,7 +177,7 @@ TEST(AdvisorTrial, QuietModeTakeoverFlagsTheLateBlowUp) {
     AdvisorOptions o;
     o.max_change = 0;
     const StepSizeAdvice a = advise_step_size(m, g.s, h, g.q0, g.p0, o);
-    if (!(a.trial.mode_rate > 0 && a.trial.steps + a.trial.takeover <= o.steps)) continue;
+    if (!(a.trial.mode_rate > 0 && a.trial.first_steps + a.trial.takeover <= o.steps)) continue;
     ++taken_over;
     EXPECT_FALSE(a.safe()) << a.report(m);
     EXPECT_LT(a.trial.predicted, a.trial.limit) << a.report(m);
@@ -183,10 +189,49 @@ TEST(AdvisorTrial, QuietModeTakeoverFlagsTheLateBlowUp) {
         std::string(m.name()).c_str(), a.trial.error, a.trial.mode_share, a.trial.mode_rate,
         a.trial.takeover, blown);
     AdvisorOptions shorter = o;
-    shorter.steps = a.trial.steps + long(a.trial.takeover / 2);
+    shorter.steps = a.trial.first_steps + long(a.trial.takeover / 2);
+    shorter.extended_trial_steps = 0;  // (the quiet-mode check alone)
     EXPECT_TRUE(advise_step_size(m, g.s, h, g.q0, g.p0, shorter).safe()) << a.report(m);
   }
   EXPECT_GE(taken_over, 5);
+}
+
+// The extended trial, for every method on FPU at step sizes near its resonances, with a first
+// trial of 512 steps extended to the whole run (4096 steps): a first trial is extended exactly
+// when it neither flags h nor stays below limit / ambiguity (the same trial with
+// extended_trial_steps = 0 shows both), and an extended trial's verdict is the run's own
+// criterion. Negative control: some runs blow up (energy error >= energy_tolerance within 4096
+// steps) after a first trial that does not flag them, and the extension flags them.
+TEST(AdvisorTrial, AnAmbiguousTrialIsExtendedAndCatchesTheLateBlowUp) {
+  const System s = problems::system(stiff_fpu());
+  const Eigen::VectorXd &q0 = stiff_fpu().q0, &p0 = stiff_fpu().p0;
+  AdvisorOptions o = whole_run();
+  o.trial_steps = 512, o.extended_trial_steps = o.steps = 4096;
+  AdvisorOptions first_only = o;
+  first_only.extended_trial_steps = 0;
+  int extended = 0, caught = 0;
+  for (const Method& m : Method::all())
+    for (double h_omega : {1.875 * kPi, 2.875 * kPi, 3.125 * kPi}) {
+      SCOPED_TRACE(std::string(m.name()) + " h omega / pi = " + std::to_string(h_omega / kPi));
+      const double h = h_omega / kOmega;
+      const TrialRun t = advise_step_size(m, s, h, q0, p0, o).trial;
+      const TrialRun first = advise_step_size(m, s, h, q0, p0, first_only).trial;
+      const bool ambiguous = !first.flagged && first.predicted >= first.limit / o.ambiguity;
+      EXPECT_EQ(t.steps > t.first_steps, ambiguous);
+      EXPECT_EQ(t.first_predicted, first.predicted);
+      if (!ambiguous) {
+        EXPECT_EQ(t.flagged, first.flagged);
+        continue;
+      }
+      ++extended;
+      const double error = run_error(m, s, h, o.steps);
+      EXPECT_EQ(t.flagged, error >= t.limit) << error;
+      caught += error >= o.energy_tolerance && t.flagged;
+    }
+  std::printf("%d first trials extended; %d late blow-ups caught by the extension\n", extended,
+              caught);
+  EXPECT_GT(extended, 0);
+  EXPECT_GT(caught, 0);
 }
 
 TEST(AdvisorTrial, RefusesInvalidTrialOptions) {
@@ -205,6 +250,11 @@ TEST(AdvisorTrial, RefusesInvalidTrialOptions) {
   refused([](AdvisorOptions& o) { o.trial_margin = INFINITY; });
   refused([](AdvisorOptions& o) { o.explained_margin = 0.5; });
   refused([](AdvisorOptions& o) { o.explained_margin = NAN; });
+  refused([](AdvisorOptions& o) { o.saturated_margin = 0.5; });
+  refused([](AdvisorOptions& o) { o.saturated_margin = INFINITY; });
+  refused([](AdvisorOptions& o) { o.extended_trial_steps = -1; });
+  refused([](AdvisorOptions& o) { o.ambiguity = 0.5; });
+  refused([](AdvisorOptions& o) { o.ambiguity = NAN; });
   EXPECT_NO_THROW(advise_step_size(m, s, 0.01, stiff_fpu().q0, stiff_fpu().p0, whole_run()));
 }
 

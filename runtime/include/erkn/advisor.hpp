@@ -43,15 +43,24 @@
 // E(n) after n steps and E(n / 16) give the growth exponent alpha = log(E(n) / E(n / 16)) / log 16
 // in [0, 1] (0: a bounded error, 1/2: a random walk, 1: a drift) and the prediction
 //     E(steps) = E(n) (steps / n)^alpha.
-// h is flagged when the trial fails (a stage solver or a non-finite state), when the prediction
-// reaches energy_tolerance / explained_margin (the linear model found a resonance or an unstable
-// band at h: the error is that hazard's, and saturates) or energy_tolerance / trial_margin
-// (nothing linear explains it: a nonlinear growth, extrapolated with a margin), or when a quiet
-// mode grows steadily and exponentially and would take over within the run (an instability seeded
-// by round-off, invisible in the energy error until then: the symmetric modes of a wave grid).
-// Pole findings always flag; the other linear findings are kept as `notes` (information) unless
-// the trial flags h (then they are its likely cause). Cost: the trial's steps plus one U per step
-// and three mode-energy transforms (8192 steps by default: 8 % of a 1e5-step run).
+// An error that grew less than 1.5-fold over the trial's last 15/16 (alpha <= log 1.5 / log 16)
+// is saturated: the prediction is E(n) itself (a resonance's or a plateau's level, which the
+// power law would inflate). h is flagged when the trial fails (a stage solver or a non-finite
+// state), when the prediction reaches
+//   energy_tolerance / saturated_margin  for a saturated error,
+//   energy_tolerance / explained_margin  for a growing one that the linear model explains (a
+//                                        resonance or an unstable band at h: it saturates later),
+//   energy_tolerance / trial_margin      for a growing one nothing linear explains (a nonlinear,
+//                                        chaotic exchange between modes, which jumps: a margin),
+// or when a quiet mode grows steadily and exponentially and would take over within the run (an
+// instability seeded by round-off, invisible in the energy error until then: the symmetric modes
+// of a wave grid). An ambiguous first trial (not flagged, its prediction within a factor
+// `ambiguity` of its limit) goes on to extended_trial_steps, and the longer trial's prediction,
+// made the same way, decides. Pole findings always flag; the other linear findings are kept as
+// `notes` (information) unless the trial flags h (then they are its likely cause). Cost: the
+// trial's steps plus one U per step and three mode-energy transforms: 8192 steps (8 % of a
+// 1e5-step run), 32768 (33 %) where the first 8192 are ambiguous; 9.7 % on average over the
+// training sweep of docs/advisor.md.
 // An h it accepts is not a proof of bounded energy, and a flagged h is not a proof of blow-up.
 // Its false-alarm and miss rates on a sweep of step sizes against 1e5-step runs: docs/advisor.md.
 #pragma once
@@ -97,36 +106,46 @@ struct AdvisorOptions {
   /// Steps of the trial run (with the System; at most `steps`); 0: no trial, and every linear
   /// finding flags h (as advise_step_size without the System does).
   long trial_steps = 8192;
-  /// Where the linear model finds no hazard at h, the trial flags h when its predicted error
-  /// reaches energy_tolerance / trial_margin: an error growth nothing linear explains is the
-  /// nonlinearity's (a chaotic exchange between modes, which jumps: docs/advisor.md lists the
-  /// sine-Gordon runs that blow up long after a calm trial), and a power law extrapolates it
-  /// poorly.
+  /// Where the trial's error still grows and the linear model finds no hazard at h, the trial
+  /// flags h when its predicted error reaches energy_tolerance / trial_margin: an error growth
+  /// nothing linear explains is the nonlinearity's (a chaotic exchange between modes, which
+  /// jumps: docs/advisor.md lists the sine-Gordon runs that blow up long after a calm trial), and
+  /// a power law extrapolates it poorly.
   double trial_margin = 16;
   /// Where it finds a resonance or an unstable band, against energy_tolerance / explained_margin:
-  /// the trial's error is then that hazard's, which saturates at its level where it does not
-  /// grow within the trial. (Both margins, trial_steps and the quiet-mode check were chosen on a
-  /// training sweep: docs/advisor.md.)
-  double explained_margin = 2;
+  /// the growth is that hazard's, which saturates at a level the trial may not reach.
+  double explained_margin = 5.0 / 3;
+  /// Where the error has saturated (grown less than 1.5-fold over the trial's last 15/16),
+  /// against energy_tolerance / saturated_margin: the level is known, only its drift is not.
+  double saturated_margin = 1.125;
+  /// A first trial that does not flag h but predicts at least limit / ambiguity goes on to
+  /// extended_trial_steps steps (at most `steps`; <= trial_steps: never), which decide. (The
+  /// margins, trial lengths, ambiguity and the quiet-mode check were chosen on a training sweep:
+  /// docs/advisor.md.)
+  long extended_trial_steps = 32768;
+  double ambiguity = 4;
 };
 
 /// The trial run's evidence (advise_step_size with the System; see the top of this header).
 /// Without System::potential it measures E_2 = 1/2 |p|^2 + 1/2 q^T M q against its start
 /// (error = the largest E_2 / E_2(0) - 1) and flags growth beyond the blow-up guard's 1e4.
 struct TrialRun {
-  long steps = 0;          ///< steps taken (0: no trial)
-  double error = 0;        ///< the largest relative energy error over the trial
-  double early = 0;        ///< the same over its first steps / 16
-  double predicted = 0;    ///< error extrapolated to AdvisorOptions::steps
-  long horizon = 0;        ///< AdvisorOptions::steps: the run predicted
-  double limit = 0;        ///< what predicted is held against
-  bool explained = false;  ///< the linear model found a resonance or an unstable band at h
-  std::string failure;     ///< the erkn::Error that stopped the trial, or why it stopped
-  /// A quiet mode (below 1e-3 of E_2 at the trial's end) whose energy grows steadily and
-  /// exponentially, at least 400-fold over the trial's second half (an instability seeded by
-  /// round-off, which the energy error shows only when the mode takes over): its growth rate per
-  /// step (0: none), its share of E_2 at the trial's end, and the steps after the trial until it
-  /// holds 1e-2 of E_2 at that rate (it flags h when that happens within the run).
+  long steps = 0;              ///< steps taken (0: no trial)
+  long first_steps = 0;        ///< of them, the first trial's (== steps unless it was extended)
+  double first_predicted = 0;  ///< the first trial's prediction (what made it ambiguous)
+  double error = 0;            ///< the largest relative energy error over the trial
+  double early = 0;            ///< the same over its first steps / 16
+  double predicted = 0;        ///< error extrapolated to AdvisorOptions::steps
+  long horizon = 0;            ///< AdvisorOptions::steps: the run predicted
+  double limit = 0;            ///< what predicted is held against
+  bool explained = false;      ///< the linear model found a resonance or an unstable band at h
+  bool saturated = false;      ///< error < 1.5 early: predicted = error, limit by saturated_margin
+  std::string failure;         ///< the erkn::Error that stopped the trial, or why it stopped
+  /// A quiet mode (below 1e-3 of E_2 at the first trial's end) whose energy grows steadily and
+  /// exponentially, at least 400-fold over the first trial's second half (an instability seeded
+  /// by round-off, which the energy error shows only when the mode takes over): its growth rate
+  /// per step (0: none), its share of E_2 at the first trial's end, and the steps after it until
+  /// the mode holds 1e-2 of E_2 at that rate (it flags h when that happens within the run).
   double mode_rate = 0;
   double mode_share = 0;
   double takeover = 0;
