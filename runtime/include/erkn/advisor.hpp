@@ -59,8 +59,8 @@
 // made the same way, decides. Pole findings always flag; the other linear findings are kept as
 // `notes` (information) unless the trial flags h (then they are its likely cause). Cost: the
 // trial's steps plus one U per step and three mode-energy transforms: 8192 steps (8 % of a
-// 1e5-step run), 32768 (33 %) where the first 8192 are ambiguous; 9.7 % on average over the
-// training sweep of docs/advisor.md.
+// 1e5-step run), 32768 (33 %) where the first 8192 are ambiguous; 8.3 % on average over the
+// sweeps of docs/advisor.md (a failed trial stops early).
 // An h it accepts is not a proof of bounded energy, and a flagged h is not a proof of blow-up.
 // Its false-alarm and miss rates on a sweep of step sizes against 1e5-step runs: docs/advisor.md.
 #pragma once
