@@ -4,6 +4,7 @@
 
 #include <mpi.h>
 
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,13 @@ namespace erkn::mpi::detail {
 /// on every rank; returns if every local_error is empty.
 void throw_if_any(MPI_Comm comm, const std::string& local_error);
 
+/// An exception's message without erkn::Error's prefix "erkn: " (Error adds it again).
+inline std::string message_of(const std::exception& e) {
+  std::string message = e.what();
+  if (message.rfind("erkn: ", 0) == 0) message.erase(0, 6);
+  return message;
+}
+
 /// Runs f() and turns an exception on any rank into the same erkn::Error on every rank.
 template <class F>
 void collectively(MPI_Comm comm, F&& f) {
@@ -20,8 +28,7 @@ void collectively(MPI_Comm comm, F&& f) {
   try {
     f();
   } catch (const std::exception& e) {
-    error = e.what();
-    if (error.rfind("erkn: ", 0) == 0) error.erase(0, 6);  // (Error adds it again)
+    error = message_of(e);
   }
   throw_if_any(comm, error);
 }

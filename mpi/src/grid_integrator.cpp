@@ -2,7 +2,10 @@
 // the library's stage solver (runtime/src/stage_solver.hpp: predictor, fixed point with the
 // first-iteration stop, Newton-Krylov fallback) over the slab space (slab_space.hpp), whose
 // reduce is one MPI_Allreduce that also carries the check that every rank's gradient was good, so
-// all ranks take every decision together. Between the steps of one call the state stays in M's
+// all ranks take every decision together. An explicit method (every abar_ii = 0) steps as
+// erkn::Integrator steps it: the library's ExplicitStepper (runtime/src/explicit_stepper.hpp:
+// passes of flows and kicks, O(s) arrays per step, FSAL) over the same slab space, whose checks
+// are one reduce at the end of each step. Between the steps of one call the state stays in M's
 // eigenbasis (with the compensated sums' errors there), as erkn::Integrator keeps it: a step
 // transforms only its stages, and the physical state is loaded (two inverse transforms) when a
 // call returns, before a check of the blow-up guard and for energy(), so q() and p() are this
@@ -22,6 +25,7 @@
 #include "distributed_transform.hpp"
 #include "erkn/mpi.hpp"
 #include "erkn/time_grid.hpp"
+#include "explicit_stepper.hpp"  // (runtime/src)
 #include "slab_advice.hpp"
 #include "slab_space.hpp"
 #include "stage_solver.hpp"       // (runtime/src)
@@ -34,6 +38,8 @@ namespace detail {
 using erkn::detail::BlowupGuard;
 using erkn::detail::StepCoefficients;
 using Solver = erkn::detail::StageSolver<SlabSpace, Eigen::ArrayXd>;
+using erkn::detail::StepperBase;
+using ExplicitSlabStepper = erkn::detail::ExplicitStepper<SlabSpace, Eigen::ArrayXd>;
 
 /// A duplicate of the user's communicator (our collectives never meet the user's messages),
 /// freed last, after the transforms planned on it.
@@ -45,18 +51,18 @@ struct Communicator {
   MPI_Comm handle;
 };
 
-/// The coefficients of one step size and the stage solver over them.
+/// The coefficients of one step size and the stage solver over them (implicit methods).
 struct Stages {
   Stages(const Method& method, const System& system, const Options& options, SlabSpace& space,
          double h, const Eigen::VectorXd& lambda)
-      : h(h), k(method, h, lambda), solver(method, system, options, space, k) {}
-  double h;
+      : k(method, h, lambda), solver(method, system, options, space, k) {}
   StepCoefficients<Eigen::ArrayXd> k;
   Solver solver;
 };
 
 /// This rank's slab of the state: in eigen coordinates (q_hat, p_hat and their compensated
-/// sums' errors) while stepping, physical (q, p) when loaded; and a step's increments.
+/// sums' errors; an explicit method's: in its stepper) while stepping, physical (q, p) when
+/// loaded; and a step's increments.
 struct SlabState {
   explicit SlabState(Eigen::Index m) {
     for (Eigen::ArrayXd* a : {&q_hat, &p_hat, &q_error, &p_error, &dq_hat, &dp_hat}) a->setZero(m);
@@ -82,8 +88,11 @@ class GridStepper {
         // (RKN methods: V = 0, their force includes M Q)
         lambda_(method.kind() == Kind::rkn ? Eigen::VectorXd::Zero(T_.spectral_size()).eval()
                                            : Eigen::VectorXd(T_.eigenvalues().matrix())),
-        stages_(method_, system_, options_, space_, h, lambda_),
         x_(T_.spectral_size()) {
+    if (explicit_method())
+      explicit_ = explicit_stepper(h);
+    else
+      stages_.emplace(method_, system_, options_, space_, h, lambda_);
     slab_ = {T_.first_row(), T_.rows(), T_.physical_size()};
     x_.q = q0, x_.p = p0;
     guard_.start(options_.blowup_guard);  // (its reference, at the checkpoint: when first needed)
@@ -106,33 +115,29 @@ class GridStepper {
   /// One step of size h, or with short_step = true of the size given to prepare_short (the
   /// caller then restarts the time grid at its end; the stage history is not used across it).
   void step(bool short_step = false) {
-    Stages& st = short_step ? *short_ : stages_;
-    if (short_step) st.solver.reset();
-    if (!x_.spectral) {  // (after construction or a restored checkpoint)
-      space_.forward(x_.q, x_.q_hat);
-      space_.forward(x_.p, x_.p_hat);
-      x_.q_error.setZero(), x_.p_error.setZero();
-      x_.spectral = true;
-    }
     Statistics counts;  // (added once the step has succeeded)
-    st.solver.solve(x_.q_hat, x_.p_hat, {&method_, statistics_.steps + 1, grid_.t()}, counts);
-    update(st);
+    if (explicit_)
+      explicit_step(short_step, counts);
+    else
+      implicit_step(short_step, counts);
     statistics_.gradient_evaluations += counts.gradient_evaluations;
     statistics_.stage_iterations += counts.stage_iterations;
     statistics_.newton_fallbacks += counts.newton_fallbacks;
     statistics_.newton_iterations += counts.newton_iterations;
-    st.solver.advance();
-    if (short_step) stages_.solver.reset();  // (its history is of the grid before)
     ++statistics_.steps;
     grid_.advance();
   }
 
   /// The coefficients of a shorter step (checked against the poles; the same on every rank).
   void prepare_short(double h_short) {
-    if (short_ && short_->h == h_short) return;
+    if (h_short_ == h_short) return;
     erkn::detail::check_step_size(method_, h_short, system_.M.eigenvalues(),
                                   options_.pole_tolerance);
-    short_.emplace(method_, system_, options_, space_, h_short, lambda_);
+    if (explicit_)
+      explicit_short_ = explicit_stepper(h_short);
+    else
+      short_.emplace(method_, system_, options_, space_, h_short, lambda_);
+    h_short_ = h_short;
   }
 
   double energy() {
@@ -157,10 +162,15 @@ class GridStepper {
   /// The physical state from the eigen coordinates, if it is not current (collective).
   void load() {
     if (x_.physical) return;
-    x_.dq_hat = x_.q_hat + x_.q_error;  // (the increments' storage is free between steps)
-    x_.dp_hat = x_.p_hat + x_.p_error;
-    space_.inverse(x_.dq_hat, x_.q);
-    space_.inverse(x_.dp_hat, x_.p);
+    if (explicit_) {
+      Statistics none;  // (an unprocessed method's get_state counts nothing)
+      explicit_->get_state(x_.q, x_.p, none);
+    } else {
+      x_.dq_hat = x_.q_hat + x_.q_error;  // (the increments' storage is free between steps)
+      x_.dp_hat = x_.p_hat + x_.p_error;
+      space_.inverse(x_.dq_hat, x_.q);
+      space_.inverse(x_.dp_hat, x_.p);
+    }
     x_.physical = true;
   }
 
@@ -178,9 +188,10 @@ class GridStepper {
   std::unique_ptr<DistributedTransform> transform_;
   DistributedTransform& T_;
   SlabSpace space_;
-  Eigen::VectorXd lambda_;  // where the coefficients are evaluated
-  Stages stages_;
-  std::optional<Stages> short_;  // of the last shorter step
+  Eigen::VectorXd lambda_;                // where the coefficients are evaluated
+  std::optional<Stages> stages_, short_;  // (implicit methods) of h, of the last shorter step
+  std::unique_ptr<StepperBase> explicit_, explicit_short_;  // (explicit methods) the same
+  double h_short_ = 0;                                      // (0: no shorter step prepared)
   Slab slab_;
   Statistics statistics_;
   SlabState x_;
@@ -232,7 +243,48 @@ class GridStepper {
     x_.q = c.q, x_.p = c.p;
     x_.physical = true, x_.spectral = false;
     grid_ = c.grid, statistics_.steps = c.steps;
-    stages_.solver.reset();  // (its history is of the steps after the checkpoint)
+    if (stages_) stages_->solver.reset();  // (its history is of the steps after the checkpoint)
+  }
+
+  bool explicit_method() const { return erkn::detail::explicit_stages(method_); }
+
+  // The library's explicit stepper of step size h over this rank's slab (RKN methods: flows of
+  // lambda = 0, the force with M Q added in eigen coordinates by the space).
+  std::unique_ptr<StepperBase> explicit_stepper(double h) const {
+    return std::make_unique<ExplicitSlabStepper>(method_, System(system_), h, options_,
+                                                 SlabSpace(comm_, T_, method_.kind() == Kind::rkn),
+                                                 lambda_, T_.physical_size());
+  }
+
+  // A step of the stage solver from the state in eigen coordinates (transformed first after
+  // construction or a restored checkpoint), eq. (d)'s update added.
+  void implicit_step(bool short_step, Statistics& counts) {
+    Stages& st = short_step ? *short_ : *stages_;
+    if (short_step) st.solver.reset();
+    if (!x_.spectral) {
+      space_.forward(x_.q, x_.q_hat);
+      space_.forward(x_.p, x_.p_hat);
+      x_.q_error.setZero(), x_.p_error.setZero();
+      x_.spectral = true;
+    }
+    st.solver.solve(x_.q_hat, x_.p_hat, {&method_, statistics_.steps + 1, grid_.t()}, counts);
+    update(st);
+    st.solver.advance();
+    if (short_step) stages_->solver.reset();  // (its history is of the grid before)
+  }
+
+  // A step of the explicit stepper, which holds the state between steps (set after construction
+  // or a restored checkpoint). A shorter step, as Integrator::step_to takes it: the physical
+  // state into the shorter step's stepper, stepped, and back (h's stepper starts from it again).
+  void explicit_step(bool short_step, Statistics& counts) {
+    StepperBase& s = short_step ? *explicit_short_ : *explicit_;
+    if (short_step) load(), x_.spectral = false;
+    if (!x_.spectral) s.set_state(x_.q, x_.p, counts), x_.spectral = true;
+    s.step(statistics_.steps + 1, grid_.t(), counts);
+    x_.physical = false;
+    if (!short_step) return;
+    s.get_state(x_.q, x_.p, counts);
+    x_.physical = true, x_.spectral = false;
   }
 
   // The step-size advisor's verdict at h at the (kept) state: its linear model (slab_advice.hpp).

@@ -1,6 +1,7 @@
 #include "slab_space.hpp"
 
 #include <exception>
+#include <utility>
 
 #include "erkn/error.hpp"
 #include "erkn/method.hpp"
@@ -32,21 +33,31 @@ void SlabSpace::gradient(const System& system, const Eigen::VectorXd& Q, Eigen::
   }
   if (error.empty()) return;
   g.setZero(Q.size());  // (the transforms stay defined until the next reduce reports it)
-  if (error_.empty())
-    error_ = error + " at step " + std::to_string(at.step) + " (t = " + erkn::format(at.t) +
-             "), stage " + std::to_string(i + 1) + "; the state is unchanged";
+  keep(error + " at step " + std::to_string(at.step) + " (t = " + erkn::format(at.t) + "), stage " +
+       std::to_string(i + 1) + "; the state is unchanged");
 }
 
-// g += M Q through the eigenbasis (M is diagonal there): two more transforms per evaluation,
-// for RKN methods only.
+void SlabSpace::defer(const std::exception& e) { keep(message_of(e)); }
+
+void SlabSpace::keep(std::string message) {
+  unchecked_ = true;
+  if (error_.empty()) error_ = std::move(message);
+}
+
+// g += M Q for RKN methods only: two more transforms per evaluation.
 void SlabSpace::add_MQ(const Eigen::VectorXd& Q, Eigen::VectorXd& g) {
   if (!rkn_) return;
-  MQ_hat_.resize(size());
   MQ_.resize(dimension());
-  forward(Q, MQ_hat_);
-  MQ_hat_ *= T_.eigenvalues();
-  inverse(MQ_hat_, MQ_);
+  apply_M(Q, MQ_);
   g += MQ_;
+}
+
+void SlabSpace::apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+  MQ_hat_.resize(size());
+  y.resize(dimension());
+  forward(x, MQ_hat_);
+  MQ_hat_ *= T_.eigenvalues();
+  inverse(MQ_hat_, y);
 }
 
 void SlabSpace::gradient_failed() const {

@@ -3,13 +3,16 @@
 // the arrays are this rank's part of the eigen coordinates and of the physical vectors; reduce sums
 // every rank's parts in one MPI_Allreduce, which also carries the check that every rank's gradient
 // since the last reduce was good, so all ranks take every decision together and an error on one
-// rank is an error on all of them.
+// rank is an error on all of them. It is also the transform of the library's explicit stepper
+// (runtime/src/explicit_stepper.hpp: spectral_size, forward, inverse, apply_M, and the deferred
+// checks gradient, to_eigen_force, defer, settle).
 #pragma once
 
 #include <mpi.h>
 
 #include <Eigen/Core>
 #include <array>
+#include <exception>
 #include <string>
 
 #include "collective.hpp"
@@ -39,6 +42,7 @@ class SlabSpace {
 
   Eigen::Index dimension() const { return T_.physical_size(); }
   Eigen::Index size() const { return T_.spectral_size(); }
+  Eigen::Index spectral_size(Eigen::Index /*d*/) const { return size(); }  ///< (a transform's)
   template <int slots>
   Block<slots> block(int count) const {
     return Eigen::ArrayXd::Zero(count * stride_);
@@ -121,9 +125,14 @@ class SlabSpace {
   void gradient(const System& system, const Eigen::VectorXd& Q, Eigen::VectorXd& g, int i,
                 const erkn::detail::StepPlace& at, long& evaluations);
   void add_MQ(const Eigen::VectorXd& Q, Eigen::VectorXd& g);
+  /// y = M x (collective: through the eigenbasis, where M is diagonal).
+  void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y);
+  /// Keeps a failed check of this rank, as gradient keeps a failure, for the next reduce.
+  void defer(const std::exception& e);
 
  private:
   [[noreturn]] void gradient_failed() const;
+  void keep(std::string message);  // (this rank's first failure since the last reduce)
 
   MPI_Comm comm_;
   DistributedTransform& T_;

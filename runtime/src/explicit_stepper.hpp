@@ -21,6 +21,14 @@
 // round-off. When D, the dimension, is a compile-time constant (tiny systems with M's
 // identity eigenbasis) that copy is a set of fixed-size arrays the compiler keeps in registers.
 //
+// The transform may also be a space of several processes (mpi/src/slab_space.hpp: a grid or
+// circulant M distributed over MPI ranks, whose transforms are collective). Such a space defers
+// the step's checks (kDeferred): its gradient keeps a failure (g zeroed) instead of throwing, as
+// do the checks of the passes (fail), and settle() at the end of the step, one reduce over every
+// process, throws the first failure on all of them alike before the state is replaced; a process
+// that threw alone would leave the others waiting in a transform. Its force in eigen coordinates
+// is the space's to_eigen_force (M Q added there for RKN methods), and so is apply_M.
+//
 // Compensated summation (Options::compensated_summation) keeps with q and p the low-order parts
 // eq, ep that rounding has dropped (explicit_passes.hpp); get_state returns q + eq and p + ep.
 //
@@ -37,6 +45,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -66,6 +75,8 @@ class ExplicitStepper final : public StepperBase {
   // A transform with a staging buffer (HalfSpectrumTransform): the flow before a gradient writes
   // the stage's eigen coordinates there, scaled, and the inverse transform needs no copy pass.
   static constexpr bool kStaged = requires(Transform & t) { t.staging(); };
+  // A space of several processes, whose checks are collective (see above).
+  static constexpr bool kDeferred = requires(Transform & t, const Error& e) { t.defer(e); };
   static_assert(!kFixed || kIdentity, "a fixed dimension needs the identity basis");
   // The state (q, p, eq, ep), the gradient of the current stage and the last stage's gradient of
   // the previous step; with a dynamic dimension also the state's second copy (4 arrays).
@@ -140,7 +151,7 @@ class ExplicitStepper final : public StepperBase {
         kicks_(method, h),
         flows_(method, h, lambda),
         transform_(std::move(transform)),
-        M_(system_.M, d),
+        M_(m_operator(system_.M, d)),
         arrays_(transform_.spectral_size(d)),
         physical_(d, rkn_),
         modified_(method.has_modified_kicks() || method.is_processed() ? d : 0),
@@ -198,7 +209,12 @@ class ExplicitStepper final : public StepperBase {
     count(counts, stats);
   }
 
-  void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) override { M_.apply(x, y); }
+  void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) override {
+    if constexpr (kDeferred)
+      transform_.apply_M(x, y);
+    else
+      M_->apply(x, y);
+  }
   System& system() override { return system_; }
 
  private:
@@ -292,7 +308,9 @@ class ExplicitStepper final : public StepperBase {
       FixedMap(arrays_.state.q) = v.q, FixedMap(arrays_.state.p) = v.p;
       if (kKahan) FixedMap(arrays_.state.eq) = v.eq, FixedMap(arrays_.state.ep) = v.ep;
     } else {
-      if (stages<kKahan>(arrays_.state, arrays_.work, evaluations)) non_finite_result(true, place_);
+      if (stages<kKahan>(arrays_.state, arrays_.work, evaluations))
+        fail([&] { non_finite_result(true, place_); });
+      if constexpr (kDeferred) transform_.settle();  // (every process's checks, before the swap)
       std::swap(arrays_.state, arrays_.work);
     }
   }
@@ -327,7 +345,7 @@ class ExplicitStepper final : public StepperBase {
       else
         bits = apply<kKahan, kKick>(*from, to, hd, g, 0);
       staged = staged && kStage;
-      if (!reused && bits.g) non_finite_gradient(i, place_);
+      if (!reused && bits.g) fail([&] { non_finite_gradient(i, place_); });
       from = &to;
     }
     return bits.p;
@@ -370,6 +388,20 @@ class ExplicitStepper final : public StepperBase {
     for (Eigen::Index j = 0; j < kLanes * arrays_.m; ++j)
       y[j] = stage_scale_ * (kKahan ? a[j] + b[j] : a[j]);
     transform_.inverse_staged(out);
+  }
+
+  // A failed check (error() throws it): at once, or kept for settle() (kDeferred).
+  template <class Throw>
+  EIGEN_ALWAYS_INLINE void fail(Throw&& error) {
+    if constexpr (kDeferred) {
+      try {
+        error();
+      } catch (const Error& e) {
+        transform_.defer(e);
+      }
+    } else {
+      error();
+    }
   }
 
   void require_finite(const Values& v) const {
@@ -449,7 +481,12 @@ class ExplicitStepper final : public StepperBase {
   // finite when check_g.
   EIGEN_ALWAYS_INLINE const Scalar* force(const Scalar* q, bool have_Q, int i, double d_i,
                                           double h2e, Counts& evaluations, bool check_g) {
-    if constexpr (kIdentity) {
+    if constexpr (kDeferred) {  // (no modified kicks: the distributed integrator refuses them)
+      transform_.inverse(ConstMap(q, arrays_.m), physical_.Q);
+      transform_.gradient(system_, physical_.Q, physical_.g, i, place_, evaluations.gradients);
+      transform_.to_eigen_force(physical_.Q, ConstMap(q, arrays_.m), physical_.g, map(arrays_.G));
+      return arrays_.G;
+    } else if constexpr (kIdentity) {
       if (!have_Q) std::copy_n(q, n(), physical_.Q.data());
     } else if constexpr (kStaged) {
       if (have_Q)
@@ -462,7 +499,7 @@ class ExplicitStepper final : public StepperBase {
     checked_gradient<D>(system_, physical_.Q, physical_.g, physical_.Q.size(), i, place_,
                         evaluations.gradients, check_g);
     if (rkn_) {
-      M_.apply(physical_.Q, physical_.Mq);
+      M_->apply(physical_.Q, physical_.Mq);
       physical_.g += physical_.Mq;
     }
     if (h2e != 0)
@@ -474,6 +511,14 @@ class ExplicitStepper final : public StepperBase {
       transform_.forward(physical_.g, map(arrays_.G));
       return arrays_.G;
     }
+  }
+
+  // M applied in physical coordinates (none with a deferred space: it applies M itself).
+  static std::optional<MOperator> m_operator(const Stiffness& M, Eigen::Index d) {
+    if constexpr (kDeferred)
+      return std::nullopt;
+    else
+      return std::optional<MOperator>(std::in_place, M, d);
   }
 
   static double staging_scale(const Transform& t) {
@@ -517,7 +562,7 @@ class ExplicitStepper final : public StepperBase {
   FlowCoefficients<Coef> flows_;
   Transform transform_;
   double stage_scale_ = staging_scale(transform_);  // (what stage_input wants)
-  MOperator M_;
+  std::optional<MOperator> M_;
   Arrays arrays_;
   Physical physical_;
   ModifiedForce modified_;
