@@ -32,17 +32,17 @@ struct Envelope {
   }
 };
 
+// The step-doubling differences of the pilot's runs (accuracy_pilot.cpp's run) with h and h/2.
 Envelope envelope(const Method& m, const PilotRequest& r, double h, long n, long every) {
-  Integrator a(m, *r.system, h, *r.q0, *r.p0, r.options);
-  Integrator b(m, *r.system, h / 2, *r.q0, *r.p0, r.options);
+  const Track a = run(m, r, h, n, every), b = run(m, r, h / 2, 2 * n, 2 * every);
   Envelope out;
-  for (long k = every; k <= n; k += every) {
-    a.step(every), b.step(2 * every);
-    out.t.push_back(double(k) * h), out.e.push_back((a.q() - b.q()).lpNorm<Eigen::Infinity>());
-    out.roundoff = std::max(out.roundoff, 64 * std::numeric_limits<double>::epsilon() *
-                                              double(2 * k) * a.q().lpNorm<Eigen::Infinity>());
+  for (size_t i = 0; i < a.q.size() && i < b.q.size(); ++i) {
+    const double size = a.q[i].lpNorm<Eigen::Infinity>();
+    out.t.push_back(a.t[i]), out.e.push_back((a.q[i] - b.q[i]).lpNorm<Eigen::Infinity>());
+    out.roundoff =
+        std::max(out.roundoff, 128 * std::numeric_limits<double>::epsilon() * a.t[i] / h * size);
   }
-  out.gradients = a.statistics().gradient_evaluations + b.statistics().gradient_evaluations;
+  out.gradients = a.gradients + b.gradients;
   return out;
 }
 

@@ -15,26 +15,6 @@ namespace {
 // extrapolate from); this far below it, the pilot is made coarser (cheaper, clear of round-off).
 constexpr double kAsymptotic = 1e3;
 
-struct Track {
-  std::vector<double> t;
-  std::vector<Eigen::VectorXd> q;
-  long gradients = 0;
-};
-
-// n steps of size h from (q0, p0), q recorded after every `every`-th step and the last.
-Track run(const Method& method, const PilotRequest& r, double h, long n, long every) {
-  Integrator it(method, *r.system, h, *r.q0, *r.p0, r.options);
-  Track out;
-  it.integrate(
-      double(n) * h,
-      [&](double t, const Eigen::VectorXd& q, const Eigen::VectorXd&) {
-        out.t.push_back(t), out.q.push_back(q);
-      },
-      every);
-  out.gradients = it.statistics().gradient_evaluations;
-  return out;
-}
-
 // One attempt with n steps of h over the pilot interval: the step-doubling estimate of the h
 // run's error at each checkpoint t_i of the pilot's second half (earlier ones are the size of a
 // local error, not yet a trend), grown linearly to the span; the maximum over those t_i.
@@ -68,6 +48,19 @@ Pilot attempt(const Method& method, const PilotRequest& r, double h, long n) {
 }
 
 }  // namespace
+
+Track run(const Method& method, const PilotRequest& r, double h, long n, long every) {
+  Integrator it(method, *r.system, h, *r.q0, *r.p0, r.options);
+  Track out;
+  it.integrate(
+      double(n) * h,
+      [&](double t, const Eigen::VectorXd& q, const Eigen::VectorXd&) {
+        out.t.push_back(t), out.q.push_back(q);
+      },
+      every);
+  out.gradients = it.statistics().gradient_evaluations;
+  return out;
+}
 
 Pilot calibrated_pilot(const Method& method, const PilotRequest& request, double h_start,
                        double target) {

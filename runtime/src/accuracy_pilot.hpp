@@ -54,6 +54,15 @@ struct Pilot {
   double cpu_per_gradient = 0;  ///< of the accepted attempt
 };
 
+/// A run's q at checkpoints: after every `every`-th of n steps of size h from (q0, p0), and
+/// after the last.
+struct Track {
+  std::vector<double> t;
+  std::vector<Eigen::VectorXd> q;
+  long gradients = 0;
+};
+Track run(const Method& method, const PilotRequest& request, double h, long n, long every);
+
 /// Pilots `method` from h_start, refining h until the estimate lies within a factor 1000 of
 /// `target` (above it: finer; below it: coarser, and once at two steps a 4x longer pilot
 /// interval, up to the span; at most 8 attempts).
