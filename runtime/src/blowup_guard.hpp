@@ -21,6 +21,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "erkn/advisor.hpp"
@@ -65,11 +66,15 @@ class BlowupGuard {
   /// watched, else E_2.
   double measure(const Sums& s) const { return pending_ || energy_ ? s.H() : s.E2; }
   /// True once per kInterval calls (when on).
-  bool due() {
-    if (!on_ || --countdown_ > 0) return false;
+  bool due() { return due_after(1); }
+  /// steps (<= until_due()) taken at once: true when due() would be after the last of them.
+  bool due_after(long steps) {
+    if (!on_ || (countdown_ -= steps) > 0) return false;
     countdown_ = kInterval;
     return true;
   }
+  /// The steps until the next check (no bound when off).
+  long until_due() const { return on_ ? countdown_ : std::numeric_limits<long>::max(); }
   /// The growth of `measure` against its reference, in units of the limit (> 1: a blow-up).
   double growth(double measure);
   bool on() const { return on_; }

@@ -209,6 +209,10 @@ class ExplicitStepper final : public StepperBase {
     count(counts, stats);
   }
 
+  void steps(long n, long first, const TimeGrid& grid, Statistics& stats, long& done) override {
+    for (done = 0; done < n; ++done) ExplicitStepper::step(first + done, grid.ahead(done), stats);
+  }
+
   void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) override {
     if constexpr (kDeferred)
       transform_.apply_M(x, y);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -155,25 +156,46 @@ Integrator& Integrator::operator=(Integrator&&) noexcept = default;
 
 const System& Integrator::system() const { return stepper_->system(); }
 
-void Integrator::step() {
-  // (Known at every restart of the grid and at every guard check: stepping alone needs ~1e14
-  // steps to leave the resolved range.)
-  if (!time_resolved_) grid_.require_resolved();
-  try {
-    checked_step(*stepper_);
-  } catch (const Error& e) {  // (a blow-up often ends in a failed stage: say so)
-    if (guard_->on()) check_guard(e.what());
-    throw;
-  }
-  stale_ = true;
-  grid_.advance();
-  if (guard_->due()) check_guard();
-}
+void Integrator::step() { advance(1); }
 
 void Integrator::step(long n) {
   if (n < 0) throw Error("step(n): n must be >= 0; got " + std::to_string(n));
   const Timer timer(*this, n);
-  for (long k = 0; k < n; ++k) step();
+  advance(n);
+}
+
+void Integrator::advance(long n) {
+  // (The energy monitor checks every step: batches of one.)
+  const long most = options_.energy_tolerance > 0 ? 1 : std::numeric_limits<long>::max();
+  while (n > 0) {
+    const long k = std::min({n, most, guard_->until_due()});
+    batch(k);
+    n -= k;
+  }
+}
+
+// n steps, as many calls of step() (n <= the guard's steps until its check): the stepper loops
+// over them (StepperBase::steps), so a step costs no call through the integrator.
+void Integrator::batch(long n) {
+  // (Known at every restart of the grid and at every guard check: stepping alone needs ~1e14
+  // steps to leave the resolved range.)
+  if (!time_resolved_) grid_.require_resolved();
+  long done = 0;
+  try {
+    if (options_.energy_tolerance > 0)
+      checked_step(*stepper_), done = 1;
+    else
+      stepper_->steps(n, statistics_.steps + 1, grid_, statistics_, done);
+  } catch (const Error& e) {  // (a blow-up often ends in a failed stage: say so)
+    stale_ = stale_ || done > 0;
+    grid_.advance(done);
+    guard_->due_after(done);  // (false: fewer steps than until_due())
+    if (guard_->on()) check_guard(e.what());
+    throw;
+  }
+  stale_ = true;
+  grid_.advance(n);
+  if (guard_->due_after(n)) check_guard();
 }
 
 using detail::cpu_seconds;

@@ -55,9 +55,10 @@ inline bool all_finite(const std::complex<double>* x, Eigen::Index n) {
 /// non-finite Q before the call, and a g of a size other than d or (when check_g; else the caller
 /// checks it) with a non-finite entry after. D: d when it is a compile-time constant.
 template <int D = Eigen::Dynamic>
-void checked_gradient(const System& system, const Eigen::VectorXd& Q, Eigen::VectorXd& g,
-                      Eigen::Index d, int i, const StepPlace& at, long& evaluations,
-                      bool check_g = true) {
+EIGEN_ALWAYS_INLINE void checked_gradient(const System& system, const Eigen::VectorXd& Q,
+                                          Eigen::VectorXd& g, Eigen::Index d, int i,
+                                          const StepPlace& at, long& evaluations,
+                                          bool check_g = true) {
   if (!all_finite<D>(Q.data(), d)) non_finite_stage(i, at);
   system.gradient(Q, g);
   ++evaluations;

@@ -38,6 +38,13 @@ class StepperBase {
   /// One step (step_number 1-based and t at its start, for messages), counted into stats; on
   /// error the state and stats are unchanged.
   virtual void step(long step_number, double t, Statistics& stats) = 0;
+  /// n steps, numbered from first, the k-th (0-based) from t = grid.ahead(k) (grid: the
+  /// integrator's, at the first step's start), as n calls of step(); done counts those completed
+  /// (on error: the ones before the step that failed, whose state and counts stay). A stepper
+  /// overrides it to keep the loop out of the virtual call.
+  virtual void steps(long n, long first, const TimeGrid& grid, Statistics& stats, long& done) {
+    for (done = 0; done < n; ++done) step(first + done, grid.ahead(done), stats);
+  }
   virtual void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) = 0;
   virtual System& system() = 0;
 };

@@ -112,6 +112,42 @@ TEST(ExplicitChecks, NonFiniteGradientAtEveryStageIsNamedAndChangesNothing) {
       }
 }
 
+// integrate() runs its steps in batches inside the stepper (StepperBase::steps): a step that fails
+// within one keeps the steps before it, as a failed step() does. A NaN at the first gradient call
+// of step 6 of a 40-step integrate: the error names step 6; t, the state (bit for bit) and the
+// counts are those of a fault-free run after 5 steps. Negative control: a finite value there
+// runs to the end.
+TEST(ExplicitChecks, AFailedStepWithinIntegrateKeepsTheStepsBefore) {
+  for (const Basis& basis : {bases()[0], bases()[3]})
+    for (const Method& m : explicit_methods()) {
+      SCOPED_TRACE(std::string(basis.name) + ", " + std::string(m.name()));
+      const Eigen::Index d = basis.M.dim();
+      const double h = 0.05;
+      Faulty clean;
+      Integrator five(m, clean.system(basis.M), h, start(d, 0.1), start(d, 0.7));
+      five.step(5);
+      const long evaluations = five.statistics().gradient_evaluations;
+      five.q();  // (pi for a processed method, as the guard's check after the failure reads it)
+      for (double fault : {kNaN, 0.5}) {
+        Faulty f;
+        f.fault = fault, f.at = evaluations + 1, f.counting = true;
+        Integrator run(m, f.system(basis.M), h, start(d, 0.1), start(d, 0.7));
+        const std::string message = error_of([&] { run.integrate(40 * h); });
+        if (fault == 0.5) {  // negative control
+          EXPECT_EQ(message, "");
+          EXPECT_EQ(run.statistics().steps, 40);
+          continue;
+        }
+        EXPECT_CONTAINS(message, "non-finite value at step 6");
+        EXPECT_EQ(run.statistics().steps, 5);
+        EXPECT_EQ(run.statistics().gradient_evaluations, five.statistics().gradient_evaluations);
+        EXPECT_EQ(run.t(), five.t());
+        EXPECT_EQ(run.q(), five.q());
+        EXPECT_EQ(run.p(), five.p());
+      }
+    }
+}
+
 // A gradient of -1e308 in every entry: within a few steps p overflows (or the next stage does);
 // the step is refused naming it, and nothing changes. Negative control: -1e300 steps on.
 TEST(ExplicitChecks, OverflowingKickIsRefusedAndChangesNothing) {

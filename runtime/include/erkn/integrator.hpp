@@ -26,6 +26,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <memory>
 #include <string>
 
@@ -133,10 +134,11 @@ class Integrator {
   void integrate(double t_end, Observer&& observer, long every = 1) {
     const TimeGrid::Plan plan = prepare_end(t_end, every);
     Timer timer(*this, plan.whole);
-    for (long n = 1; n <= plan.whole; ++n) {
-      step();
-      if (n % every == 0 || (n == plan.whole && !plan.shorter))
-        timer.before_observer(), observer(t(), q(), p());
+    for (long n = 0; n < plan.whole;) {  // (every steps at a time, the last batch shorter)
+      const long batch = std::min(every, plan.whole - n);
+      advance(batch);
+      n += batch;
+      if (batch == every || !plan.shorter) timer.before_observer(), observer(t(), q(), p());
     }
     if (plan.shorter) {
       step_to(t_end);
@@ -148,7 +150,7 @@ class Integrator {
   void integrate(double t_end) {
     const TimeGrid::Plan plan = prepare_end(t_end, 1);
     const Timer timer(*this, plan.whole);
-    for (long n = 1; n <= plan.whole; ++n) step();
+    advance(plan.whole);
     if (plan.shorter) step_to(t_end);
   }
   /// Steps to t_end as integrate(t_end) does and calls observer(t, q, p) at each of `times`
@@ -161,7 +163,7 @@ class Integrator {
     Timer timer(*this, prepare_end(t_end, 1).whole + long(times.size()));
     Eigen::VectorXd q(q_.size()), p(p_.size());
     for (double tau : times) {
-      for (long n = steps_until(tau); n > 0; --n) step();
+      advance(steps_until(tau));
       state_at(tau, q, p);
       timer.before_observer(), observer(tau, q, p);
     }
@@ -249,6 +251,9 @@ class Integrator {
   bool timing_ = false;
 
   void load_state() const;
+  // n steps of h (n calls of step()), in batches that end where the guard checks.
+  void advance(long n);
+  void batch(long n);
   TimeGrid::Plan prepare_end(double t_end, long every);
   void require_output_times(double t_end, const Eigen::Ref<const Eigen::VectorXd>& times) const;
   void require_reachable(double t_out) const;

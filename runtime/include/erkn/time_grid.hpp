@@ -26,8 +26,8 @@ class TimeGrid {
   double h() const { return h_; }
   /// The grid point `steps` whole steps after t().
   double ahead(long steps) const { return t0_ + double(n_ + steps) * h_; }
-  /// One step of h taken.
-  void advance() { ++n_; }
+  /// Steps of h taken (one by default).
+  void advance(long steps = 1) { n_ += steps; }
   /// The grid starts over at t (after a shorter step to t, or a new state at t).
   void restart(double t) { t0_ = t, n_ = 0; }
   /// The grid of step size h from t() on (validated as the constructor does).
