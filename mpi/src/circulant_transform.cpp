@@ -38,6 +38,7 @@ CirculantTransform::CirculantTransform(MPI_Comm comm, const Stiffness& M) {
   first_k_ = Eigen::Index(l.first_out), n_ = Eigen::Index(n);
   fftw_.in = fftw_alloc_complex(size_t(l.buffer));
   fftw_.out = fftw_alloc_complex(size_t(l.buffer));
+  staging_ = &fftw_.in[0][0];  // (the inverse's input: (re, im) pairs, as the coordinates)
   fftw_.forward = fftw_mpi_plan_dft_1d(n, fftw_.in, fftw_.out, comm, FFTW_FORWARD, FFTW_ESTIMATE);
   fftw_.inverse = fftw_mpi_plan_dft_1d(n, fftw_.in, fftw_.out, comm, FFTW_BACKWARD, FFTW_ESTIMATE);
   if (!fftw_.forward || !fftw_.inverse)
@@ -65,11 +66,9 @@ void CirculantTransform::execute_forward(const Eigen::Ref<const Eigen::VectorXd>
   y = Eigen::Map<const Eigen::ArrayXd>(&fftw_.out[0][0], spectral_size());
 }
 
-void CirculantTransform::execute_inverse(const Eigen::Ref<const Eigen::ArrayXd>& y,
-                                         Eigen::Ref<Eigen::VectorXd> x) {
-  Eigen::Map<Eigen::ArrayXd>(&fftw_.in[0][0], spectral_size()) = y;
+void CirculantTransform::execute_inverse_staged(Eigen::Ref<Eigen::VectorXd> x) {
   fftw_execute(fftw_.inverse);
-  for (Eigen::Index j = 0; j < physical_size(); ++j) x[j] = scale_ * fftw_.out[j][0];
+  for (Eigen::Index j = 0; j < physical_size(); ++j) x[j] = fftw_.out[j][0];
 }
 
 }  // namespace erkn::mpi::detail

@@ -32,10 +32,8 @@ class CirculantTransform final : public DistributedTransform {
  private:
   void execute_forward(const Eigen::Ref<const Eigen::VectorXd>& x,
                        Eigen::Ref<Eigen::ArrayXd> y) override;
-  void execute_inverse(const Eigen::Ref<const Eigen::ArrayXd>& y,
-                       Eigen::Ref<Eigen::VectorXd> x) override;
+  void execute_inverse_staged(Eigen::Ref<Eigen::VectorXd> x) override;
 
-  double scale_ = 1;  // 1 / N
   FftwPlans<fftw_complex> fftw_;
   Eigen::Index first_k_ = 0, n_ = 0;  // (mode: the first local k, N)
 };

@@ -45,8 +45,18 @@ class DistributedTransform {
     ++count_, seconds_ += MPI_Wtime() - start;
   }
   void inverse(const Eigen::Ref<const Eigen::ArrayXd>& y, Eigen::Ref<Eigen::VectorXd> x) {
+    Eigen::Map<Eigen::ArrayXd>(staging_, spectral_size()) = scale_ * y;
+    inverse_staged(x);
+  }
+  /// The inverse transform's input buffer (spectral_size() coordinates in the order of y) and
+  /// the factor y is written there with (the normalisation): the explicit stepper's flow writes
+  /// the stage's eigen coordinates there as it computes them, and inverse_staged transforms
+  /// them with no copy pass (collective; the buffer's contents are lost).
+  double* staging() { return staging_; }
+  double staging_scale() const { return scale_; }
+  void inverse_staged(Eigen::Ref<Eigen::VectorXd> x) {
     const double start = MPI_Wtime();
-    execute_inverse(y, x);
+    execute_inverse_staged(x);
     ++count_, seconds_ += MPI_Wtime() - start;
   }
   /// Transforms executed by this rank (each one all-to-all over comm).
@@ -57,11 +67,12 @@ class DistributedTransform {
  protected:
   virtual void execute_forward(const Eigen::Ref<const Eigen::VectorXd>& x,
                                Eigen::Ref<Eigen::ArrayXd> y) = 0;
-  virtual void execute_inverse(const Eigen::Ref<const Eigen::ArrayXd>& y,
-                               Eigen::Ref<Eigen::VectorXd> x) = 0;
+  virtual void execute_inverse_staged(Eigen::Ref<Eigen::VectorXd> x) = 0;
 
   LocalPart part_;
   Eigen::ArrayXd lambda_, weights_;
+  double* staging_ = nullptr;  // (an implementation's buffer)
+  double scale_ = 1;           // 1 / the product of FFTW's logical sizes
 
  private:
   long count_ = 0;

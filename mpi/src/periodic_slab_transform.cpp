@@ -53,6 +53,7 @@ PeriodicSlabTransform::PeriodicSlabTransform(MPI_Comm comm, const Stiffness& M)
   fftw_.inverse = fftw_mpi_plan_dft_c2r(rank, l.n.data(), spectrum, fftw_.in, comm,
                                         FFTW_MEASURE | FFTW_MPI_TRANSPOSED_IN);
   if (!fftw_.forward || !fftw_.inverse) throw Error("FFTW-MPI could not plan the grid transforms");
+  staging_ = fftw_.out;  // (the spectrum c2r reads)
   // Spectral layout: (k1 local, k0, k2, .., k_{K-1} halved), two coordinates per entry.
   const std::vector<GridAxis>& axes = M.axes();
   const std::size_t last = axes.size() - 1;
@@ -93,12 +94,10 @@ void PeriodicSlabTransform::execute_forward(const Eigen::Ref<const Eigen::Vector
   y = Eigen::Map<const Eigen::ArrayXd>(fftw_.out, spectral_size());
 }
 
-void PeriodicSlabTransform::execute_inverse(const Eigen::Ref<const Eigen::ArrayXd>& y,
-                                            Eigen::Ref<Eigen::VectorXd> x) {
+void PeriodicSlabTransform::execute_inverse_staged(Eigen::Ref<Eigen::VectorXd> x) {
   const Eigen::Index n_last = layout_.n.back();
-  Eigen::Map<Eigen::ArrayXd>(fftw_.out, spectral_size()) = y;
-  fftw_execute(fftw_.inverse);  // (c2r: destroys its input, the copy of y)
-  Eigen::Map<Eigen::ArrayXXd>(x.data(), n_last, x.size() / n_last) = scale_ * padded();
+  fftw_execute(fftw_.inverse);  // (c2r: destroys its input, the staged y)
+  Eigen::Map<Eigen::ArrayXXd>(x.data(), n_last, x.size() / n_last) = padded();
 }
 
 }  // namespace erkn::mpi::detail

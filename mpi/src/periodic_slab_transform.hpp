@@ -52,13 +52,11 @@ class PeriodicSlabTransform final : public DistributedTransform {
  private:
   void execute_forward(const Eigen::Ref<const Eigen::VectorXd>& x,
                        Eigen::Ref<Eigen::ArrayXd> y) override;
-  void execute_inverse(const Eigen::Ref<const Eigen::ArrayXd>& y,
-                       Eigen::Ref<Eigen::VectorXd> x) override;
+  void execute_inverse_staged(Eigen::Ref<Eigen::VectorXd> x) override;
   // The physical slab's rows of the last axis (n_{K-1} values) in FFTW's padded real array.
   Eigen::Map<Eigen::ArrayXXd, 0, Eigen::OuterStride<>> padded();
 
   PeriodicSlabLayout layout_;
-  double scale_ = 1;        // 1 / prod n_a
   FftwPlans<double> fftw_;  // in: the padded real array; out: the complex spectrum
 };
 

@@ -14,7 +14,8 @@ void SlabSpace::gradient(const System& system, const Eigen::VectorXd& Q, Eigen::
   ++evaluations;
   unchecked_ = true;
   std::string error;
-  if (!Q.allFinite()) {
+  using erkn::detail::all_finite;  // (vectorised, no early exit: stage_checks.hpp)
+  if (!all_finite(Q.data(), Q.size())) {
     error = "stage " + std::to_string(i + 1) + " of " + std::string(at.method->name()) +
             " is not finite (is h unstable for this problem?)";
   } else {
@@ -23,7 +24,7 @@ void SlabSpace::gradient(const System& system, const Eigen::VectorXd& Q, Eigen::
       if (g.size() != Q.size())
         error = "the gradient callback returned a vector of size " + std::to_string(g.size()) +
                 " for a slab of size " + std::to_string(Q.size());
-      else if (!g.allFinite())
+      else if (!all_finite(g.data(), g.size()))
         error = "the gradient callback returned a non-finite value";
     } catch (const std::exception& e) {
       error = std::string("the gradient callback threw: ") + e.what();

@@ -4,8 +4,8 @@
 // every rank's parts in one MPI_Allreduce, which also carries the check that every rank's gradient
 // since the last reduce was good, so all ranks take every decision together and an error on one
 // rank is an error on all of them. It is also the transform of the library's explicit stepper
-// (runtime/src/explicit_stepper.hpp: spectral_size, forward, inverse, apply_M, and the deferred
-// checks gradient, to_eigen_force, defer, settle).
+// (runtime/src/explicit_stepper.hpp: spectral_size, forward, inverse, staging, apply_M, and the
+// deferred checks gradient, to_eigen_force, defer, settle).
 #pragma once
 
 #include <mpi.h>
@@ -68,6 +68,11 @@ class SlabSpace {
     Eigen::Ref<Eigen::VectorXd> out(x);
     T_.inverse(y, out);
   }
+  /// The transform's staging (distributed_transform.hpp): the explicit stepper's flow writes the
+  /// stage there, and inverse_staged transforms it without a copy (collective).
+  double* staging() { return T_.staging(); }
+  double staging_scale() const { return T_.staging_scale(); }
+  void inverse_staged(Eigen::VectorXd& x) { T_.inverse_staged(x); }
   template <class Y>
   void to_physical(const Y& y, Eigen::VectorXd& x) {
     inverse(y, x);

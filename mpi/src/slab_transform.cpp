@@ -71,6 +71,7 @@ SlabTransform::SlabTransform(MPI_Comm comm, const Stiffness& M) {
   fftw_.inverse = fftw_mpi_plan_r2r(rank, l.n.data(), fftw_.in, fftw_.out, comm,
                                     inverse_kinds.data(), FFTW_ESTIMATE | FFTW_MPI_TRANSPOSED_IN);
   if (!fftw_.forward || !fftw_.inverse) throw Error("FFTW-MPI could not plan the grid transforms");
+  staging_ = fftw_.in;  // (the inverse's input)
   // Spectral layout: (k1 local, k0, k2, ...).
   std::vector<Eigen::ArrayXd> mu, w;
   const auto add = [&](const GridAxis& a, Eigen::Index first, Eigen::Index count) {
@@ -97,11 +98,9 @@ void SlabTransform::execute_forward(const Eigen::Ref<const Eigen::VectorXd>& x,
   y = Eigen::Map<const Eigen::ArrayXd>(fftw_.out, spectral_size());
 }
 
-void SlabTransform::execute_inverse(const Eigen::Ref<const Eigen::ArrayXd>& y,
-                                    Eigen::Ref<Eigen::VectorXd> x) {
-  Eigen::Map<Eigen::ArrayXd>(fftw_.in, spectral_size()) = y;
+void SlabTransform::execute_inverse_staged(Eigen::Ref<Eigen::VectorXd> x) {
   fftw_execute(fftw_.inverse);
-  x = scale_ * Eigen::Map<const Eigen::VectorXd>(fftw_.out, physical_size());
+  x = Eigen::Map<const Eigen::VectorXd>(fftw_.out, physical_size());
 }
 
 }  // namespace erkn::mpi::detail

@@ -47,10 +47,8 @@ class SlabTransform final : public DistributedTransform {
  private:
   void execute_forward(const Eigen::Ref<const Eigen::VectorXd>& x,
                        Eigen::Ref<Eigen::ArrayXd> y) override;
-  void execute_inverse(const Eigen::Ref<const Eigen::ArrayXd>& y,
-                       Eigen::Ref<Eigen::VectorXd> x) override;
+  void execute_inverse_staged(Eigen::Ref<Eigen::VectorXd> x) override;
 
-  double scale_ = 1;  // 1 / prod of FFTW's logical sizes
   FftwPlans<double> fftw_;
   Eigen::Index first1_ = 0, n0_ = 0, n1_ = 0, rest_ = 1;  // (mode: k1's offset, axis sizes)
 };

@@ -485,12 +485,7 @@ class ExplicitStepper final : public StepperBase {
   // finite when check_g.
   EIGEN_ALWAYS_INLINE const Scalar* force(const Scalar* q, bool have_Q, int i, double d_i,
                                           double h2e, Counts& evaluations, bool check_g) {
-    if constexpr (kDeferred) {  // (no modified kicks: the distributed integrator refuses them)
-      transform_.inverse(ConstMap(q, arrays_.m), physical_.Q);
-      transform_.gradient(system_, physical_.Q, physical_.g, i, place_, evaluations.gradients);
-      transform_.to_eigen_force(physical_.Q, ConstMap(q, arrays_.m), physical_.g, map(arrays_.G));
-      return arrays_.G;
-    } else if constexpr (kIdentity) {
+    if constexpr (kIdentity) {
       if (!have_Q) std::copy_n(q, n(), physical_.Q.data());
     } else if constexpr (kStaged) {
       if (have_Q)
@@ -499,6 +494,11 @@ class ExplicitStepper final : public StepperBase {
         transform_.inverse(ConstMap(q, arrays_.m), physical_.Q);
     } else {
       transform_.inverse(ConstMap(q, arrays_.m), physical_.Q);
+    }
+    if constexpr (kDeferred) {  // (no modified kicks: the distributed integrator refuses them)
+      transform_.gradient(system_, physical_.Q, physical_.g, i, place_, evaluations.gradients);
+      transform_.to_eigen_force(physical_.Q, ConstMap(q, arrays_.m), physical_.g, map(arrays_.G));
+      return arrays_.G;
     }
     checked_gradient<D>(system_, physical_.Q, physical_.g, physical_.Q.size(), i, place_,
                         evaluations.gradients, check_g);
