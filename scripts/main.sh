@@ -57,5 +57,8 @@ if [ -x "$build"/mpi/erkn-mpi ]; then  # MPI scaling on 1, 2 and 4 ranks (erkn::
   for ranks in 1 2 4; do
     mpirun -np "$ranks" --oversubscribe "$build"/mpi/erkn-mpi scaling --table docs/mpi_scaling.tsv
   done
+  # One rank against the serial library, per method (explicit: the cheapest and the default).
+  mpirun -np 1 "$build"/mpi/erkn-mpi versus --table docs/mpi_scaling.tsv \
+    --methods "Strang;SD9(10,6,4);SERKN2s4"
   "$build"/mpi/erkn-mpi report --table docs/mpi_scaling.tsv --out docs/mpi.md
 fi

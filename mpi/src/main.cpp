@@ -6,6 +6,9 @@
 //                                                on 1 rank also the serial Integrator's row
 //   mpirun -np N erkn-mpi guard-cost [--rounds 5] [the options of run]   the blow-up guard's
 //                                                cost: runs with it on and off, alternated
+//   mpirun -np 1 erkn-mpi versus --table FILE --methods "M1;M2" [--rounds 5] [the options of
+//                                                run]   per method, 1 rank against the serial
+//                                                Integrator, alternated: appends their rows
 //   erkn-mpi report --table FILE --out FILE.md   the scaling tables and the model beyond them
 #include <algorithm>
 #include <cmath>
@@ -13,6 +16,7 @@
 #include <fstream>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "report.hpp"
 #include "scene.hpp"
@@ -69,7 +73,7 @@ scene::Settings settings(std::map<std::string, std::string>& o) {
 
 void print(const std::string& kind, const scene::Settings& s, const scene::Timing& t) {
   char transforms[160] = "transforms not counted";  // (the serial Integrator's)
-  if (kind != "serial")
+  if (kind.find("serial") == std::string::npos)
     std::snprintf(transforms, sizeof transforms,
                   "%.0f %% in transforms, %.1f transforms per step, all-to-all %.3g MB per step",
                   100 * t.transform_seconds_per_step / t.seconds_per_step, t.transforms_per_step,
@@ -131,6 +135,42 @@ int guard_cost(std::map<std::string, std::string>& o, int rank) {
   return 0;
 }
 
+// The timing of the median round (by time per step).
+scene::Timing median(std::vector<scene::Timing> runs) {
+  std::sort(runs.begin(), runs.end(), [](const scene::Timing& a, const scene::Timing& b) {
+    return a.seconds_per_step < b.seconds_per_step;
+  });
+  return runs[runs.size() / 2];
+}
+
+// Per method of --methods (separated by ';': names have commas), `--rounds` rounds of the
+// distributed run on this one rank and the serial Integrator on the same grid and step, which
+// goes first alternating, in this process; the median round of each appended to --table (kinds
+// versus-mpi and versus-serial).
+int versus(std::map<std::string, std::string>& o, int ranks) {
+  if (ranks != 1) throw erkn::Error("versus compares one rank with the serial library: -np 1");
+  scene::Settings s = settings(o);
+  const int rounds = int(number(o, "--rounds"));
+  if (rounds < 1) throw erkn::Error("--rounds must be >= 1");
+  std::ofstream table(required(o, "--table"), std::ios::app);
+  for (const std::string& method : scene::split(required(o, "--methods"), ';')) {
+    s.method = method;
+    std::vector<scene::Timing> distributed, serial;
+    for (int round = 0; round < rounds; ++round)
+      for (int first_serial : {round % 2, 1 - round % 2})
+        if (first_serial)
+          serial.push_back(scene::run_serial(s));
+        else
+          distributed.push_back(scene::run(MPI_COMM_WORLD, s));
+    const scene::Timing d = median(distributed), t = median(serial);
+    print("versus-mpi", s, d), print("versus-serial", s, t);
+    report::append(table, "versus-mpi", scene::describe(s.axes), method, d);
+    report::append(table, "versus-serial", scene::describe(s.axes), method, t);
+  }
+  if (!table) throw erkn::Error("cannot write " + required(o, "--table"));
+  return 0;
+}
+
 int dispatch(int argc, char** argv, int rank, int ranks) {
   const std::string command = argc > 1 ? argv[1] : "";
   auto o = options(argc, argv, 2);
@@ -142,6 +182,7 @@ int dispatch(int argc, char** argv, int rank, int ranks) {
   }
   if (command == "scaling") return scaling(o, rank, ranks);
   if (command == "guard-cost") return guard_cost(o, rank);
+  if (command == "versus") return versus(o, ranks);
   if (command == "report") {
     if (rank == 0) report::write(required(o, "--table"), required(o, "--out"));
     return 0;
@@ -153,6 +194,8 @@ int dispatch(int argc, char** argv, int rank, int ranks) {
       "                            [--repeats 3]\n"
       "  mpirun -np N erkn-mpi scaling --table FILE [the options of run] [--weak-rows 64]\n"
       "  mpirun -np N erkn-mpi guard-cost [the options of run] [--rounds 5]\n"
+      "  mpirun -np 1 erkn-mpi versus --table FILE --methods \"M1;M2\" [the options of run]\n"
+      "                               [--rounds 5]\n"
       "  erkn-mpi report --table FILE --out FILE.md");
 }
 

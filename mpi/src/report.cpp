@@ -15,20 +15,34 @@ struct Row {
   scene::Timing t;
 };
 
-std::map<std::pair<std::string, int>, Row> read(const std::string& path) {
+using Rows = std::map<std::pair<std::string, int>, Row>;            // (kind, ranks)
+using Versus = std::map<std::pair<std::string, std::string>, Row>;  // (method, kind)
+
+// The scaling rows and the rows of `erkn-mpi versus` (kinds versus-mpi, versus-serial).
+struct Table {
+  Rows rows;
+  Versus versus;
+};
+
+Table read(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw Error("cannot read " + path);
-  std::map<std::pair<std::string, int>, Row> rows;
+  Table table;
   for (std::string line; std::getline(in, line);) {
     std::istringstream f(line);
     Row r;
     scene::Timing& t = r.t;
-    if (f >> r.kind >> r.grid >> r.method >> t.ranks >> t.d >> t.seconds_per_step >>
-        t.transform_seconds_per_step >> t.transforms_per_step >> t.gradients_per_step >>
-        t.energy_drift >> t.sum_q >> t.norm_q >> t.cpu_seconds_per_step)
-      rows[{r.kind, t.ranks}] = r;
+    if (!(f >> r.kind >> r.grid >> r.method >> t.ranks >> t.d >> t.seconds_per_step >>
+          t.transform_seconds_per_step >> t.transforms_per_step >> t.gradients_per_step >>
+          t.energy_drift >> t.sum_q >> t.norm_q >> t.cpu_seconds_per_step))
+      continue;
+    f >> t.load;  // (not in the tables of older versions)
+    if (r.kind.rfind("versus-", 0) == 0)
+      table.versus[{r.method, r.kind}] = r;
+    else
+      table.rows[{r.kind, t.ranks}] = r;
   }
-  return rows;
+  return table;
 }
 
 std::string format(const char* f, double x) {
@@ -59,8 +73,7 @@ void measured_row(std::ostream& md, const Row& r, const Row* one, double versus)
 }
 
 // The rows of one kind ("strong" with the serial Integrator's row first, "weak").
-void measured_table(std::ostream& md, const std::map<std::pair<std::string, int>, Row>& rows,
-                    const std::string& kind) {
+void measured_table(std::ostream& md, const Rows& rows, const std::string& kind) {
   const auto one = rows.find({kind, 1});
   const Row* base = one != rows.end() ? &one->second : nullptr;
   const auto serial = kind == "strong" ? rows.find({"serial", 1}) : rows.end();
@@ -75,6 +88,36 @@ void measured_table(std::ostream& md, const std::map<std::pair<std::string, int>
   if (versus > 0) measured_row(md, serial->second, base, versus);
   for (const auto& [key, r] : rows)
     if (key.first == kind) measured_row(md, r, base, versus);
+}
+
+// The rows of `erkn-mpi versus`: per method, the serial Integrator and 1 rank, side by side.
+void versus_table(std::ostream& md, const Versus& versus) {
+  md << "\n## One rank against the serial library, per method\n\n"
+        "Written from `mpirun -np 1 erkn-mpi versus --methods ...` (run by `scripts/main.sh`): for "
+        "each method, rounds of the distributed run on 1 rank and the serial Integrator on the "
+        "same grid and step, which of the two goes first alternating, in one process; each "
+        "round's time per step is the best of its repeats, and the table has the median round "
+        "of each (both include loading the physical state once per block: the distributed "
+        "integrate() loads it, the serial block calls q()). Explicit methods (every abar_ii = 0) "
+        "run the library's explicit stepper on both sides, implicit ones its stage solver. The "
+        "load is the machine's 1-minute load average after the distributed run.\n\n"
+        "| method | grid | serial Integrator [ms per step] | 1 rank [ms per step] | serial "
+        "Integrator's time / time | transforms per step | grad U per step (serial, 1 rank) | sum "
+        "of q, 1 rank vs serial | load |\n|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& [key, distributed] : versus) {
+    if (key.second != "versus-mpi") continue;
+    const auto serial = versus.find({key.first, "versus-serial"});
+    if (serial == versus.end()) continue;
+    const scene::Timing &t = distributed.t, &s = serial->second.t;
+    md << "| " << key.first << " | " << distributed.grid << " | "
+       << format("%.2f", 1e3 * s.seconds_per_step) << " | "
+       << format("%.2f", 1e3 * t.seconds_per_step) << " | "
+       << format("%.2f", s.seconds_per_step / t.seconds_per_step) << " | "
+       << format("%.1f", t.transforms_per_step) << " | " << format("%.1f", s.gradients_per_step)
+       << ", " << format("%.1f", t.gradients_per_step) << " | "
+       << format("%.1e", std::abs(t.sum_q - s.sum_q) / std::abs(s.sum_q)) << " | "
+       << format("%.1f", t.load) << " |\n";
+  }
 }
 
 // Time per step predicted for d unknowns (grid side n) on P ranks: the measured local costs per
@@ -137,11 +180,12 @@ void append(std::ostream& table, const std::string& kind, const std::string& gri
   table << kind << '\t' << grid << '\t' << method << '\t' << t.ranks << '\t' << t.d << '\t'
         << t.seconds_per_step << '\t' << t.transform_seconds_per_step << '\t'
         << t.transforms_per_step << '\t' << t.gradients_per_step << '\t' << t.energy_drift << '\t'
-        << t.sum_q << '\t' << t.norm_q << '\t' << t.cpu_seconds_per_step << '\n';
+        << t.sum_q << '\t' << t.norm_q << '\t' << t.cpu_seconds_per_step << '\t' << t.load << '\n';
 }
 
-void write(const std::string& table, const std::string& markdown) {
-  const auto rows = read(table);
+void write(const std::string& table_file, const std::string& markdown) {
+  const Table table = read(table_file);
+  const Rows& rows = table.rows;
   std::ofstream md(markdown);
   md << "# Beyond one machine: MPI scaling\n\n"
         "Written by `erkn-mpi report` from the rows `mpirun -np P erkn-mpi scaling` appended for "
@@ -168,6 +212,7 @@ void write(const std::string& table, const std::string& markdown) {
   measured_table(md, rows, "strong");
   md << "\n## Weak scaling (fixed rows per rank)\n\n";
   measured_table(md, rows, "weak");
+  if (!table.versus.empty()) versus_table(md, table.versus);
   md << "\n## Beyond this machine: the model\n\n";
   const auto base = rows.find({"strong", 1});
   if (base == rows.end())

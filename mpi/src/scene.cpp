@@ -4,19 +4,20 @@
 #include <array>
 #include <cmath>
 #include <ctime>
+#include <fstream>
 #include <sstream>
 
 namespace erkn::mpi::scene {
-namespace {
-
-using Boundary = GridAxis::Boundary;
-
 std::vector<std::string> split(const std::string& s, char sep) {
   std::vector<std::string> parts;
   std::stringstream in(s);
   for (std::string part; std::getline(in, part, sep);) parts.push_back(part);
   return parts;
 }
+
+namespace {
+
+using Boundary = GridAxis::Boundary;
 
 // Coordinate of point j of an axis on [-1, 1] (periodic: nodes from -1; Dirichlet: interior
 // nodes; Neumann: cell centres).
@@ -123,6 +124,7 @@ Timing timed(Run& run, const Settings& s, Take take) {
         double(run.statistics().gradient_evaluations - before.gradient_evaluations) / s.steps;
   }
   t.energy_drift = std::abs(run.energy() - H0) / std::abs(H0);
+  std::ifstream("/proc/loadavg") >> t.load;
   return t;
 }
 
@@ -161,7 +163,8 @@ Timing run_serial(const Settings& s) {
   Timing t = timed(run, s, [&] {  // (transforms not counted)
     const double start = MPI_Wtime();
     const std::clock_t cpu_start = std::clock();
-    run.step(s.steps);  // (what a serial user calls: the state loaded once)
+    run.step(s.steps);  // (what a serial user calls: the state loaded once, by q())
+    run.q();
     return Block{MPI_Wtime() - start, 0, double(std::clock() - cpu_start) / CLOCKS_PER_SEC, 0};
   });
   t.d = long(M.dim());

@@ -24,6 +24,8 @@ struct Settings {
 /// axis ("periodic,dirichlet"); the spacing puts the grid on [-1, 1].
 std::vector<GridAxis> parse_axes(const std::string& grid, const std::string& boundaries);
 std::string describe(const std::vector<GridAxis>& axes);
+/// The parts of s between the separators.
+std::vector<std::string> split(const std::string& s, char sep);
 
 struct Timing {
   int ranks = 1;
@@ -34,12 +36,14 @@ struct Timing {
   double transforms_per_step = 0, gradients_per_step = 0;
   double energy_drift = 0;       ///< |H(t) - H(0)| / |H(0)| at the end
   double sum_q = 0, norm_q = 0;  ///< of the final state (rank-count independent to round-off)
+  double load = 0;               ///< the machine's 1-minute load average after the run
 };
 
 /// Integrates repeats x steps (after one warm-up step) and times each block (collective).
 Timing run(MPI_Comm comm, const Settings& s);
 /// The same scene through the serial library (erkn::Integrator, this process alone, step(steps)
-/// per block): what the distributed runs are measured against. Transforms are not counted (0).
+/// and q() per block: the state loaded once, as the distributed run's integrate loads it): what
+/// the distributed runs are measured against. Transforms are not counted (0).
 Timing run_serial(const Settings& s);
 
 }  // namespace erkn::mpi::scene
