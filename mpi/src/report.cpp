@@ -206,8 +206,10 @@ void write(const std::string& table_file, const std::string& markdown) {
   md << "\n\n## Strong scaling (fixed grid)\n\n";
   if (rows.count({"serial", 1}))
     md << "The first row is the serial library (erkn::Integrator in one process, no MPI: "
-          "`Integrator::step(n)`) on the same grid, method and step: what a user without MPI "
-          "runs. Its column \"serial Integrator's time / time\" is the speedup over it (below 1: "
+          "`Integrator::step(n)`, then `q()`: the state loaded once per block, as the "
+          "distributed `integrate()` loads it) on the same grid, method and step: what a user "
+          "without MPI runs. Its column \"serial Integrator's time / time\" is the speedup over it "
+          "(below 1: "
           "the distributed run is slower).\n\n";
   measured_table(md, rows, "strong");
   md << "\n## Weak scaling (fixed rows per rank)\n\n";
