@@ -261,8 +261,10 @@ template <class Space, class Coef>
 template <class State>
 void StageSolver<Space, Coef>::start_stage(int i, const State& q_hat, const State& p_hat) {
   const auto co = [](const auto& value) { return Space::co(value); };
-  x_.r_hat = co(k_.phi0c(i)) * q_hat + co(k_.hcphi1c(i)) * p_hat;
-  for (int j = 0; j < i; ++j) x_.r_hat -= co(k_.abar(i, j)) * G(j);
+  compute_into(x_.r_hat, [&](auto& r) {
+    r = co(k_.phi0c(i)) * q_hat + co(k_.hcphi1c(i)) * p_hat;
+    for (int j = 0; j < i; ++j) r -= co(k_.abar(i, j)) * G(j);
+  });
   predictor_.predict(i, x_.guess_hat);
   x_.Q_hat = x_.r_hat - co(k_.abar(i, i)) * x_.guess_hat;
   space_.to_physical(x_.Q_hat, x_.Q);

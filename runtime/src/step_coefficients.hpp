@@ -95,7 +95,11 @@ class StepCoefficients {
   /// v_k = h^2 lambda_k; lambda must have one entry when Coef is double. The caller has checked
   /// every v against the method's poles (check_step_size), so the table is evaluated directly.
   StepCoefficients(const Method& method, double h, const Eigen::VectorXd& lambda)
-      : s_(method.stages()), h_(h), slots_(slot_count(s_), lambda.size()) {
+      : s_(method.stages()),
+        last_(slot_count(s_) - 3),
+        h_(h),
+        slots_(slot_count(s_), lambda.size()) {
+    for (int i = 0; i < s_; ++i) abar_row_[size_t(i)] = 4 * s_ + i * (i + 1) / 2;
     const generated::Table& table = method.table();
     // (Below kShareFrom entries the sort and its allocations would cost more than they save.)
     const std::vector<Eigen::Index> first =
@@ -134,11 +138,14 @@ class StepCoefficients {
   Value mhMphi1() const { return at(last(2)); }                   ///< -h M phi1(V) = -(V/h) phi1(V)
 
  private:
-  int abar_slot(int i, int j) const { return 4 * s_ + i * (i + 1) / 2 + j; }
-  int last(int k) const { return slot_count(s_) - 3 + k; }
+  // (Slot offsets kept, not recomputed from s at every access: the step reads them per stage.)
+  int abar_slot(int i, int j) const { return abar_row_[size_t(i)] + j; }
+  int last(int k) const { return last_ + k; }
   Value at(int slot) const { return slots_.at(slot); }
 
   int s_;
+  int last_;                                // the first of the last three slots
+  std::array<int, kMaxStages> abar_row_{};  // abar_slot(i, 0)
   double h_;
   Slots slots_;
 };

@@ -82,23 +82,34 @@ class Stepper final : public StepperBase {
   System& system() override { return system_; }
 
  private:
-  // Eq. (d)'s update from the solved stages, added to the state only at the end.
+  // Eq. (d)'s update from the solved stages, added to the state only at the end. The increments
+  // live in registers with a fixed D (compute_into, stage_predictor.hpp), else in dq_hat_, dp_hat_.
   void update(const StepPlace& at) {
+    if constexpr (Map::RowsAtCompileTime == Eigen::Dynamic) {
+      update(dq_hat_, dp_hat_, at);
+    } else {
+      typename Map::PlainObject dq, dp;
+      update(dq, dp, at);
+    }
+  }
+  template <class Increment>
+  void update(Increment& dq, Increment& dp, const StepPlace& at) {
     const auto co = [](const auto& value) { return Space::co(value); };
     const StepCoefficients<Coef>& k = k_;
-    dq_hat_ = co(k.phi0m1()) * q_hat_ + co(k.hphi1()) * p_hat_;
-    dp_hat_ = co(k.mhMphi1()) * q_hat_ + co(k.phi0m1()) * p_hat_;
+    dq = co(k.phi0m1()) * q_hat_ + co(k.hphi1()) * p_hat_;
+    dp = co(k.mhMphi1()) * q_hat_ + co(k.phi0m1()) * p_hat_;
     for (int i = 0; i < s_; ++i) {
-      dq_hat_ -= co(k.h2bbar(i)) * solver_.G(i);
-      dp_hat_ -= co(k.hb(i)) * solver_.G(i);
+      dq -= co(k.h2bbar(i)) * solver_.G(i);
+      dp -= co(k.hb(i)) * solver_.G(i);
     }
-    require_finite_result(q_hat_ + dq_hat_, p_hat_ + dp_hat_, at);
-    add(q_hat_, eq_hat_, dq_hat_);
-    add(p_hat_, ep_hat_, dp_hat_);
+    require_finite_result(q_hat_ + dq, p_hat_ + dp, at);
+    add(q_hat_, eq_hat_, dq);
+    add(p_hat_, ep_hat_, dp);
   }
 
   // x += dx in eigen coordinates, Kahan-compensated when enabled (compensated_sum.hpp).
-  void add(Map& x, Map& error, Map& dx) {
+  template <class Increment>
+  void add(Map& x, Map& error, Increment& dx) {
     if (options_.compensated_summation)
       compensated_add(x, error, dx);
     else
