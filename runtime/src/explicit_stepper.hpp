@@ -194,23 +194,19 @@ class ExplicitStepper final : public StepperBase {
   }
 
   void step(long step_number, double t, Statistics& stats) override {
-    place_.step = step_number;
-    place_.t = t;
     Counts counts;  // (counted into stats once the step has succeeded)
     if (kahan_)
-      passes<true>(counts);
+      advance<true>(step_number, t, counts);
     else
-      passes<false>(counts);
-    std::swap(arrays_.G, arrays_.G_last);  // (FSAL: the last stage's gradient)
-    have_history_ = true;
-    pending_ = flows_.moves(kicks_.stages());
-    ++stats.steps;
-    stats.stage_iterations += counts.gradients;
-    count(counts, stats);
+      advance<false>(step_number, t, counts);
+    count(counts, 1, stats);
   }
 
   void steps(long n, long first, const TimeGrid& grid, Statistics& stats, long& done) override {
-    for (done = 0; done < n; ++done) ExplicitStepper::step(first + done, grid.ahead(done), stats);
+    if (kahan_)
+      run<true>(n, first, grid, stats, done);
+    else
+      run<false>(n, first, grid, stats, done);
   }
 
   void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) override {
@@ -225,8 +221,43 @@ class ExplicitStepper final : public StepperBase {
   struct Counts {
     long gradients = 0, products = 0;  // calls of System::gradient, modified forces formed
     long applications = 0;             // of the processor (pi or pi^-1)
+    Counts& operator+=(const Counts& b) {
+      gradients += b.gradients, products += b.products, applications += b.applications;
+      return *this;
+    }
   };
 
+  // One step (numbered step_number, from t), its counts added to `counts` once it has succeeded.
+  template <bool kKahan>
+  EIGEN_ALWAYS_INLINE void advance(long step_number, double t, Counts& counts) {
+    place_.step = step_number;
+    place_.t = t;
+    Counts step_counts;
+    passes<kKahan>(step_counts);
+    std::swap(arrays_.G, arrays_.G_last);  // (FSAL: the last stage's gradient)
+    have_history_ = true;
+    pending_ = flows_.moves(kicks_.stages());
+    counts += step_counts;
+  }
+  // steps(): the completed steps counted into stats once, at the end or at the step that failed.
+  template <bool kKahan>
+  void run(long n, long first, const TimeGrid& grid, Statistics& stats, long& done) {
+    Counts counts;
+    try {
+      for (done = 0; done < n; ++done) advance<kKahan>(first + done, grid.ahead(done), counts);
+    } catch (...) {
+      count(counts, done, stats);
+      throw;
+    }
+    count(counts, n, stats);
+  }
+
+  // The counts of `steps` steps into stats (a step's gradients are its stage iterations).
+  void count(const Counts& counts, long steps, Statistics& stats) const {
+    stats.steps += steps;
+    stats.stage_iterations += counts.gradients;
+    count(counts, stats);
+  }
   void count(const Counts& counts, Statistics& stats) const {
     stats.gradient_evaluations += counts.gradients;
     stats.hessian_vector_products += counts.products;
