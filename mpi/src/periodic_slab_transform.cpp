@@ -48,8 +48,9 @@ PeriodicSlabTransform::PeriodicSlabTransform(MPI_Comm comm, const Stiffness& M)
   fftw_.out = fftw_alloc_real(2 * std::max<ptrdiff_t>(l.buffer, 1));
   auto* spectrum = reinterpret_cast<fftw_complex*>(fftw_.out);
   const int rank = int(l.n.size());
-  fftw_.forward = fftw_mpi_plan_dft_r2c(rank, l.n.data(), fftw_.in, spectrum, comm,
-                                        FFTW_MEASURE | FFTW_MPI_TRANSPOSED_OUT);
+  fftw_.forward =
+      fftw_mpi_plan_dft_r2c(rank, l.n.data(), fftw_.in, spectrum, comm,
+                            FFTW_MEASURE | FFTW_MPI_TRANSPOSED_OUT | FFTW_DESTROY_INPUT);
   fftw_.inverse = fftw_mpi_plan_dft_c2r(rank, l.n.data(), spectrum, fftw_.in, comm,
                                         FFTW_MEASURE | FFTW_MPI_TRANSPOSED_IN);
   if (!fftw_.forward || !fftw_.inverse) throw Error("FFTW-MPI could not plan the grid transforms");
@@ -90,6 +91,13 @@ void PeriodicSlabTransform::execute_forward(const Eigen::Ref<const Eigen::Vector
                                             Eigen::Ref<Eigen::ArrayXd> y) {
   const Eigen::Index n_last = layout_.n.back();
   padded() = Eigen::Map<const Eigen::ArrayXXd>(x.data(), n_last, x.size() / n_last);
+  // Straight into y when y is FFTW's whole local output (no transpose room beyond the spectrum:
+  // one rank, for one) with the planned alignment: no copy pass.
+  if (2 * layout_.buffer == y.size() &&
+      fftw_alignment_of(y.data()) == fftw_alignment_of(fftw_.out)) {
+    fftw_mpi_execute_dft_r2c(fftw_.forward, fftw_.in, reinterpret_cast<fftw_complex*>(y.data()));
+    return;
+  }
   fftw_execute(fftw_.forward);
   y = Eigen::Map<const Eigen::ArrayXd>(fftw_.out, spectral_size());
 }
