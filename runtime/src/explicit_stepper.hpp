@@ -32,9 +32,10 @@
 // Compensated summation (Options::compensated_summation) keeps with q and p the low-order parts
 // eq, ep that rounding has dropped (explicit_passes.hpp); get_state returns q + eq and p + ep.
 //
-// Its cost (construction + integrate, on vs off alternated in one process per run, medians of
-// 3-5 runs, main 183cf83 + the SIMD passes, loaded 2-core machine): sine-Gordon N = 2048 SABA2
-// 100 steps 1.07x, N = 512 Strang 40 steps 1.11x (before the SIMD passes 1.12x and 1.06x).
+// Its cost (construction + integrate, erkn_integrate_benchmark --short: defaults against
+// compensation off in the same rounds of one process, median over the 12 explicit methods and 3
+// runs, 684bc36, load 6-9 on 2 cores): sine-Gordon N = 32 1.076x, N = 512 1.075x, N = 2048
+// 1.071x, N = 8192 1.065x, 256^2 1.073x; Duffing 1.011x, stellar orbits 1.002x.
 // That is above the 5 % the runtime allows itself for a default, and it stays the default all
 // the same: without it the round-off of q_n + dq grows with the number of steps (a random walk,
 // ~sqrt(n) eps |q|), which is what the energy and long-time charts show and what the paper's
