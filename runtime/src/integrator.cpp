@@ -187,15 +187,20 @@ void Integrator::batch(long n) {
     else
       stepper_->steps(n, statistics_.steps + 1, grid_, statistics_, done);
   } catch (const Error& e) {  // (a blow-up often ends in a failed stage: say so)
-    stale_ = stale_ || done > 0;
-    grid_.advance(done);
-    guard_->due_after(done);  // (false: fewer steps than until_due())
+    took(done);               // (no check due: fewer steps than until_due())
     if (guard_->on()) check_guard(e.what());
     throw;
+  } catch (...) {  // (e.g. the user's gradient's own exception: the steps before it stay)
+    took(done);
+    throw;
   }
-  stale_ = true;
-  grid_.advance(n);
-  if (guard_->due_after(n)) check_guard();
+  if (took(n)) check_guard();
+}
+
+bool Integrator::took(long steps) {
+  stale_ = stale_ || steps > 0;
+  grid_.advance(steps);
+  return guard_->due_after(steps);
 }
 
 using detail::cpu_seconds;

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -114,9 +115,9 @@ TEST(ExplicitChecks, NonFiniteGradientAtEveryStageIsNamedAndChangesNothing) {
 
 // integrate() runs its steps in batches inside the stepper (StepperBase::steps): a step that fails
 // within one keeps the steps before it, as a failed step() does. A NaN at the first gradient call
-// of step 6 of a 40-step integrate: the error names step 6; t, the state (bit for bit) and the
-// counts are those of a fault-free run after 5 steps. Negative control: a finite value there
-// runs to the end.
+// of step 6 of a 40-step integrate, or the gradient's own exception there: the error names step
+// 6 (the NaN); t, the state (bit for bit) and the counts are those of a fault-free run after 5
+// steps. Negative control: a finite value there runs to the end.
 TEST(ExplicitChecks, AFailedStepWithinIntegrateKeepsTheStepsBefore) {
   for (const Basis& basis : {bases()[0], bases()[3]})
     for (const Method& m : explicit_methods()) {
@@ -128,19 +129,33 @@ TEST(ExplicitChecks, AFailedStepWithinIntegrateKeepsTheStepsBefore) {
       five.step(5);
       const long evaluations = five.statistics().gradient_evaluations;
       five.q();  // (pi for a processed method, as the guard's check after the failure reads it)
-      for (double fault : {kNaN, 0.5}) {
+      for (double fault : {kNaN, kInf, 0.5}) {  // (kInf: the gradient throws)
         Faulty f;
         f.fault = fault, f.at = evaluations + 1, f.counting = true;
-        Integrator run(m, f.system(basis.M), h, start(d, 0.1), start(d, 0.7));
-        const std::string message = error_of([&] { run.integrate(40 * h); });
+        System s = f.system(basis.M);
+        if (fault == kInf)
+          s.gradient = [g = s.gradient](const Eigen::VectorXd& q, Eigen::VectorXd& out) {
+            g(q, out);
+            if (!std::isfinite(out[0])) throw std::runtime_error("the user's own error");
+          };
+        Integrator run(m, s, h, start(d, 0.1), start(d, 0.7));
+        std::string message;
+        try {
+          run.integrate(40 * h);
+        } catch (const std::exception& e) {
+          message = e.what();
+        }
         if (fault == 0.5) {  // negative control
           EXPECT_EQ(message, "");
           EXPECT_EQ(run.statistics().steps, 40);
           continue;
         }
-        EXPECT_CONTAINS(message, "non-finite value at step 6");
+        EXPECT_CONTAINS(message,
+                        fault == kInf ? "the user's own error" : "non-finite value at step 6");
         EXPECT_EQ(run.statistics().steps, 5);
-        EXPECT_EQ(run.statistics().gradient_evaluations, five.statistics().gradient_evaluations);
+        // (after an erkn::Error the guard's check has read the state: pi for a processed method)
+        EXPECT_EQ(run.statistics().gradient_evaluations,
+                  fault == kInf ? evaluations : five.statistics().gradient_evaluations);
         EXPECT_EQ(run.t(), five.t());
         EXPECT_EQ(run.q(), five.q());
         EXPECT_EQ(run.p(), five.p());

@@ -254,6 +254,7 @@ class Integrator {
   // n steps of h (n calls of step()), in batches that end where the guard checks.
   void advance(long n);
   void batch(long n);
+  bool took(long steps);  // steps taken: the state is stale, t() moves; true when the guard is due
   TimeGrid::Plan prepare_end(double t_end, long every);
   void require_output_times(double t_end, const Eigen::Ref<const Eigen::VectorXd>& times) const;
   void require_reachable(double t_out) const;
