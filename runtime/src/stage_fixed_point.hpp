@@ -19,10 +19,14 @@ bool StageSolver<Space, Coef>::fixed_point(int i, Statistics& stats) {
   Change c{};
   int extra = 0;  // iterations after convergence from a cold start (reset_tightening)
   const auto abar_ii = Space::co(k_.abar(i, i));
-  for (int it = 1; it <= options_.max_fixed_point_iterations; ++it) {
+  // (G(i) and the iteration limit held in locals: after each call of the user's gradient the
+  // compiler reloads what it reads through members.)
+  const Map G_i = G(i);
+  const int max_iterations = options_.max_fixed_point_iterations;
+  for (int it = 1; it <= max_iterations; ++it) {
     if (it > 1) space_.to_physical(x_.Q_hat, x_.Q);  // (start_stage did it for the guess)
-    stage_force(i, stats);
-    x_.Q_hat_new = x_.r_hat - abar_ii * G(i);
+    stage_force(i, G_i, stats);
+    x_.Q_hat_new = x_.r_hat - abar_ii * G_i;
     ++stats.stage_iterations;
     // |dQ| / max(|Q_new|, |Q_old|) in eigen coordinates, so a converged stage needs no inverse
     // transform. Both iterates: an iterate at 0 (a 2-cycle r -> 0 -> r) must not make delta
@@ -30,7 +34,7 @@ bool StageSolver<Space, Coef>::fixed_point(int i, Statistics& stats) {
     // One reduce: |dQ|^2, |Q_new|^2, at the first iteration |Q|^2 (later the previous iterate's
     // |Q_new|^2), at the second the contraction's (record_contraction).
     const bool measure = it == 2 && change_first > 0 && measures_contraction(delta_old);
-    if (measure) x_.g_first_hat = abar_ii * (G(i) - x_.g_first_hat);
+    if (measure) x_.g_first_hat = abar_ii * (G_i - x_.g_first_hat);
     const auto sums = space_.reduce(
         std::array{space_.squared_norm(x_.Q_hat_new - x_.Q_hat), space_.squared_norm(x_.Q_hat_new),
                    it == 1 ? space_.squared_norm(x_.Q_hat) : 0.0,
@@ -41,7 +45,7 @@ bool StageSolver<Space, Coef>::fixed_point(int i, Statistics& stats) {
     swap_views(x_.Q_hat, x_.Q_hat_new);
     if (it == 1) {
       if (c.X > 0 && contraction_proves(i, c)) return true;
-      change_first = std::sqrt(sums[0]), x_.g_first_hat = G(i);
+      change_first = std::sqrt(sums[0]), x_.g_first_hat = G_i;
     } else {
       if (it == 2 && change_first > 0)
         record_contraction(i, change_first, c, delta_old, std::sqrt(sums[3]));

@@ -120,10 +120,10 @@ class StageSolver {
   void set_preconditioner(int i, double sigma);
   void jacobian(int i, Statistics& stats);
 
-  // G(i) = the force at the iterate (Q, Q_hat) in eigen coordinates.
-  void stage_force(int i, Statistics& stats) {
+  // G_i = G(i) = the force at the iterate (Q, Q_hat) in eigen coordinates.
+  void stage_force(int i, Map G_i, Statistics& stats) {
     gradient(x_.Q, x_.g, i, stats);
-    space_.to_eigen_force(x_.Q, x_.Q_hat, x_.g, G(i));
+    space_.to_eigen_force(x_.Q, x_.Q_hat, x_.g, G_i);
   }
   // g = grad U(Q) (+ M Q for RKN methods).
   void force(const Eigen::VectorXd& Q, int i, Statistics& stats) {
@@ -235,7 +235,7 @@ void StageSolver<Space, Coef>::solve(const State& q_hat, const State& p_hat, con
 template <class Space, class Coef>
 void StageSolver<Space, Coef>::solve_stage(int i, Statistics& stats) {
   if (record_[i].explicit_stage) {  // (Q = r exactly: its gradient is the stage's)
-    stage_force(i, stats);
+    stage_force(i, G(i), stats);
     ++stats.stage_iterations;
     space_.settle();
     return;
