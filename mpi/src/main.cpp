@@ -107,29 +107,41 @@ int scaling(std::map<std::string, std::string>& o, int rank, int ranks) {
   return 0;
 }
 
+// --rounds (>= 1) of an alternated comparison.
+int rounds(const std::map<std::string, std::string>& o) {
+  const int n = int(number(o, "--rounds"));
+  if (n < 1) throw erkn::Error("--rounds must be >= 1");
+  return n;
+}
+
+// `n` rounds of f(0) and f(1), which of the two goes first alternating from round to round.
+template <class F>
+void alternate(int n, F&& f) {
+  for (int round = 0; round < n; ++round)
+    for (int side : {round % 2, 1 - round % 2}) f(side);
+}
+
 // The blow-up guard's cost (Options::blowup_guard): `--rounds` rounds of a run with the guard on
 // and one with it off, which goes first alternating, in this one process; the best time per step
 // of each (of the slowest rank, wall and CPU) and their ratio on / off, and the transforms per
 // step of each (its work, free of the machine's noise: a check transforms q once).
 int guard_cost(std::map<std::string, std::string>& o, int rank) {
   scene::Settings s = settings(o);
-  const int rounds = int(number(o, "--rounds"));
-  if (rounds < 1) throw erkn::Error("--rounds must be >= 1");
+  const int n = rounds(o);
   double wall[2] = {1e300, 1e300}, cpu[2] = {1e300, 1e300}, transforms[2] = {0, 0};
-  for (int round = 0; round < rounds; ++round)
-    for (int guard : {round % 2, 1 - round % 2}) {
-      s.guard = guard == 1;
-      const scene::Timing t = scene::run(MPI_COMM_WORLD, s);
-      wall[guard] = std::min(wall[guard], t.seconds_per_step);
-      cpu[guard] = std::min(cpu[guard], t.cpu_seconds_per_step);
-      transforms[guard] = t.transforms_per_step;
-    }
+  alternate(n, [&](int guard) {
+    s.guard = guard == 1;
+    const scene::Timing t = scene::run(MPI_COMM_WORLD, s);
+    wall[guard] = std::min(wall[guard], t.seconds_per_step);
+    cpu[guard] = std::min(cpu[guard], t.cpu_seconds_per_step);
+    transforms[guard] = t.transforms_per_step;
+  });
   if (rank == 0)
     std::printf(
         "guard-cost: grid %s, %s, h = %g, %d x %d steps per run, %d rounds: wall %.4e s per step "
         "off, %.4e on, on/off %.4f; CPU %.4e off, %.4e on, on/off %.4f; transforms per step "
         "%.6f off, %.6f on, on/off %.6f\n",
-        scene::describe(s.axes).c_str(), s.method.c_str(), s.h, s.repeats, s.steps, rounds, wall[0],
+        scene::describe(s.axes).c_str(), s.method.c_str(), s.h, s.repeats, s.steps, n, wall[0],
         wall[1], wall[1] / wall[0], cpu[0], cpu[1], cpu[1] / cpu[0], transforms[0], transforms[1],
         transforms[1] / transforms[0]);
   return 0;
@@ -150,18 +162,17 @@ scene::Timing median(std::vector<scene::Timing> runs) {
 int versus(std::map<std::string, std::string>& o, int ranks) {
   if (ranks != 1) throw erkn::Error("versus compares one rank with the serial library: -np 1");
   scene::Settings s = settings(o);
-  const int rounds = int(number(o, "--rounds"));
-  if (rounds < 1) throw erkn::Error("--rounds must be >= 1");
+  const int n = rounds(o);
   std::ofstream table(required(o, "--table"), std::ios::app);
   for (const std::string& method : scene::split(required(o, "--methods"), ';')) {
     s.method = method;
     std::vector<scene::Timing> distributed, serial;
-    for (int round = 0; round < rounds; ++round)
-      for (int first_serial : {round % 2, 1 - round % 2})
-        if (first_serial)
-          serial.push_back(scene::run_serial(s));
-        else
-          distributed.push_back(scene::run(MPI_COMM_WORLD, s));
+    alternate(n, [&](int on_serial) {
+      if (on_serial)
+        serial.push_back(scene::run_serial(s));
+      else
+        distributed.push_back(scene::run(MPI_COMM_WORLD, s));
+    });
     const scene::Timing d = median(distributed), t = median(serial);
     print("versus-mpi", s, d), print("versus-serial", s, t);
     report::append(table, "versus-mpi", scene::describe(s.axes), method, d);
