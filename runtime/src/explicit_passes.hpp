@@ -14,7 +14,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <bit>
 #include <cstdint>
+#include <cstring>
 
 #include "stage_checks.hpp"
 
@@ -74,10 +76,18 @@ struct PassFlow {
   static double at(const double* values, Eigen::Index e) { return values[e]; }
 };
 
-/// The non-finite bits (nonfinite_bits) of the force a kick read and of the p it wrote.
+/// The non-finite bits (nonfinite_bits) of the force a kick read and of the p it wrote, and of
+/// kStageBound times the Q a flow staged (0: every |Q| < 2^512, see kStageBound).
 struct PassBits {
-  std::uint64_t g = 0, p = 0;
+  std::uint64_t g = 0, p = 0, stage = 0;
 };
+
+/// A staged Q with every |Q| < 2^512 (kStageBound Q finite) is a finite stage: its physical values
+/// are the staged ones (identity basis) or the outputs of an inverse transform of them, each a
+/// sum of products of at most a polynomial in d of them with unit-modulus twiddles (also in FFTW's
+/// intermediates, Rader and Bluestein included), far below DBL_MAX ~ 2^1024. Its gradient then
+/// needs no scan of the physical Q (checked_gradient's); a larger one is scanned.
+inline constexpr double kStageBound = 0x1p512;
 
 /// What a pass does: kick (p -= hd g, g also to `save` with kSave), then flow (its q also to Q,
 /// times Q_scale, with kStage), in place or from one copy of the state into another.
@@ -85,10 +95,46 @@ struct PassKind {
   bool kick, flow, in_place, save, stage;
 };
 
-// The loop of pass(): every pointer a __restrict parameter of a function not inlined (inlined,
-// or with the pointers as locals or members, GCC 12 checks them against each other at run time,
-// needs more checks than it allows itself and leaves the Kahan loops scalar). In place the *_in
-// pointers are null and the pass reads through the ones it writes.
+/// The kLanes doubles of one eigen coordinate as one value (Value), on which the passes' arithmetic
+/// runs lane by lane exactly as on single doubles: a double, or (a complex coordinate, re and im)
+/// a vector of two in one SIMD register (GCC's vector extension), the coordinate's real flow
+/// coefficients broadcast to both lanes. Bits: the non-finite bits (nonfinite_bits) of each lane.
+/// (Left to itself GCC vectorised the complex passes across two coordinates, splitting re and im
+/// into separate registers and interleaving them back: 31.5 instructions per coordinate for a
+/// plain kick and flow at N = 2048, 56 compensated; one coordinate per register: 23 / 36 over
+/// all passes, callgrind, sine-Gordon SABA2.)
+template <int kLanes>
+struct Lane;
+template <>
+struct Lane<1> {
+  using Value = double;
+  using Bits = std::uint64_t;
+  static Bits nonfinite(Value x) { return nonfinite_bits(x); }
+  static std::uint64_t any(Bits b) { return b; }
+};
+template <>
+struct Lane<2> {
+  using Value = double __attribute__((vector_size(16)));
+  using Bits = std::uint64_t __attribute__((vector_size(16)));
+  static Bits nonfinite(Value x) { return std::bit_cast<Bits>(x - x); }
+  static std::uint64_t any(Bits b) { return b[0] | b[1]; }
+};
+/// V at x, and V stored at x (unaligned SIMD loads and stores; as a double: the double).
+template <class V>
+EIGEN_ALWAYS_INLINE V lane_load(const double* x) {
+  V v;
+  std::memcpy(&v, x, sizeof(V));
+  return v;
+}
+template <class V>
+EIGEN_ALWAYS_INLINE void lane_store(double* x, const V& v) {
+  std::memcpy(x, &v, sizeof(V));
+}
+
+// The loop of pass(), one eigen coordinate (a Lane's Value) per iteration: every pointer a
+// __restrict parameter of a function not inlined (inlined, or with the pointers as locals or
+// members, GCC 12 checks them against each other at run time). In place the *_in pointers are
+// null and the pass reads through the ones it writes.
 template <bool kKahan, PassKind kKind, int kLanes, class C>
 [[gnu::noinline]] PassBits pass_loop(Eigen::Index n, const double* __restrict q_in,
                                      const double* __restrict p_in, const double* __restrict eq_in,
@@ -97,38 +143,44 @@ template <bool kKahan, PassKind kKind, int kLanes, class C>
                                      double* __restrict ep, double hd, const double* __restrict g,
                                      double* __restrict save, C cos, C cm1, C sinc, C msinc,
                                      double* __restrict Q, double Q_scale) {
+  using L = Lane<kLanes>;
+  using V = typename L::Value;
   constexpr bool kInPlace = kKind.in_place;
-  PassBits bits;
+  typename L::Bits g_bits{}, p_bits{}, stage_bits{};
   for (Eigen::Index e = 0; e < n; ++e) {
-    for (int l = 0; l < kLanes; ++l) {
-      const Eigen::Index x = kLanes * e + l;
-      double qx = kInPlace ? q[x] : q_in[x], px = kInPlace ? p[x] : p_in[x];
-      double eqx = kKahan ? (kInPlace ? eq[x] : eq_in[x]) : 0;
-      double epx = kKahan ? (kInPlace ? ep[x] : ep_in[x]) : 0;
-      if constexpr (kKind.kick) {
-        kick_update<kKahan, false>(-hd * g[x], qx, px, eqx, epx);
-        if constexpr (kKind.save) save[x] = g[x];
-        bits.g |= nonfinite_bits(g[x]), bits.p |= nonfinite_bits(px);
-      }
-      if constexpr (kKind.flow) {
-        using F = PassFlow<C>;
-        flow_update<kKahan, false>(F::at(cos, e), F::at(cm1, e), F::at(sinc, e), F::at(msinc, e),
-                                   qx, px, eqx, epx);
-        if constexpr (kKind.stage) Q[x] = Q_scale * qx;
-      }
-      if (kKind.flow || !kInPlace) q[x] = qx;  // (a kick in place leaves q where it is)
-      p[x] = px;
-      if (kKahan && (kKind.flow || !kInPlace)) eq[x] = eqx;
-      if (kKahan) ep[x] = epx;
+    const Eigen::Index x = kLanes * e;
+    V qx = lane_load<V>((kInPlace ? q : q_in) + x), px = lane_load<V>((kInPlace ? p : p_in) + x);
+    V eqx{}, epx{};
+    if constexpr (kKahan)
+      eqx = lane_load<V>((kInPlace ? eq : eq_in) + x),
+      epx = lane_load<V>((kInPlace ? ep : ep_in) + x);
+    if constexpr (kKind.kick) {
+      const V gx = lane_load<V>(g + x);
+      kick_update<kKahan, false>(V(-hd * gx), qx, px, eqx, epx);
+      if constexpr (kKind.save) lane_store(save + x, gx);
+      g_bits |= L::nonfinite(gx), p_bits |= L::nonfinite(px);
     }
+    if constexpr (kKind.flow) {
+      using F = PassFlow<C>;
+      flow_update<kKahan, false>(F::at(cos, e), F::at(cm1, e), F::at(sinc, e), F::at(msinc, e), qx,
+                                 px, eqx, epx);
+      if constexpr (kKind.stage) {
+        const V Qx = Q_scale * qx;
+        lane_store(Q + x, Qx);
+        stage_bits |= L::nonfinite(V(kStageBound * Qx));
+      }
+    }
+    if (kKind.flow || !kInPlace) lane_store(q + x, qx);  // (a kick in place leaves q where it is)
+    lane_store(p + x, px);
+    if (kKahan && (kKind.flow || !kInPlace)) lane_store(eq + x, eqx);
+    if (kKahan) lane_store(ep + x, epx);
   }
-  return bits;
+  return {L::any(g_bits), L::any(p_bits), L::any(stage_bits)};
 }
 
 /// One pass over n eigen coordinates (kLanes doubles each) from `from` into `to` (in place: the
 /// same arrays) as kKind says; returns the non-finite bits of the force and p a kick read and
-/// wrote. Every array written is a distinct stream and the loop has no branch, so it compiles
-/// to SIMD (checked with -fopt-info-vec); the arithmetic per coordinate is that of the kick
+/// wrote and of the Q it staged (PassBits). The arithmetic per coordinate is that of the kick
 /// followed by that of the flow.
 template <bool kKahan, PassKind kKind, int kLanes, class C>
 EIGEN_ALWAYS_INLINE PassBits pass(Eigen::Index n, const PassArrays& from, const PassArrays& to,

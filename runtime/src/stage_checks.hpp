@@ -52,14 +52,15 @@ inline bool all_finite(const std::complex<double>* x, Eigen::Index n) {
 [[noreturn]] void non_finite_result(bool q_ok, const StepPlace& at);
 
 /// g = grad U(Q) (0-based stage i) through System::gradient, counted in evaluations, refusing a
-/// non-finite Q before the call, and a g of a size other than d or (when check_g; else the caller
-/// checks it) with a non-finite entry after. D: d when it is a compile-time constant.
+/// non-finite Q before the call (when check_Q; else the caller knows it finite), and a g of a size
+/// other than d or (when check_g; else the caller checks it) with a non-finite entry after. D: d
+/// when it is a compile-time constant.
 template <int D = Eigen::Dynamic>
 EIGEN_ALWAYS_INLINE void checked_gradient(const System& system, const Eigen::VectorXd& Q,
                                           Eigen::VectorXd& g, Eigen::Index d, int i,
                                           const StepPlace& at, long& evaluations,
-                                          bool check_g = true) {
-  if (!all_finite<D>(Q.data(), d)) non_finite_stage(i, at);
+                                          bool check_g = true, bool check_Q = true) {
+  if (check_Q && !all_finite<D>(Q.data(), d)) non_finite_stage(i, at);
   system.gradient(Q, g);
   ++evaluations;
   if (g.size() != d) gradient_of_wrong_size(g, d, i, at);

@@ -206,7 +206,7 @@ TEST(ExplicitChecks, OverflowingKickIsRefusedAndChangesNothing) {
 
 // U = 0 and a state near the largest double: the transform or the first flow overflows, so a stage
 // is not finite, caught before the gradient is called (which would throw). Negative control: the
-// state 1e8 times smaller.
+// state 1e8 times smaller (still above kStageBound, explicit_passes.hpp: its stages are scanned).
 TEST(ExplicitChecks, OverflowingStageIsRefusedBeforeTheGradient) {
   for (const Basis& basis : bases())
     for (const Method& m : explicit_methods()) {
