@@ -46,6 +46,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -131,8 +132,9 @@ class ExplicitStepper final : public StepperBase {
         : Q(Eigen::VectorXd::Zero(d)), g(Eigen::VectorXd::Zero(d)), Mq(rkn ? d : 0) {}
     Eigen::VectorXd Q, g, Mq;
   };
-  // A processed method's processor (processor.hpp) and the state pi or pi^-1 works on (m = 0:
-  // not processed).
+  // A processed method's processor (processor.hpp) and the state pi or pi^-1 works on (other
+  // methods have none: the stepper of a small dimension stays a block glibc's per-thread cache
+  // serves, allocation_test.cpp).
   struct Processing {
     Processing(const Method& method, double h, const Eigen::VectorXd& lambda, Eigen::Index m)
         : coefficients(method, h, lambda), q(m), p(m) {}
@@ -156,7 +158,9 @@ class ExplicitStepper final : public StepperBase {
         arrays_(transform_.spectral_size(d)),
         physical_(d, rkn_),
         modified_(method.has_modified_kicks() || method.is_processed() ? d : 0),
-        processing_(method, h, lambda, method.is_processed() ? arrays_.m : 0) {}
+        processing_(method.is_processed()
+                        ? std::make_unique<Processing>(method, h, lambda, arrays_.m)
+                        : nullptr) {}
 
   ExplicitStepper(const ExplicitStepper&) = delete;  // (the pointers view its own buffer)
   ExplicitStepper& operator=(const ExplicitStepper&) = delete;
@@ -164,10 +168,10 @@ class ExplicitStepper final : public StepperBase {
   void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p, Statistics& stats) override {
     if (method_.is_processed()) {  // (pi^-1 on a copy: a refused state changes nothing)
       Counts counts;
-      transform_.forward(q, processing_.q);
-      transform_.forward(p, processing_.p);
-      process(processing_.q.data(), processing_.p.data(), false, counts);
-      map(arrays_.state.q) = processing_.q, map(arrays_.state.p) = processing_.p;
+      transform_.forward(q, processing_->q);
+      transform_.forward(p, processing_->p);
+      process(processing_->q.data(), processing_->p.data(), false, counts);
+      map(arrays_.state.q) = processing_->q, map(arrays_.state.p) = processing_->p;
       count(counts, stats);
     } else {
       transform_.forward(q, map(arrays_.state.q));
@@ -186,11 +190,11 @@ class ExplicitStepper final : public StepperBase {
       load<false>(q, p);
     if (!method_.is_processed()) return;
     Counts counts;  // pi of the kernel's state, in eigen coordinates
-    transform_.forward(q, processing_.q);
-    transform_.forward(p, processing_.p);
-    process(processing_.q.data(), processing_.p.data(), true, counts);
-    transform_.inverse(processing_.q, q);
-    transform_.inverse(processing_.p, p);
+    transform_.forward(q, processing_->q);
+    transform_.forward(p, processing_->p);
+    process(processing_->q.data(), processing_->p.data(), true, counts);
+    transform_.inverse(processing_->q, q);
+    transform_.inverse(processing_->p, p);
     count(counts, stats);
   }
 
@@ -269,14 +273,14 @@ class ExplicitStepper final : public StepperBase {
   // pi^-1 (backwards = false: the table's pre-sequence drift, kick, ..., drift) or pi (its
   // exact inverse: the same operations reversed, each negated) on eigen coordinates q, p.
   void process(Scalar* q, Scalar* p, bool backwards, Counts& counts) {
-    const int m = processing_.coefficients.kicks();
+    const int m = processing_->coefficients.kicks();
     const double sign = backwards ? -1 : 1;
     place_.processor = backwards ? "pi" : "pi^-1";  // (messages name the processor's kick)
     try {
       for (int j = 0; j <= 2 * m; ++j) {
         const int k = backwards ? 2 * m - j : j;  // (even: drift k/2, odd: kick k/2)
         if (k % 2 == 0)
-          processor_drift(processing_.coefficients.drift(k / 2), sign, lanes(q), lanes(p));
+          processor_drift(processing_->coefficients.drift(k / 2), sign, lanes(q), lanes(p));
         else
           processor_kick(k / 2, sign, q, p, counts);
       }
@@ -315,7 +319,7 @@ class ExplicitStepper final : public StepperBase {
   // Processor kick k (sign -1: undone): p -= sign h (y grad U + h^2 v G), or p -= sign h y grad
   // U when v = 0.
   void processor_kick(int k, double sign, const Scalar* q, Scalar* p, Counts& counts) {
-    const ProcessorCoefficients::Kick& w = processing_.coefficients.kick(k);
+    const ProcessorCoefficients::Kick& w = processing_->coefficients.kick(k);
     const bool modified = w.h2v != 0;
     const Scalar* g = force(q, false, false, k, w.y, w.h2v, counts, true);  // (no pass checks it)
     const double weight = sign * kicks_.h() * (modified ? 1.0 : w.y);
@@ -608,7 +612,7 @@ class ExplicitStepper final : public StepperBase {
   Arrays arrays_;
   Physical physical_;
   ModifiedForce modified_;
-  Processing processing_;
+  std::unique_ptr<Processing> processing_;
   bool have_history_ = false;
   bool pending_ = false;  // the stored state awaits flow s (the last of the step)
   StepPlace place_{&method_, 0, 0};

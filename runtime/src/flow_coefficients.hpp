@@ -22,7 +22,9 @@ namespace erkn::detail {
 
 template <class Coef>
 class FlowCoefficients {
-  using Slots = CoefficientSlots<Coef, 4 * (kMaxStages + 2)>;
+  // (Allocated with a scalar M too: 4 (kMaxStages + 2) doubles inside would make the explicit
+  // stepper at d <= 4 larger than the blocks glibc's per-thread cache serves, 1032 bytes.)
+  using Slots = CoefficientSlots<Coef, 4 * (kMaxStages + 2), false>;
 
  public:
   using Value = typename Slots::Value;

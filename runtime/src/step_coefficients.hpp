@@ -33,9 +33,10 @@ Eigen::Index aligned_stride(Eigen::Index m) {
 }
 
 /// Coefficient slots evaluated at every eigen coordinate: Coef double holds one value per slot
-/// (one eigenvalue: scalar M, RKN methods; at most kMax slots, no allocation), Eigen::ArrayXd an
-/// array per slot, all in one allocation; at() returns the value or a read-only map.
-template <class Coef, int kMax>
+/// (one eigenvalue: scalar M, RKN methods; at most kMax slots inside the object, no allocation,
+/// unless kInside is false: then the slots used, in one allocation), Eigen::ArrayXd an array per
+/// slot, all in one allocation; at() returns the value or a read-only map.
+template <class Coef, int kMax, bool kInside = true>
 class CoefficientSlots {
  public:
   static constexpr bool kScalar = std::is_same_v<Coef, double>;
@@ -44,7 +45,7 @@ class CoefficientSlots {
 
   CoefficientSlots(int slots, Eigen::Index m)
       : m_(m), stride_(kScalar ? 1 : aligned_stride<double>(m)) {
-    if constexpr (!kScalar) values_.resize(slots * stride_);
+    if constexpr (!kScalar || !kInside) values_.resize(slots * stride_);
   }
   void set(int slot, Eigen::Index e, double x) { values_[slot * stride_ + e] = x; }
   /// Every slot's value at coordinate from, copied to coordinate to.
@@ -62,7 +63,7 @@ class CoefficientSlots {
  private:
   Eigen::Index m_, stride_;
   // (Not value-initialised: every slot is set before it is read.)
-  std::conditional_t<kScalar, std::array<double, kMax>, Eigen::ArrayXd> values_;
+  std::conditional_t<kScalar && kInside, std::array<double, kMax>, Eigen::ArrayXd> values_;
 };
 
 /// For each entry of lambda, the index of the first entry with exactly the same value (itself
