@@ -47,6 +47,8 @@ __all__ = ["Ensemble", "Error", "Integrator", "Options", "Solution", "StepSizeAd
 # (plain kicks, unprocessed), the one closest to the cheapest over docs/accuracy.md's 24 cells
 # (its per-method table, copied into the README: "Choosing a method").
 _DEFAULT_METHOD = "SD9(10,6,4)"
+_FLOAT64 = np.dtype(np.float64)  # (NumPy's one instance: arrays of doubles share it)
+_NO_PARAMETERS = {}  # (a built-in potential named by a string: its defaults; never changed)
 
 
 class Options(_erkn._Options):
@@ -91,7 +93,7 @@ class Options(_erkn._Options):
         """A new Options from None, an Options or a dict, with the shortcuts not None set (the
         shared defaults for None and no shortcut: callers hand the result to C++, which copies
         it, and never change it)."""
-        if options is None and all(value is None for value in shortcuts.values()):
+        if options is None and list(shortcuts.values()).count(None) == len(shortcuts):
             return _DEFAULT_OPTIONS
         if options is None:
             out = Options()
@@ -134,6 +136,8 @@ def _builtin_names():
 def _stiffness(M):
     if isinstance(M, Stiffness):
         return M
+    if type(M) is float:  # (the common scalar case, without np.isscalar's checks)
+        return scalar(M)
     if np.isscalar(M):
         return scalar(float(M))
     a = np.asarray(M, dtype=float)
@@ -167,6 +171,9 @@ def _system(M, grad, d, potential_fn, hessian, hessian_vector_product=None):
         if potential_fn is not None or hessian is not None:
             raise Error("an erkn.System brings its own potential and Hessian")
         return _erkn._with_stiffness(grad, M, d)
+    if type(grad) is str and potential_fn is None and hessian is None and \
+            hessian_vector_product is None:  # (the common case: C++ checks the name)
+        return _erkn._builtin_system(M, grad, _NO_PARAMETERS, d)
     if isinstance(grad, str):
         grad = potential(grad)
     if isinstance(grad, potential):
@@ -183,8 +190,8 @@ def _system(M, grad, d, potential_fn, hessian, hessian_vector_product=None):
 
 
 def _state(x, name):
-    if type(x) is np.ndarray and x.dtype == np.float64 and x.ndim == 1 and x.flags.c_contiguous:
-        return x  # (the common case, as it is: C++ copies it)
+    if type(x) is np.ndarray and x.ndim == 1 and x.dtype is _FLOAT64:
+        return x  # (the common case, as it is: C++ copies it, with its strides)
     a = np.ascontiguousarray(np.atleast_1d(np.asarray(x, dtype=float)))
     if a.ndim != 1:
         raise Error(f"{name} must be a 1-D array; got shape {a.shape}")
@@ -322,14 +329,23 @@ class Solution:
     them; status 1 if a terminal event stopped the run, else 0."""
 
     def __init__(self, t, q, p, energy, stats, method, choice=None, events=None, stopped=False):
-        self.t, self.q, self.p, self.stats, self.method = t, q, p, stats, method
+        self.t, self.q, self.p, self.method = t, q, p, method
         self._energy = energy  # (or a callable computing it on first access)
+        self._stats = stats  # (or a callable reading them on first access)
         self.choice = choice
         self.status = 1 if stopped else 0
         self.t_events = self.q_events = self.p_events = self.y_events = None
         if events is not None:
             self.t_events, self.q_events, self.p_events, self.stats["events"] = events
             self.y_events = [np.hstack([q, p]) for q, p in zip(self.q_events, self.p_events)]
+
+    @property
+    def stats(self):
+        """The run's counters and times (a dict; solve reads them from the run when first
+        asked for, as building the dict costs about a microsecond)."""
+        if callable(self._stats):
+            self._stats = self._stats()
+        return self._stats
 
     @property
     def energy(self):
@@ -410,8 +426,8 @@ def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None
             e.solution = Solution(t, q, p, _energies(run, q, p) if later else energy,
                                   run.statistics, run.method, choice, found)
         raise
-    return Solution(t, q, p, _energies(run, q, p) if later else energy, run.statistics,
-                    run.method, choice, found, stopped)
+    return Solution(t, q, p, _energies(run, q, p) if later else energy,
+                    lambda: run.statistics, run.method, choice, found, stopped)
 
 
 def _energies(run, q, p):

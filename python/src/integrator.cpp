@@ -57,9 +57,8 @@ Eigen::Map<const Eigen::VectorXd> at_all(const Times& times) {
 
 class PyIntegrator {
  public:
-  PyIntegrator(const std::string& method, const PySystem& system, double h,
-               const Eigen::VectorXd& q0, const Eigen::VectorXd& p0, double t0,
-               const Options& options)
+  PyIntegrator(const std::string& method, const PySystem& system, double h, const VectorArg& q0,
+               const VectorArg& p0, double t0, const Options& options)
       : calls_python_(system.calls_python),
         run_(Method::by_name(method), system.system, h, q0, p0, options, t0) {}
 
@@ -213,8 +212,8 @@ class PyIntegrator {
 
 void bind_integrator(py::module_& m) {
   py::class_<PyIntegrator>(m, "_Integrator")
-      .def(py::init<const std::string&, const PySystem&, double, const Eigen::VectorXd&,
-                    const Eigen::VectorXd&, double, const Options&>(),
+      .def(py::init<const std::string&, const PySystem&, double, const VectorArg&, const VectorArg&,
+                    double, const Options&>(),
            py::arg("method"), py::arg("system"), py::arg("h"), py::arg("q0"), py::arg("p0"),
            py::arg("t0"), py::arg("options"))
       .def("step", &PyIntegrator::step, py::arg("n") = 1, "n steps of size h")
@@ -229,7 +228,7 @@ void bind_integrator(py::module_& m) {
            "(q, p) at t in [t, t + h] by a step of size t - self.t; the integrator is unchanged")
       .def(
           "set_state",
-          [](PyIntegrator& r, const Eigen::VectorXd& q, const Eigen::VectorXd& p, double t) {
+          [](PyIntegrator& r, const VectorArg& q, const VectorArg& p, double t) {
             r.get().set_state(q, p, t);
           },
           py::arg("q"), py::arg("p"), py::arg("t"))

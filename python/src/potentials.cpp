@@ -37,8 +37,8 @@ System fpu(Eigen::Index d) {
   s.gradient = [g = s.gradient, check](const Vector& q, Vector& out) { check(q), g(q, out); };
   s.potential = [u = s.potential, check](const Vector& q) { return check(q), u(q); };
   s.hessian = [h = s.hessian, check](const Vector& q, Eigen::MatrixXd& H) { check(q), h(q, H); };
-  s.hessian_vector_product = [hv = s.hessian_vector_product, check](
-                                 const Vector& q, const Vector& v, Vector& out) {
+  s.hessian_vector_product = [hv = s.hessian_vector_product, check](const Vector& q,
+                                                                    const Vector& v, Vector& out) {
     check(q), hv(q, v, out);
   };
   return s;
@@ -58,13 +58,15 @@ double parameter(const std::string& name, const std::map<std::string, double>& g
 
 }  // namespace
 
-std::map<std::string, std::map<std::string, double>> builtin_potentials() {
-  return {{"sine", {}}, {"duffing", {{"k", 0.03}}}, {"fpu", {}}, {"phi4", {{"beta", 1.0}}}};
+const std::map<std::string, std::map<std::string, double>>& builtin_potentials() {
+  static const std::map<std::string, std::map<std::string, double>> all{
+      {"sine", {}}, {"duffing", {{"k", 0.03}}}, {"fpu", {}}, {"phi4", {{"beta", 1.0}}}};
+  return all;
 }
 
 System builtin_potential(const std::string& name, const std::map<std::string, double>& params,
                          Eigen::Index d) {
-  const auto all = builtin_potentials();
+  const auto& all = builtin_potentials();
   const auto it = all.find(name);
   if (it == all.end())
     throw Error("unknown built-in potential '" + name + "'; known: sine, duffing, fpu, phi4");

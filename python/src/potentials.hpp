@@ -15,6 +15,6 @@ System builtin_potential(const std::string& name, const std::map<std::string, do
                          Eigen::Index d);
 
 /// The names, each with its parameters and their defaults, for messages and documentation.
-std::map<std::string, std::map<std::string, double>> builtin_potentials();
+const std::map<std::string, std::map<std::string, double>>& builtin_potentials();
 
 }  // namespace erkn::python
