@@ -29,7 +29,8 @@ void require_state(const System& system, const Eigen::VectorXd& q, const Eigen::
   if (system.M.dim() != 0 && system.M.dim() != q.size())
     throw Error("dimension mismatch: M is " + std::to_string(system.M.dim()) + "x" +
                 std::to_string(system.M.dim()) + ", q has size " + std::to_string(q.size()));
-  for (Eigen::Index i = 0; i < q.size(); ++i) {
+  if (detail::all_finite(q.data(), q.size()) && detail::all_finite(p.data(), p.size())) return;
+  for (Eigen::Index i = 0; i < q.size(); ++i) {  // (the first entry that is not finite)
     if (!std::isfinite(q[i]))
       throw Error("q[" + std::to_string(i) + "] = " + format(q[i]) + " is not finite");
     if (!std::isfinite(p[i]))

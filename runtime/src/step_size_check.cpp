@@ -41,10 +41,12 @@ double nearest_safe_step(const Method& method, double h, const Eigen::VectorXd& 
 
 void check_step_size(const Method& method, double h, const Eigen::VectorXd& eigenvalues,
                      double pole_tolerance) {
-  if (method.kind() == Kind::rkn) return;
+  // (An entire method, RKN or without poles, has no pole to be near and no range to leave: no
+  // scan of the eigenvalues, d of them, 2.5 % of a 10-step run on the 256^2 grid.)
+  if (method.entire()) return;
   const double lambda_max = eigenvalues.maxCoeff();
   const double vmax = h * h * lambda_max;
-  if (!method.entire() && vmax > generated::kPoleSearchMax)
+  if (vmax > generated::kPoleSearchMax)
     throw Error(std::string(method.name()) + ": h = " + format(h) + " gives h^2*lambda_max = " +
                 format(vmax) + " > " + format(generated::kPoleSearchMax) +
                 ", beyond the range where the method's poles are known; use h <= " +
