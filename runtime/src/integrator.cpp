@@ -220,7 +220,8 @@ Integrator::Timer::Timer(Integrator& run, long steps)
 }
 
 void Integrator::Timer::before_observer() {
-  if (!run_ || read_cpu_) return;
+  ++observer_calls_;
+  if (!run_ || read_cpu_ || (observer_calls_ & (observer_calls_ - 1)) != 0) return;
   const double wall = wall_seconds() - wall_0_;
   if (wall < kCpuClockDelay) return;
   read_cpu_ = true;
@@ -356,7 +357,7 @@ void Integrator::state_at(double t_out, Eigen::VectorXd& q, Eigen::VectorXd& p) 
                 format(t0, 17) + " (in [t, t + h], h = " + format(h(), 17) + ")");
   q = this->q();
   p = this->p();
-  if (std::abs(t_out - t0) <= tol) return;
+  if (is_now(t_out)) return;
   detail::StepperBase& s = stepper_of_size(t_out - t0);
   const long steps = statistics_.steps;
   s.step(steps + 1, t0, statistics_);
@@ -373,6 +374,7 @@ void Integrator::require_output_times(double t_end,
 // The step of size t_out - t_n from the last grid point t_n before t_out clears the poles (an
 // output time's or t_end's shorter step, validated before any step is taken).
 void Integrator::require_reachable(double t_out) const {
+  if (method_.entire()) return;  // (any step size: no plan needed)
   const TimeGrid::Plan plan = grid_.plan_to(t_out);
   if (!plan.shorter) return;
   const double size = t_out - grid_.ahead(plan.whole);
