@@ -3,17 +3,22 @@
 (issue 19: every cell within 5 % of the numbers before the redesign, or faster).
 
 Usage: bench_before_after.py OLD_BUILD NEW_BUILD [--rounds 5] [--min-time 0.5] [--cpu 1]
-           [--filter REGEX] [--counts] [--out DIR] [--table FILE]
+           [--filter REGEX] [--counts] [--own-plans] [--out DIR] [--table FILE]
 
 Timing: both builds' benchmarks in alternated rounds (old first in odd rounds, new first in even
 ones), each process pinned to one core (`taskset -c CPU`), `--benchmark_min_time`; per cell and
 counter the median over rounds of the per-round ratio new / old, with its range. The load
 (`uptime`) before and after each round goes into the table's header.
 
+P1 (sine-Gordon N = 32) runs FFTW, whose FFTW_MEASURE planner times candidates: two processes
+may plan differently, at different speeds. Every timed process therefore preloads
+bench/fftw_wisdom_preload.c, which imports one wisdom file (in --out) and adds its plans to it:
+after the first process all plan alike (--own-plans: each process for itself).
+
 --counts: instructions (callgrind), which do not depend on the load, and allocations of the same
 cells, from bench/cell_counts.cpp compiled against each build's sources and liberkn.a (the same
-driver for both: it uses only the API both have). P1 (sine-Gordon N = 32) runs FFTW, whose
-planner times candidates: the Ir column counts erkn's instructions outside libfftw3.
+driver for both: it uses only the API both have). The Ir column counts erkn's instructions
+outside libfftw3 (whose plans callgrind's slow clock chooses).
 
 Cells: per grad U evaluation (PerEvaluation, ns) without and with compensated summation, and
 (explicit methods) the setup: the Integrator's constructor alone (ctor) and System, Stiffness and
@@ -40,6 +45,7 @@ COUNTERS = {
     "Setup": {"ctor": lambda c: c["erkn_ctor_us"], "total": lambda c: c["erkn_us"]},
 }
 TARGET = 1.05
+HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # (the checkout)
 TRIGGER = "desc: Trigger: Client Request: "  # (a dump named by cell_counts)
 
 
@@ -95,7 +101,7 @@ def time_one(args, side, bench, pattern, r):
     path = os.path.join(args.out, f"{bench}_{side}_{r}.json")
     run(["taskset", "-c", str(args.cpu), binary(build, bench), f"--benchmark_filter={pattern}",
          f"--benchmark_min_time={args.min_time}", f"--benchmark_out={path}",
-         "--benchmark_out_format=json"])
+         "--benchmark_out_format=json"], env=args.env)
     runs = json.load(open(path))["benchmarks"]
     return {(bench, re.sub(r"/\d+$", "", b["name"])): b for b in runs if b["run_type"] == "iteration"}
 
@@ -115,18 +121,31 @@ def timing_rows(results):
     return rows
 
 
+def shared_wisdom(args):
+    """The environment of the timed processes: with bench/fftw_wisdom_preload.c preloaded, every
+    process (both builds, every round) imports one FFTW wisdom file and adds its plans to it."""
+    env = dict(os.environ)
+    if args.own_plans:
+        return env
+    shim = os.path.join(args.out, "fftw_wisdom_preload.so")
+    run(["cc", "-O2", "-shared", "-fPIC", "-o", shim,
+         os.path.join(HERE, "bench", "fftw_wisdom_preload.c"), "-lfftw3"])
+    env["LD_PRELOAD"] = shim
+    env["ERKN_PRELOAD_WISDOM"] = os.path.join(args.out, "fftw.wisdom")
+    return env
+
+
 def source_dir(build):
     cache = open(os.path.join(build, "CMakeCache.txt")).read()
     return re.search(r"^CMAKE_HOME_DIRECTORY:INTERNAL=(.*)$", cache, re.M).group(1)
 
 
 def compile_driver(build, out, name):
-    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     src = source_dir(build)
     exe = os.path.join(out, f"cell_counts_{name}")
     run(["c++", "-O3", "-DNDEBUG", "-std=c++20", f"-I{src}/runtime/include",
          f"-I{src}/generated/include", "-isystem", "/usr/include/eigen3",
-         os.path.join(here, "bench", "cell_counts.cpp"), "-o", exe,
+         os.path.join(HERE, "bench", "cell_counts.cpp"), "-o", exe,
          os.path.join(build, "runtime", "liberkn.a"), "-lbenchmark", "-lfftw3"])
     return exe
 
@@ -194,7 +213,9 @@ def table(cells, rows, counts, loads, args):
     if loads:
         head.append(f"{args.rounds} alternated rounds, --benchmark_min_time={args.min_time}, "
                     f"taskset -c {args.cpu}; 1-min load before -> after each round: " +
-                    ", ".join(f"{a.split(',')[0]} -> {b.split(',')[0]}" for a, b in loads) + ".")
+                    ", ".join(f"{a.split(',')[0]} -> {b.split(',')[0]}" for a, b in loads) +
+                    "; FFTW plans: " + ("each process its own." if args.own_plans else
+                                        "one wisdom file shared by every process."))
         head.append("Time: median over rounds (ns per grad U, us per setup); ratio: median over "
                     "rounds of new / old [range].")
     if counts:
@@ -233,6 +254,8 @@ def main():
     p.add_argument("--cpu", type=int, default=1)
     p.add_argument("--filter", default=".", help="regex on kind/problem/method")
     p.add_argument("--counts", action="store_true", help="callgrind instruction counts too")
+    p.add_argument("--own-plans", action="store_true",
+                   help="each process plans FFTW for itself (default: one shared wisdom file)")
     p.add_argument("--out", default=None, help="folder for the runs' files (default: a new one)")
     p.add_argument("--table", default=None, help="write the table there too")
     args = p.parse_args()
@@ -250,6 +273,7 @@ def main():
     counts = count_cells(args, cells) if args.counts else {}
     rows, loads = {}, []
     if args.rounds:
+        args.env = shared_wisdom(args)
         results, loads = time_rounds(args, cells)
         rows = timing_rows(results)
     text = table(cells, rows, counts, loads, args)
