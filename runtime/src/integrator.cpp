@@ -208,6 +208,7 @@ void Integrator::batch(long n) {
   if (took(n)) check_guard();
 }
 
+using detail::coarse_wall_seconds;
 using detail::cpu_seconds;
 using detail::wall_seconds;
 
@@ -222,8 +223,8 @@ Integrator::Timer::Timer(Integrator& run, long steps)
 void Integrator::Timer::before_observer() {
   ++observer_calls_;
   if (!run_ || read_cpu_ || (observer_calls_ & (observer_calls_ - 1)) != 0) return;
+  if (coarse_wall_seconds() - wall_0_ < kCpuClockDelay) return;  // (it never leads)
   const double wall = wall_seconds() - wall_0_;
-  if (wall < kCpuClockDelay) return;
   read_cpu_ = true;
   wall_as_cpu_ = wall;
   cpu_0_ = cpu_seconds();

@@ -2,10 +2,12 @@
 // (off-grid ends and output times: output_test.cpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <thread>
 
+#include "clock.hpp"
 #include "problems.hpp"
 
 namespace erkn::test {
@@ -118,6 +120,24 @@ TEST(Integrate, IntegrateToAnEndTimeIsTimed) {
   const double wall = a.statistics().wall_time - before.wall_time;
   EXPECT_GT(wall, 0.0);
   EXPECT_NEAR(a.statistics().cpu_time - before.cpu_time, wall, 1e-12);
+}
+
+// The coarse clock short calls look at before observer calls lags the wall clock (by up to a
+// tick) but never leads it, so a call never switches to the CPU clock before kCpuClockDelay.
+// (Negative control: a coarse clock of another epoch, CLOCK_REALTIME_COARSE, leads it.)
+TEST(Integrate, TheCoarseClockNeverLeadsTheWallClock) {
+  double largest_lag = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const double coarse = detail::coarse_wall_seconds(), after = detail::wall_seconds();
+    EXPECT_LE(coarse, after);
+    largest_lag = std::max(largest_lag, after - coarse);
+  }
+  EXPECT_LT(largest_lag, 0.05);  // (a tick is 1-4 ms; 50 ms allows for preemption)
+#ifdef CLOCK_REALTIME_COARSE
+  timespec ts{};
+  clock_gettime(CLOCK_REALTIME_COARSE, &ts);
+  EXPECT_GT(double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec), detail::wall_seconds());
+#endif
 }
 
 // A short call with output times or an observer reads no CPU clock while it lasts less than

@@ -99,9 +99,10 @@ struct Statistics {
   /// CPU seconds of the calling thread there (callbacks included). A call of less than
   /// Integrator::kCpuClockWork steps x dimension counts its wall time instead until it has lasted
   /// Integrator::kCpuClockDelay (0.1 ms) at an observer call (the 1st, 2nd, 4th, 8th, ... one of
-  /// the call), and reads the thread CPU clock from then on: a clock read (a system call, ~2 us
-  /// on a virtual machine) would cost more than its steps. So time an observer sleeps is not
-  /// counted once the call has lasted 0.1 ms and made twice the observer calls it had by then.
+  /// the call; on Linux as the coarse clock sees it, which lags by up to a tick, 1-4 ms), and
+  /// reads the thread CPU clock from then on: a clock read (a system call, ~2 us on a virtual
+  /// machine) would cost more than its steps. So time an observer sleeps is not counted once the
+  /// call has lasted that long and made twice the observer calls it had by then.
   double cpu_time = 0;
 };
 
@@ -238,9 +239,10 @@ class Integrator {
   // thread CPU clock from its start if steps x dimension >= kCpuClockWork; a shorter one counts
   // its wall time as CPU time until before_observer() finds it has lasted kCpuClockDelay (user
   // code that may sleep comes next), and reads the CPU clock from then on. before_observer()
-  // looks at the clock before the 1st, 2nd, 4th, 8th, ... observer call only (a wall-clock read
-  // costs as much as a few steps at d = 1: 62 ns on the benchmark machine, a Strang step on
-  // Duffing 16-18 ns), so up to twice the observer calls made when the delay passed count too.
+  // looks at the coarse clock (coarse_wall_seconds, 9 ns) before the 1st, 2nd, 4th, 8th, ...
+  // observer call only: a wall-clock read costs as much as a few steps at d = 1 (62 ns on the
+  // benchmark machine, a Strang step on Duffing 16-18 ns). So up to twice the observer calls
+  // made when the delay passed, and up to a tick of the coarse clock after it, count too.
   class Timer {
    public:
     Timer(Integrator& run, long steps);
