@@ -223,8 +223,11 @@ Integrator::Timer::Timer(Integrator& run, long steps)
 void Integrator::Timer::before_observer() {
   ++observer_calls_;
   if (!run_ || read_cpu_ || (observer_calls_ & (observer_calls_ - 1)) != 0) return;
-  if (coarse_wall_seconds() - wall_0_ < kCpuClockDelay) return;  // (it never leads)
+  // (The coarse clock never leads: until it has ticked past the call's start, less than a tick
+  // has passed. After a tick, the wall clock decides.)
+  if (coarse_wall_seconds() <= wall_0_) return;
   const double wall = wall_seconds() - wall_0_;
+  if (wall < kCpuClockDelay) return;
   read_cpu_ = true;
   wall_as_cpu_ = wall;
   cpu_0_ = cpu_seconds();

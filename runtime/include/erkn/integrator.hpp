@@ -99,10 +99,10 @@ struct Statistics {
   /// CPU seconds of the calling thread there (callbacks included). A call of less than
   /// Integrator::kCpuClockWork steps x dimension counts its wall time instead until it has lasted
   /// Integrator::kCpuClockDelay (0.1 ms) at an observer call (the 1st, 2nd, 4th, 8th, ... one of
-  /// the call; on Linux as the coarse clock sees it, which lags by up to a tick, 1-4 ms), and
-  /// reads the thread CPU clock from then on: a clock read (a system call, ~2 us on a virtual
-  /// machine) would cost more than its steps. So time an observer sleeps is not counted once the
-  /// call has lasted that long and made twice the observer calls it had by then.
+  /// the call, once the coarse clock has ticked since it began: on Linux up to a tick, 1-4 ms,
+  /// after the delay), and reads the thread CPU clock from then on: a clock read (a system call,
+  /// ~2 us on a virtual machine) would cost more than its steps. So time an observer sleeps is
+  /// not counted once the call has lasted that long and made twice the observer calls it had.
   double cpu_time = 0;
 };
 
@@ -240,9 +240,12 @@ class Integrator {
   // its wall time as CPU time until before_observer() finds it has lasted kCpuClockDelay (user
   // code that may sleep comes next), and reads the CPU clock from then on. before_observer()
   // looks at the coarse clock (coarse_wall_seconds, 9 ns) before the 1st, 2nd, 4th, 8th, ...
-  // observer call only: a wall-clock read costs as much as a few steps at d = 1 (62 ns on the
-  // benchmark machine, a Strang step on Duffing 16-18 ns). So up to twice the observer calls
-  // made when the delay passed, and up to a tick of the coarse clock after it, count too.
+  // observer call only, and at the wall clock once the coarse one has ticked past the call's
+  // start: a wall-clock read costs as much as a few steps at d = 1 (62 ns on the benchmark
+  // machine; a Strang step on Duffing, construct + integrate of 2000 steps, 15-18 ns of thread
+  // CPU time). So up to twice the observer calls made when the delay passed, and up to a tick of
+  // the coarse clock after it, count too (an observer that sleeps a tick is caught at the next
+  // check).
   class Timer {
    public:
     Timer(Integrator& run, long steps);
