@@ -69,7 +69,12 @@ class SerialSpace {
   Map map(B& block, int k) const {
     return map(block.data(), k);
   }
-  Map map(Scalar* first, int k) const { return Map(first + k * stride_, m_); }
+  Map map(Scalar* first, int k) const {
+    if constexpr (kFixed)
+      return Map(first + k * D);  // (the stride a constant: no load and multiply per view)
+    else
+      return Map(first + k * stride_, m_);
+  }
 
   // A coefficient as the arrays see it: a number, or an array map (of fixed size when D is, so
   // that expressions mixing it with the stage arrays keep the fixed size).
