@@ -62,10 +62,18 @@ class Stepper final : public StepperBase {
     advance(step_number, t, stats);
   }
 
-  // (The loop over the inlined step: a virtual call per step and its frame were 22 of the 652
-  // instructions per step of P2 with SERKN1s2(1), construction included; callgrind.)
+  // With a fixed D, the loop over the inlined step (a virtual call per step and its frame were 22
+  // of the 652 instructions per step of P2 with SERKN1s2(1), construction included; callgrind);
+  // with a dynamic D, a direct call of step() (the step inlined into both grew integrator.cpp
+  // until GCC left Eigen's loops in the dynamic fixed_point out of line: sine-Gordon N = 32, RKN
+  // methods +1.8 % instructions per grad U).
   void steps(long n, long first, const TimeGrid& grid, Statistics& stats, long& done) override {
-    for (done = 0; done < n; ++done) advance(first + done, grid.ahead(done), stats);
+    for (done = 0; done < n; ++done) {
+      if constexpr (Space::kFixed)
+        advance(first + done, grid.ahead(done), stats);
+      else
+        step(first + done, grid.ahead(done), stats);
+    }
   }
 
   void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) override { space_.apply_M(x, y); }
