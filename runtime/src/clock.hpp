@@ -6,13 +6,18 @@
 
 namespace erkn::detail {
 
+/// The reading of the POSIX clock `clock` in seconds.
+inline double posix_seconds(clockid_t clock) {
+  timespec ts{};
+  clock_gettime(clock, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
 // (Linux: CLOCK_MONOTONIC, which steady_clock reads too, so that coarse_wall_seconds compares
 // with it.)
 inline double wall_seconds() {
 #ifdef CLOCK_MONOTONIC_COARSE
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+  return posix_seconds(CLOCK_MONOTONIC);
 #else
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 #endif
@@ -23,19 +28,13 @@ inline double wall_seconds() {
 /// wall_seconds(). Elsewhere wall_seconds() itself.
 inline double coarse_wall_seconds() {
 #ifdef CLOCK_MONOTONIC_COARSE
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC_COARSE, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+  return posix_seconds(CLOCK_MONOTONIC_COARSE);
 #else
   return wall_seconds();
 #endif
 }
 
 /// CPU time of the calling thread: an Ensemble's trajectories on other threads do not count.
-inline double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
+inline double cpu_seconds() { return posix_seconds(CLOCK_THREAD_CPUTIME_ID); }
 
 }  // namespace erkn::detail
