@@ -171,14 +171,11 @@ def _system(M, grad, d, potential_fn, hessian, hessian_vector_product=None):
         if potential_fn is not None or hessian is not None:
             raise Error("an erkn.System brings its own potential and Hessian")
         return _erkn._with_stiffness(grad, M, d)
-    if type(grad) is str and potential_fn is None and hessian is None and \
-            hessian_vector_product is None:  # (the common case: C++ checks the name)
-        return _erkn._builtin_system(M, grad, _NO_PARAMETERS, d)
-    if isinstance(grad, str):
-        grad = potential(grad)
-    if isinstance(grad, potential):
+    if isinstance(grad, (str, potential)):  # (a name: its defaults; C++ checks the name)
         if potential_fn is not None or hessian is not None or hessian_vector_product is not None:
             raise Error("a built-in potential brings its own potential and Hessian")
+        if isinstance(grad, str):
+            return _erkn._builtin_system(M, grad, _NO_PARAMETERS, d)
         return _erkn._builtin_system(M, grad.name, grad.params, d)
     if not callable(grad):
         raise Error("grad must be a built-in potential's name, an erkn.potential, or a callable")
