@@ -32,10 +32,11 @@
 // Compensated summation (Options::compensated_summation) keeps with q and p the low-order parts
 // eq, ep that rounding has dropped (explicit_passes.hpp); get_state returns q + eq and p + ep.
 //
-// Its cost (construction + integrate, erkn_integrate_benchmark --short: defaults against
-// compensation off in the same rounds of one process, median over the 12 explicit methods and 3
-// runs, 684bc36, load 6-9 on 2 cores): sine-Gordon N = 32 1.076x, N = 512 1.075x, N = 2048
-// 1.071x, N = 8192 1.065x, 256^2 1.073x; Duffing 1.011x, stellar orbits 1.002x.
+// Its cost (construction + integrate, erkn_integrate_benchmark --short as scripts/main.sh runs
+// it: each method's defaults ratio over its compensation-off ratio against the same peer, median
+// over the 12 explicit methods, main 02edd6f, quiet machine, the two runs of docs/benchmarks.md):
+// sine-Gordon N = 32 1.038-1.050x, N = 512 1.057-1.059x, N = 2048 1.055-1.059x, N = 8192
+// 1.051-1.052x, 256^2 1.059-1.060x; Duffing 0.99x, stellar orbits 0.99-1.01x.
 // That is above the 5 % the runtime allows itself for a default, and it stays the default all
 // the same: without it the round-off of q_n + dq grows with the number of steps (a random walk,
 // ~sqrt(n) eps |q|), which is what the energy and long-time charts show and what the paper's
