@@ -76,7 +76,7 @@ std::unique_ptr<detail::StepperBase> stepper_of(bool explicit_method, Eigen::Ind
   return stepper_for<detail::Stepper, Transform, Coef>(d, std::forward<Args>(args)...);
 }
 
-std::unique_ptr<detail::StepperBase> make_stepper(const Method& method, System system, double h,
+std::unique_ptr<detail::StepperBase> make_stepper(const Method& method, System&& system, double h,
                                                   const Options& options, Eigen::Index d) {
   using namespace detail;
   check_step_size(method, h, system.M.eigenvalues(), options.pole_tolerance);
@@ -309,7 +309,7 @@ void Integrator::set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p, d
 void Integrator::set_step_size(double h) {
   const TimeGrid grid = grid_.with_step(h);  // (validates h)
   if (options_.check_stability) require_advised(method_, system(), h, q(), p());
-  auto fresh = make_stepper(method_, system(), h, options_, q_.size());
+  auto fresh = make_stepper(method_, System(system()), h, options_, q_.size());
   fresh->set_state(q(), p(), statistics_);  // (the summation errors are dropped)
   grid_ = grid;
   stepper_ = std::move(fresh);
@@ -331,7 +331,7 @@ TimeGrid::Plan Integrator::prepare_end(double t_end, long every) {
 detail::StepperBase& Integrator::stepper_of_size(double h) {
   if (!short_.stepper || short_.h != h) {
     try {
-      short_.stepper = make_stepper(method_, system(), h, options_, q_.size());
+      short_.stepper = make_stepper(method_, System(system()), h, options_, q_.size());
     } catch (const Error& e) {
       short_.stepper.reset();
       throw Error("a step of size " + format(h, 17) + " (to a time off the grid of h = " +
