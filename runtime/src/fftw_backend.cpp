@@ -280,6 +280,30 @@ class FftwHalfSpectrum final : public HalfSpectrumBackend {
     Eigen::Map<Eigen::VectorXd>(x, d_) = Eigen::Map<const Eigen::VectorXd>(real_.data, d_);
   }
 
+  // The plans executed straight on arrays of the planned alignment (others through the buffers,
+  // as forward and inverse_staged do). callgrind, integrate of sine-Gordon N = 32 Strang: 57
+  // instructions fewer per gradient than a virtual call and alignment check per transform (5446
+  // -> 5389 per step, ~1280 of them in FFTW).
+  BoundTransform bind_forward(const double* x, std::complex<double>* y) override {
+    if (!real_aligned_(x) || !spectrum_aligned_(reinterpret_cast<fftw_complex*>(y)))
+      return HalfSpectrumBackend::bind_forward(x, y);
+    return {[](void* plan, const void* in, void* out) {
+              fftw_execute_dft_r2c(static_cast<fftw_plan>(plan),
+                                   const_cast<double*>(static_cast<const double*>(in)),
+                                   static_cast<fftw_complex*>(out));
+            },
+            plans_.forward, x, y};
+  }
+  BoundTransform bind_inverse_staged(double* x) override {
+    if (!output_aligned_(x)) return HalfSpectrumBackend::bind_inverse_staged(x);
+    return {[](void* plan, const void* in, void* out) {
+              fftw_execute_dft_c2r(static_cast<fftw_plan>(plan),
+                                   static_cast<fftw_complex*>(const_cast<void*>(in)),
+                                   static_cast<double*>(out));
+            },
+            plans_.inverse, spectrum_.data, x};
+  }
+
  private:
   double scale() const { return 1 / double(d_); }
   Eigen::Map<Eigen::VectorXcd> complex_map(fftw_complex* z) const {

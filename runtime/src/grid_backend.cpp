@@ -132,6 +132,21 @@ class SeparableBackend final : public GridBackend {
 
 }  // namespace
 
+BoundTransform HalfSpectrumBackend::bind_forward(const double* x, std::complex<double>* y) {
+  return {[](void* backend, const void* in, void* out) {
+            static_cast<HalfSpectrumBackend*>(backend)->forward(
+                static_cast<const double*>(in), static_cast<std::complex<double>*>(out));
+          },
+          this, x, y};
+}
+
+BoundTransform HalfSpectrumBackend::bind_inverse_staged(double* x) {
+  return {[](void* backend, const void*, void* out) {
+            static_cast<HalfSpectrumBackend*>(backend)->inverse_staged(static_cast<double*>(out));
+          },
+          this, staging(), x};
+}
+
 std::unique_ptr<GridBackend> make_separable_backend(const std::vector<GridAxis>& axes) {
   return std::make_unique<SeparableBackend>(axes);
 }

@@ -34,6 +34,17 @@ std::unique_ptr<GridBackend> make_grid_backend(const std::vector<GridAxis>& axes
 /// True when make_grid_backend uses FFTW.
 bool grid_backend_is_fftw();
 
+/// A transform bound to its input and output arrays: operator() computes it through one plain
+/// indirect call, run(plan, in, out) (FFTW: the plan executed straight on the arrays, whose
+/// alignment was checked when they were bound).
+struct BoundTransform {
+  void (*run)(void* plan, const void* in, void* out) = nullptr;
+  void* plan = nullptr;
+  const void* in = nullptr;
+  void* out = nullptr;
+  void operator()() const { run(plan, in, out); }
+};
+
 /// The complex half spectrum of a grid whose axes are all periodic (a circulant M: one axis):
 /// forward y = the unnormalised DFT X_k = sum_j x_j e^{-2 pi i k.j/n} at k_0..k_{K-2} = 0..n_a-1
 /// and k_{K-1} = 0..n/2 (the other X_k are conj(X_{-k})), row-major, m = d / n (n/2 + 1) of
@@ -53,6 +64,11 @@ class HalfSpectrumBackend {
   virtual double staging_scale() const = 0;
   /// x = F^{-1} y from y staged as above; the staging buffer's contents are lost.
   virtual void inverse_staged(double* x) = 0;
+  /// forward(x, y) and inverse_staged(x) bound to these arrays (a stepper transforms the same
+  /// ones at every gradient: no virtual call or alignment check per transform). By default the
+  /// bound transform calls the virtual one.
+  virtual BoundTransform bind_forward(const double* x, std::complex<double>* y);
+  virtual BoundTransform bind_inverse_staged(double* x);
 };
 
 /// True when every axis is periodic and, without FFTW, there is one axis of n >= 4 (Eigen's

@@ -9,6 +9,7 @@
 #include <complex>
 #include <memory>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "grid_backend.hpp"
@@ -120,13 +121,18 @@ struct HalfSpectrumTransform {
   using Spectral = Eigen::ArrayXcd;
   /// Throws unless half_spectrum_available(axes).
   explicit HalfSpectrumTransform(const std::vector<GridAxis>& axes)
-      : backend(make_half_spectrum_backend(axes)), weight(half_spectrum_weights(axes)) {}
+      : backend(make_half_spectrum_backend(axes)),
+        weight(half_spectrum_weights(axes)),
+        staging_(reinterpret_cast<double*>(backend->staging())) {}
   std::unique_ptr<HalfSpectrumBackend> backend;
   Eigen::ArrayXd weight;  // half_spectrum_weights
   Eigen::Index spectral_size(Eigen::Index) const { return weight.size(); }
+  /// (Through the transforms bound to the last two pairs of arrays: a stepper's gradients
+  /// transform the same arrays every time, or two in turn when it keeps the last force, FSAL.)
   template <class X, class Y>
   void forward(const X& x, Y&& y) {
-    backend->forward(x.data(), y.data());
+    bound(forward_, x.data(), y.data(),
+          [&] { return backend->bind_forward(x.data(), y.data()); })();
   }
   template <class Y, class X>
   void inverse(const Y& y, X&& x) {
@@ -134,17 +140,31 @@ struct HalfSpectrumTransform {
   }
   /// Where a pass may stage the eigen coordinates y (as doubles, re and im) times
   /// staging_scale() for inverse_staged, which then transforms them without a copy of its own.
-  double* staging() { return reinterpret_cast<double*>(backend->staging()); }
+  double* staging() { return staging_; }
   double staging_scale() const { return backend->staging_scale(); }
   template <class X>
   void inverse_staged(X&& x) {
-    backend->inverse_staged(x.data());
+    bound(inverse_staged_, staging_, x.data(),
+          [&] { return backend->bind_inverse_staged(x.data()); })();
   }
   /// The squared 2-norm of the physical vector.
   template <class Y>
   double squared_norm(const Y& y) const {
     return (weight * y.abs2()).sum();
   }
+
+ private:
+  // The binding of (in, out) in cache, or a new one from bind() replacing the older entry.
+  template <class Bind>
+  static BoundTransform& bound(BoundTransform (&cache)[2], const void* in, void* out, Bind&& bind) {
+    for (BoundTransform& b : cache)
+      if (b.run && b.in == in && b.out == out) return b;
+    std::swap(cache[0], cache[1]);  // (the newest first)
+    return cache[0] = bind();
+  }
+
+  double* staging_;  // backend's staging buffer
+  BoundTransform forward_[2], inverse_staged_[2];
 };
 
 /// Grid M (Stiffness::grid) with a Dirichlet or Neumann axis, or without FFTW: the separable real

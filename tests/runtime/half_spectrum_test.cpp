@@ -2,7 +2,8 @@
 // r2c/c2r or Eigen's real FFT): against the DFT's definition, Parseval with the coordinates that
 // stand for two (X_k and X_{-k}) counted twice, and M diagonalised by half_spectrum_eigenvalues.
 // Negative controls: self-conjugate coordinates (k = 0, Nyquist) weighted like the others break
-// Parseval; eigenvalues in another order do not diagonalise M.
+// Parseval; eigenvalues in another order do not diagonalise M. Arrays transformed in turn (the
+// transforms are bound to their arrays) each get their own transform.
 #include <gtest/gtest.h>
 
 #include <complex>
@@ -115,5 +116,49 @@ TEST(HalfSpectrum, EigenvaluesDiagonaliseMAndAnotherOrderDoesNot) {
   }
 }
 
+// The transforms are bound to the arrays they last saw (the last two pairs): arrays taken in turn,
+// one of them off FFTW's planned alignment (one double into a buffer), two inputs into one output,
+// must each get their own transform, as must staged inverses into outputs in turn (a cache keyed
+// on the input or on the output alone fails here). Negative control: the inputs' DFTs differ by
+// far more than the tolerance, so an output from another array's binding would show.
+TEST(HalfSpectrum, ArraysTransformedInTurnEachGetTheirOwnTransform) {
+  for (const auto& axes : periodic_grids()) {
+    if (!detail::half_spectrum_available(axes)) continue;
+    SCOPED_TRACE(describe(axes));
+    detail::HalfSpectrumTransform t(axes);
+    const Eigen::Index d = Stiffness::grid(axes).dim(), m = t.spectral_size(d);
+    std::vector<Eigen::VectorXd> x;
+    std::vector<Eigen::VectorXcd> X;
+    for (int k = 0; k < 3; ++k) {
+      x.push_back(random_vector(d, 10 + k));
+      X.push_back(dft_half_spectrum(axes, x.back()));
+    }
+    for (int k = 0; k < 3; ++k) EXPECT_GT((X[k] - X[(k + 1) % 3]).cwiseAbs().maxCoeff(), 1e-3);
+    Eigen::VectorXd shifted_x(d + 1), shifted_back(d + 1);  // (the arrays at one double in)
+    Eigen::VectorXcd shifted_y(m + 1);
+    shifted_x.tail(d) = x[2];
+    std::vector<Eigen::ArrayXcd> y(3, Eigen::ArrayXcd(m));
+    Eigen::ArrayXcd shared(m);
+    std::vector<Eigen::VectorXd> back(3, Eigen::VectorXd(d));
+    for (int round = 0; round < 3; ++round)
+      for (int k = 0; k < 3; ++k) {
+        if (k < 2)
+          t.forward(x[k], y[k]);
+        else
+          t.forward(shifted_x.tail(d), shifted_y.tail(m)), y[k] = shifted_y.tail(m);
+        EXPECT_LE((y[k].matrix() - X[k]).cwiseAbs().maxCoeff(), 1e-13 * x[k].cwiseAbs().sum());
+        t.forward(x[k % 2], shared);  // (two inputs in turn into one output)
+        EXPECT_LE((shared.matrix() - X[k % 2]).cwiseAbs().maxCoeff(),
+                  1e-13 * x[k % 2].cwiseAbs().sum());
+        Eigen::Map<Eigen::ArrayXcd>(reinterpret_cast<std::complex<double>*>(t.staging()), m) =
+            t.staging_scale() * y[k];
+        if (k < 2)
+          t.inverse_staged(back[k]);
+        else
+          t.inverse_staged(shifted_back.tail(d)), back[k] = shifted_back.tail(d);
+        EXPECT_LE((back[k] - x[k]).cwiseAbs().maxCoeff(), 1e-14 * x[k].cwiseAbs().maxCoeff());
+      }
+  }
+}
 }  // namespace
 }  // namespace erkn::test
