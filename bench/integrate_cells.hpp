@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cstdio>
+#include <erkn/compiled_gradient.hpp>
 #include <erkn/erkn.hpp>
 #include <erkn/problems.hpp>
 #include <functional>
@@ -63,14 +64,18 @@ struct Results {
   std::vector<ImplicitCell> implicit_cells;
 };
 
+/// integrate(t_end) and read the final state of a run just constructed; returns the gradient
+/// evaluations.
+inline long finish_run(erkn::Integrator run, const Scene& s, volatile double& sink) {
+  run.integrate(s.h * double(s.steps));
+  sink = sink + run.q()[0] + run.p()[0];
+  return run.statistics().gradient_evaluations;
+}
 /// construct + integrate(t_end) with the given options and read the final state (one whole
 /// run, as a user calls it); returns the gradient evaluations.
 inline long erkn_run(const erkn::Method& m, const erkn::System& sys, const Scene& s,
                      const erkn::Options& o, volatile double& sink) {
-  erkn::Integrator run(m, sys, s.h, s.problem.q0, s.problem.p0, o);
-  run.integrate(s.h * double(s.steps));
-  sink = sink + run.q()[0] + run.p()[0];
-  return run.statistics().gradient_evaluations;
+  return finish_run(erkn::Integrator(m, sys, s.h, s.problem.q0, s.problem.p0, o), s, sink);
 }
 
 /// t_end k / outputs, k = 1..outputs.
@@ -80,9 +85,10 @@ inline Eigen::VectorXd output_times(const Scene& s) {
   return t;
 }
 
-template <class Basis, class Gradient>
-Cell measure_cell(const Scene& s, const erkn::Method& m, const Basis& basis, Gradient g,
-                  const erkn::System& sys, const TimingPlan& plan) {
+/// make(options): erkn's Integrator for the run (constructed within the timed run).
+template <class Basis, class Gradient, class Make>
+Cell measure_cell(const Scene& s, const erkn::Method& m, const Basis& basis, Gradient g, Make make,
+                  const TimingPlan& plan, const std::string& label_suffix) {
   erkn::Options plain_options;
   plain_options.compensated_summation = false;
   const Eigen::VectorXd times = output_times(s);
@@ -98,37 +104,55 @@ Cell measure_cell(const Scene& s, const erkn::Method& m, const Basis& basis, Gra
     }
   };
   auto erkn_output = [&] {
-    erkn::Integrator run(m, sys, s.h, s.problem.q0, s.problem.p0);
+    erkn::Integrator run = make(erkn::Options{});
     run.integrate(times[times.size() - 1], times,
                   [&](double, const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
                     sink = sink + q[0] + p[0];
                   });
   };
   const std::vector<std::vector<double>> t =
-      time_rounds({[&] { peer(1); }, [&] { erkn_run(m, sys, s, plain_options, sink); },
-                   [&] { erkn_run(m, sys, s, {}, sink); }, [&] { peer(s.outputs()); }, erkn_output},
+      time_rounds({[&] { peer(1); }, [&] { finish_run(make(plain_options), s, sink); },
+                   [&] { finish_run(make({}), s, sink); }, [&] { peer(s.outputs()); }, erkn_output},
                   plan);
-  return {s.label,
-          std::string(m.name()),
-          s.steps,
-          1e3 * median(t[0]),
-          median_ratio(t[1], t[0]),
-          median_ratio(t[2], t[0]),
+  return {s.label + label_suffix,  std::string(m.name()),    s.steps,
+          1e3 * median(t[0]),      median_ratio(t[1], t[0]), median_ratio(t[2], t[0]),
           median_ratio(t[4], t[3])};
 }
 
+/// The rows of erkn with the peer's gradient compiled into its steps (erkn::make_integrator).
+inline const std::string kCompiledRows = " with templated gradient";  // (no comma: csv)
+
+/// Every explicit method with a peer: erkn with the problems library's System (System::gradient,
+/// a std::function, as users of the callback path call it), and for a scalar or diagonal M also
+/// with the peer's gradient compiled in (erkn/compiled_gradient.hpp; rows kCompiledRows).
 template <class Basis, class Gradient>
 void measure_scene(const Scene& s, const Basis& basis, Gradient g, const Config& cfg,
                    Results& out) {
   const erkn::System sys = erkn::problems::system(s.problem);
-  for (const erkn::Method& m : erkn::Method::all())
-    // (The peer kicks with grad U only and has no processor: methods with modified kicks or a
-    // processor have no peer here.)
-    if (m.is_explicit() && !m.has_modified_kicks() && !m.is_processed() &&
-        (cfg.method.empty() || cfg.method == m.name())) {
-      out.cells.push_back(measure_cell(s, m, basis, g, sys, cfg.plan()));
+  erkn::System bare = sys;  // (make_integrator's: the compiled functor is the gradient)
+  bare.gradient = nullptr;
+  const auto compiled = [g](const auto& q, auto& out) {  // (the peer's functor, on arrays)
+    auto a = out.array();
+    g(q.array(), a);
+  };
+  for (bool templated : {false, true}) {
+    if (templated && !Basis::kIdentity) break;
+    for (const erkn::Method& m : erkn::Method::all()) {
+      // (The peer kicks with grad U only and has no processor: methods with modified kicks or a
+      // processor have no peer here.)
+      if (!m.is_explicit() || m.has_modified_kicks() || m.is_processed() ||
+          (!cfg.method.empty() && cfg.method != m.name()))
+        continue;
+      auto make = [&](const erkn::Options& o) {
+        if (templated)
+          return erkn::make_integrator(m, bare, compiled, s.h, s.problem.q0, s.problem.p0, o);
+        return erkn::Integrator(m, sys, s.h, s.problem.q0, s.problem.p0, o);
+      };
+      out.cells.push_back(
+          measure_cell(s, m, basis, g, make, cfg.plan(), templated ? kCompiledRows : ""));
       std::fprintf(stderr, ".");
     }
+  }
 }
 
 /// CPU per grad U of every registry method with erkn's defaults (construct + integrate), and

@@ -41,7 +41,10 @@ inline void markdown_header(std::ofstream& f, const Results& r, const Config& cf
     << "process, the peer's) made before timing. Thread CPU time; each ratio is the median over "
     << cfg.plan().rounds << " interleaved rounds (order rotated) of erkn / peer in that round, "
     << "each sample at least " << fixed(1e3 * cfg.plan().min_sample, 0)
-    << " ms of the peer's runs. The machine is shared: see the spread below.\n\n"
+    << " ms of the peer's runs. The machine is shared: see the spread below. erkn calls the "
+    << "problems library's System::gradient (a std::function); the rows \"<scene>" << kCompiledRows
+    << "\" (scalar and diagonal M) are erkn with the peer's gradient functor compiled into "
+    << "its steps instead (erkn::make_integrator, erkn/compiled_gradient.hpp).\n\n"
     << "Cells met: compensated summation off (target <= " << kPlainTarget << ") " << plain << " / "
     << n << "; erkn's defaults (target <= " << kDefaultTarget << ") " << deflt << " / " << n
     << "; with " << kOutputs

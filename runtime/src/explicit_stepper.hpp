@@ -21,6 +21,14 @@
 // round-off. When D, the dimension, is a compile-time constant (tiny systems with M's
 // identity eigenbasis) that copy is a set of fixed-size arrays the compiler keeps in registers.
 //
+// The gradient is the policy Gradient's: System::gradient, a std::function on Eigen::VectorXd
+// (SystemGradient), or, with a fixed D, a functor compiled into the step on fixed-size vectors
+// (FixedGradient, erkn/compiled_gradient.hpp), so that the values of a stage stay in registers
+// across the call (through a std::function every double live across it is spilled: on x86-64 the
+// vector registers are caller-saved). The arithmetic is the same on both: the same step, the same
+// checks and messages; System's other callbacks (the Hessians of modified kicks) and M Q (RKN
+// methods) take exact copies of the fixed-size Q and g as Eigen::VectorXd.
+//
 // The transform may also be a space of several processes (mpi/src/slab_space.hpp: a grid or
 // circulant M distributed over MPI ranks, whose transforms are collective). Such a space defers
 // the step's checks (kDeferred): its gradient keeps a failure (g zeroed) instead of throwing, as
@@ -65,7 +73,20 @@
 
 namespace erkn::detail {
 
-template <class Transform, class Coef, int D = Eigen::Dynamic>
+/// The gradient through System::gradient (on Eigen::VectorXd).
+struct SystemGradient {
+  using Vector = Eigen::VectorXd;
+  void operator()(const System& system, const Vector& q, Vector& g) const { system.gradient(q, g); }
+};
+/// The gradient G compiled into the step: g(q, out) on fixed-size vectors of dimension D.
+template <class G, int D>
+struct FixedGradient {
+  using Vector = Eigen::Matrix<double, D, 1>;
+  void operator()(const System&, const Vector& q, Vector& g) const { gradient(q, g); }
+  G gradient;
+};
+
+template <class Transform, class Coef, int D = Eigen::Dynamic, class Gradient = SystemGradient>
 class ExplicitStepper final : public StepperBase {
   using Spectral = typename Transform::Spectral;
   using Scalar = typename Spectral::Scalar;
@@ -126,12 +147,24 @@ class ExplicitStepper final : public StepperBase {
     Scalar *G, *G_last;  // the current stage's force; the last stage's of the previous step
     State work;          // the state's second copy (dynamic dimension only)
   };
-  // Physical coordinates: the stage Q and its gradient g (the callback's arguments), and M Q for
-  // RKN methods.
+  // Physical coordinates: the stage Q and its gradient g (the gradient's arguments), M Q for RKN
+  // methods, and (fixed-size Q and g, callbacks besides the gradient: RKN, modified kicks) their
+  // copies as Eigen::VectorXd.
+  using Vector = typename Gradient::Vector;
+  static constexpr bool kDynamicVector = std::is_same_v<Vector, Eigen::VectorXd>;
+  struct Copies {
+    explicit Copies(Eigen::Index d) : Q(d), g(d) {}
+    Eigen::VectorXd Q, g;
+  };
+  struct NoCopies {  // (SystemGradient: no member, so the stepper stays as small)
+    explicit NoCopies(Eigen::Index) {}
+  };
   struct Physical {
-    Physical(Eigen::Index d, bool rkn)
-        : Q(Eigen::VectorXd::Zero(d)), g(Eigen::VectorXd::Zero(d)), Mq(rkn ? d : 0) {}
-    Eigen::VectorXd Q, g, Mq;
+    Physical(Eigen::Index d, bool rkn, bool callbacks)
+        : Q(Vector::Zero(d)), g(Vector::Zero(d)), Mq(rkn ? d : 0), x(callbacks ? d : 0) {}
+    Vector Q, g;
+    Eigen::VectorXd Mq;
+    [[no_unique_address]] std::conditional_t<kDynamicVector, NoCopies, Copies> x;
   };
   // A processed method's processor (processor.hpp) and the state pi or pi^-1 works on (other
   // methods have none: the stepper of a small dimension stays a block glibc's per-thread cache
@@ -147,7 +180,8 @@ class ExplicitStepper final : public StepperBase {
   /// lambda: M's eigenvalue of each eigen coordinate ({0} for RKN methods, whose force then
   /// includes M q).
   ExplicitStepper(const Method& method, System&& system, double h, const Options& options,
-                  Transform transform, const Eigen::VectorXd& lambda, Eigen::Index d)
+                  Transform transform, const Eigen::VectorXd& lambda, Eigen::Index d,
+                  Gradient gradient = Gradient())
       : method_(method),
         system_(std::move(system)),
         kahan_(options.compensated_summation),
@@ -157,7 +191,8 @@ class ExplicitStepper final : public StepperBase {
         transform_(std::move(transform)),
         M_(m_operator(system_.M, d)),
         arrays_(transform_.spectral_size(d)),
-        physical_(d, rkn_),
+        physical_(d, rkn_, rkn_ || method.has_modified_kicks() || method.is_processed()),
+        gradient_(std::move(gradient)),
         modified_(method.has_modified_kicks() || method.is_processed() ? d : 0),
         processing_(method.is_processed()
                         ? std::make_unique<Processing>(method, h, lambda, arrays_.m)
@@ -543,20 +578,36 @@ class ExplicitStepper final : public StepperBase {
       transform_.to_eigen_force(physical_.Q, ConstMap(q, arrays_.m), physical_.g, map(arrays_.G));
       return arrays_.G;
     }
-    checked_gradient<D>(system_, physical_.Q, physical_.g, physical_.Q.size(), i, place_,
+    const auto gradient = [&](const Vector& Q, Vector& g) { gradient_(system_, Q, g); };
+    checked_gradient<D>(gradient, physical_.Q, physical_.g, physical_.Q.size(), i, place_,
                         evaluations.gradients, check_g, !finite_Q);
-    if (rkn_) {
-      M_->apply(physical_.Q, physical_.Mq);
-      physical_.g += physical_.Mq;
-    }
+    if (rkn_)
+      on_vectors([&](const Eigen::VectorXd& Q, Eigen::VectorXd& g) {
+        M_->apply(Q, physical_.Mq);
+        g += physical_.Mq;
+      });
     if (h2e != 0)
-      modified_.apply<D>(system_, physical_.Q, d_i, h2e, physical_.g, i, place_,
-                         evaluations.products);
+      on_vectors([&](const Eigen::VectorXd& Q, Eigen::VectorXd& g) {
+        modified_.apply<D>(system_, Q, d_i, h2e, g, i, place_, evaluations.products);
+      });
     if constexpr (kIdentity) {
       return physical_.g.data();
     } else {
       transform_.forward(physical_.g, map(arrays_.G));
       return arrays_.G;
+    }
+  }
+
+  // f(Q, g) on the stage's Q and g as Eigen::VectorXd: themselves, or (fixed-size vectors) exact
+  // copies, g copied back.
+  template <class F>
+  EIGEN_ALWAYS_INLINE void on_vectors(F&& f) {
+    if constexpr (kDynamicVector) {
+      f(physical_.Q, physical_.g);
+    } else {
+      physical_.x.Q = physical_.Q, physical_.x.g = physical_.g;
+      f(physical_.x.Q, physical_.x.g);
+      physical_.g = physical_.x.g;
     }
   }
 
@@ -612,6 +663,7 @@ class ExplicitStepper final : public StepperBase {
   std::optional<MOperator> M_;
   Arrays arrays_;
   Physical physical_;
+  [[no_unique_address]] Gradient gradient_;
   ModifiedForce modified_;
   std::unique_ptr<Processing> processing_;
   bool have_history_ = false;

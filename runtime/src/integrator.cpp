@@ -51,16 +51,12 @@ void require_state(const System& system, const Eigen::VectorXd& q, const Eigen::
 // 6.1 us, N = 64 12.5 vs 13.3 us, N = 128 35 vs 24 us.
 constexpr Eigen::Index kFftwMinN = 4, kFourierBasisMaxN = 64;
 
-// Dimensions up to this with M's identity eigenbasis (scalar, diagonal M; RKN methods) step with
-// the dimension as a compile-time constant.
-constexpr Eigen::Index kFixedMaxD = 4;
-
 // Stepper S<Transform, Coef, D> for the dimension d: D = d when fixed sizes apply, else dynamic;
 // args: the constructor's arguments before d.
 template <template <class, class, int> class S, class Transform, class Coef, int D = 1,
           class... Args>
 std::unique_ptr<detail::StepperBase> stepper_for(Eigen::Index d, Args&&... args) {
-  if constexpr (std::is_same_v<Transform, detail::IdentityTransform> && D <= kFixedMaxD) {
+  if constexpr (std::is_same_v<Transform, detail::IdentityTransform> && D <= detail::kFixedMaxD) {
     if (d == D) return std::make_unique<S<Transform, Coef, D>>(std::forward<Args>(args)..., d);
     return stepper_for<S, Transform, Coef, D + 1>(d, std::forward<Args>(args)...);
   }
@@ -76,8 +72,28 @@ std::unique_ptr<detail::StepperBase> stepper_of(bool explicit_method, Eigen::Ind
   return stepper_for<detail::Stepper, Transform, Coef>(d, std::forward<Args>(args)...);
 }
 
+// The stepper in M's identity eigenbasis (RKN methods; scalar, diagonal M: Coef double,
+// Eigen::ArrayXd): an explicit one of a fixed dimension from `compiled` when given.
+template <class Coef>
+std::unique_ptr<detail::StepperBase> identity_stepper(bool explicit_method,
+                                                      const detail::CompiledSteppers* compiled,
+                                                      const Method& method, System&& system,
+                                                      double h, const Options& options,
+                                                      const Eigen::VectorXd& lambda,
+                                                      Eigen::Index d) {
+  using detail::IdentityTransform;
+  if (compiled && explicit_method && d <= detail::kFixedMaxD)
+    return compiled->make(std::is_same_v<Coef, Eigen::ArrayXd>, method, std::move(system), h,
+                          options, lambda, d);
+  return stepper_of<IdentityTransform, Coef>(explicit_method, d, method, std::move(system), h,
+                                             options, IdentityTransform{}, lambda);
+}
+
+// compiled: the explicit steppers of a fixed dimension with the user's gradient compiled in, or
+// nullptr (erkn/compiled_gradient.hpp).
 std::unique_ptr<detail::StepperBase> make_stepper(const Method& method, System&& system, double h,
-                                                  const Options& options, Eigen::Index d) {
+                                                  const Options& options, Eigen::Index d,
+                                                  const detail::CompiledSteppers* compiled) {
   using namespace detail;
   check_step_size(method, h, system.M.eigenvalues(), options.pole_tolerance);
   const Stiffness M = system.M;  // (system is moved into the stepper)
@@ -86,15 +102,15 @@ std::unique_ptr<detail::StepperBase> make_stepper(const Method& method, System&&
   if (method.has_modified_kicks() && !x)  // (Method::add refuses such tables)
     throw Error(std::string(method.name()) + ": modified kicks in an implicit method");
   if (method.kind() == Kind::rkn)
-    return stepper_of<IdentityTransform, double>(x, d, method, std::move(system), h, options,
-                                                 IdentityTransform{}, Eigen::VectorXd::Zero(1));
+    return identity_stepper<double>(x, compiled, method, std::move(system), h, options,
+                                    Eigen::VectorXd::Zero(1), d);
   switch (M.structure()) {
     case Stiffness::Structure::scalar:
-      return stepper_of<IdentityTransform, double>(x, d, method, std::move(system), h, options,
-                                                   IdentityTransform{}, lambda);
+      return identity_stepper<double>(x, compiled, method, std::move(system), h, options, lambda,
+                                      d);
     case Stiffness::Structure::diagonal:
-      return stepper_of<IdentityTransform, Eigen::ArrayXd>(x, d, method, std::move(system), h,
-                                                           options, IdentityTransform{}, lambda);
+      return identity_stepper<Eigen::ArrayXd>(x, compiled, method, std::move(system), h, options,
+                                              lambda, d);
     case Stiffness::Structure::dense:
       return stepper_of<OrthogonalTransform, Eigen::ArrayXd>(
           x, d, method, std::move(system), h, options, OrthogonalTransform{&M.eigenvectors()},
@@ -131,9 +147,15 @@ void require_advised(const Method& method, const System& system, double h, const
 
 Integrator::Integrator(const Method& method, System system, double h, const Eigen::VectorXd& q0,
                        const Eigen::VectorXd& p0, const Options& options, double t0)
+    : Integrator(method, std::move(system), h, q0, p0, options, t0, nullptr) {}
+
+Integrator::Integrator(const Method& method, System system, double h, const Eigen::VectorXd& q0,
+                       const Eigen::VectorXd& p0, const Options& options, double t0,
+                       std::shared_ptr<const detail::CompiledSteppers> compiled)
     : method_(method),
       options_(options),
       grid_(t0, h),  // (validates h and t0)
+      compiled_(std::move(compiled)),
       guard_(std::make_unique<detail::BlowupGuard>()) {
   validate(options);
   require_state(system, q0, p0);
@@ -142,7 +164,7 @@ Integrator::Integrator(const Method& method, System system, double h, const Eige
   if (options.energy_tolerance > 0 && !system.potential)
     throw Error("Options::energy_tolerance (the energy monitor) needs System::potential");
   if (options.check_stability) require_advised(method, system, h, q0, p0);
-  stepper_ = make_stepper(method, std::move(system), h, options, q0.size());
+  stepper_ = make_stepper(method, std::move(system), h, options, q0.size(), compiled_.get());
   q_ = q0;
   p_ = p0;
   monitor_.H_0 = monitored_energy(q0, p0);
@@ -309,7 +331,7 @@ void Integrator::set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p, d
 void Integrator::set_step_size(double h) {
   const TimeGrid grid = grid_.with_step(h);  // (validates h)
   if (options_.check_stability) require_advised(method_, system(), h, q(), p());
-  auto fresh = make_stepper(method_, System(system()), h, options_, q_.size());
+  auto fresh = make_stepper(method_, System(system()), h, options_, q_.size(), compiled_.get());
   fresh->set_state(q(), p(), statistics_);  // (the summation errors are dropped)
   grid_ = grid;
   stepper_ = std::move(fresh);
@@ -331,7 +353,8 @@ TimeGrid::Plan Integrator::prepare_end(double t_end, long every) {
 detail::StepperBase& Integrator::stepper_of_size(double h) {
   if (!short_.stepper || short_.h != h) {
     try {
-      short_.stepper = make_stepper(method_, System(system()), h, options_, q_.size());
+      short_.stepper =
+          make_stepper(method_, System(system()), h, options_, q_.size(), compiled_.get());
     } catch (const Error& e) {
       short_.stepper.reset();
       throw Error("a step of size " + format(h, 17) + " (to a time off the grid of h = " +

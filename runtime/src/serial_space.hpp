@@ -136,7 +136,7 @@ class SerialSpace {
   /// g = grad U(Q) with the checks of stage_checks.hpp (errors thrown here, at once).
   void gradient(const System& system, const Eigen::VectorXd& Q, Eigen::VectorXd& g, int i,
                 const StepPlace& at, long& evaluations) const {
-    checked_gradient<D>(system, Q, g, d_, i, at, evaluations);
+    checked_gradient<D>(system.gradient, Q, g, d_, i, at, evaluations);
   }
   void settle() const {}  // (nothing deferred)
   void add_MQ(const Eigen::VectorXd& Q, Eigen::VectorXd& g);

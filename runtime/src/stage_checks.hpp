@@ -51,19 +51,21 @@ inline bool all_finite(const std::complex<double>* x, Eigen::Index n) {
 /// A step whose q_{n+1} (or else p_{n+1}) is not finite.
 [[noreturn]] void non_finite_result(bool q_ok, const StepPlace& at);
 
-/// g = grad U(Q) (0-based stage i) through System::gradient, counted in evaluations, refusing a
-/// non-finite Q before the call (when check_Q; else the caller knows it finite), and a g of a size
-/// other than d or (when check_g; else the caller checks it) with a non-finite entry after. D: d
-/// when it is a compile-time constant.
-template <int D = Eigen::Dynamic>
-EIGEN_ALWAYS_INLINE void checked_gradient(const System& system, const Eigen::VectorXd& Q,
-                                          Eigen::VectorXd& g, Eigen::Index d, int i,
-                                          const StepPlace& at, long& evaluations,
-                                          bool check_g = true, bool check_Q = true) {
-  if (check_Q && !all_finite<D>(Q.data(), d)) non_finite_stage(i, at);
-  system.gradient(Q, g);
+/// g = grad U(Q) (0-based stage i) through gradient(Q, g) (System::gradient, or a gradient
+/// compiled into the stepper on fixed-size vectors, erkn/compiled_gradient.hpp), counted in
+/// evaluations, refusing a non-finite Q before the call (when check_Q; else the caller knows it
+/// finite), and a g of a size other than d or (when check_g; else the caller checks it) with a
+/// non-finite entry after. D: d when it is a compile-time constant.
+template <int D = Eigen::Dynamic, class Gradient, class Q, class G>
+EIGEN_ALWAYS_INLINE void checked_gradient(const Gradient& gradient, const Q& q, G& g,
+                                          Eigen::Index d, int i, const StepPlace& at,
+                                          long& evaluations, bool check_g = true,
+                                          bool check_Q = true) {
+  if (check_Q && !all_finite<D>(q.data(), d)) non_finite_stage(i, at);
+  gradient(q, g);
   ++evaluations;
-  if (g.size() != d) gradient_of_wrong_size(g, d, i, at);
+  if constexpr (G::SizeAtCompileTime == Eigen::Dynamic)  // (a fixed-size g has size d)
+    if (g.size() != d) gradient_of_wrong_size(g, d, i, at);
   if (check_g && !all_finite<D>(g.data(), d)) non_finite_gradient(i, at);
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 
 #include "erkn/integrator.hpp"
 
@@ -47,6 +48,25 @@ class StepperBase {
   }
   virtual void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) = 0;
   virtual System& system() = 0;
+};
+
+/// Dimensions up to this with M's identity eigenbasis (scalar, diagonal M; RKN methods) step with
+/// the dimension as a compile-time constant.
+inline constexpr Eigen::Index kFixedMaxD = 4;
+
+/// The explicit steppers of the dimensions 1..kFixedMaxD in M's identity eigenbasis with a
+/// gradient compiled into them (erkn/compiled_gradient.hpp, instantiated where the user's gradient
+/// is known), which the runtime asks for in place of its own (System::gradient) ones.
+class CompiledSteppers {
+ public:
+  virtual ~CompiledSteppers() = default;
+  /// The stepper of an explicit method for d <= kFixedMaxD, constructed as the runtime's own
+  /// (ExplicitStepper's constructor); diagonal: one coefficient per coordinate (diagonal M), else
+  /// one for all (scalar M, RKN methods).
+  virtual std::unique_ptr<StepperBase> make(bool diagonal, const Method& method, System&& system,
+                                            double h, const Options& options,
+                                            const Eigen::VectorXd& lambda,
+                                            Eigen::Index d) const = 0;
 };
 
 }  // namespace erkn::detail

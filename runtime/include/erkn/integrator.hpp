@@ -40,6 +40,7 @@ namespace erkn {
 namespace detail {
 class StepperBase;
 class BlowupGuard;
+class CompiledSteppers;
 }  // namespace detail
 
 struct Options {
@@ -112,6 +113,12 @@ class Integrator {
   /// for (h, M). The time starts at t0.
   Integrator(const Method& method, System system, double h, const Eigen::VectorXd& q0,
              const Eigen::VectorXd& p0, const Options& options = {}, double t0 = 0);
+  /// The same with the explicit steppers of a small dimension (d <= 4, M's identity eigenbasis)
+  /// from `compiled`, the gradient compiled into them: see erkn::make_integrator
+  /// (erkn/compiled_gradient.hpp), which makes them; nullptr: as above.
+  Integrator(const Method& method, System system, double h, const Eigen::VectorXd& q0,
+             const Eigen::VectorXd& p0, const Options& options, double t0,
+             std::shared_ptr<const detail::CompiledSteppers> compiled);
   ~Integrator();
   Integrator(Integrator&&) noexcept;
   Integrator& operator=(Integrator&&) noexcept;
@@ -226,6 +233,7 @@ class Integrator {
   mutable Eigen::VectorXd q_, p_;  // the state in physical coordinates, current unless stale_
   mutable bool stale_ = false;
   mutable Statistics statistics_;  // (mutable: load_state counts state_loads)
+  std::shared_ptr<const detail::CompiledSteppers> compiled_;  // (or nullptr)
   std::unique_ptr<detail::StepperBase> stepper_;
   // The stepper of the last step size other than h (a shorter last step, state_at), reused
   // while that size recurs.

@@ -1,0 +1,114 @@
+// erkn::make_integrator: an Integrator whose explicit steps call a gradient compiled into them.
+//
+// System::gradient is a std::function on Eigen::VectorXd: an opaque call per stage, across which
+// every double of the step is spilled and reloaded (on x86-64 all vector registers are
+// caller-saved). For the small systems where that call dominates (d <= 4 with M's identity
+// eigenbasis: scalar or diagonal M, or an RKN method) make_integrator instantiates the runtime's
+// explicit stepper for d = 1..4 in the calling translation unit with the functor's type known
+// (as Boost.odeint's templated systems or Eigen's header-only templates): the functor is inlined
+// into the step on fixed-size vectors. Everything else is the Integrator's: the same step (one
+// template, explicit_stepper.hpp), checks, messages, statistics, observers and output times, and
+// bit-identical results for the same arithmetic. Other dimensions, bases and implicit methods use
+// System::gradient, which make_integrator sets to call the same functor.
+//
+//   #include <cstdio>
+//   #include <erkn/compiled_gradient.hpp>
+//   #include <erkn/erkn.hpp>
+//
+//   // Duffing (the paper's problem 2): M = 100, grad U = -k^2 (2 q^3 - q), k = 0.03.
+//   int main() {
+//     erkn::System sys;  // (no sys.gradient: the functor is the gradient)
+//     sys.M = erkn::Stiffness::scalar(100);
+//     auto grad = [](const auto& q, auto& g) {
+//       for (Eigen::Index i = 0; i < q.size(); ++i) g[i] = -9e-4 * (2 * q[i] * q[i] * q[i] - q[i]);
+//     };
+//     const erkn::Method& method = erkn::Method::by_name("SABA2");
+//     const Eigen::VectorXd q0 = Eigen::VectorXd::Zero(1), p0 = Eigen::VectorXd::Constant(1, 10);
+//     erkn::Integrator run = erkn::make_integrator(method, sys, grad, 0.01, q0, p0);
+//     run.integrate(10.0);
+//     // The same through System::gradient (a std::function): the same bits, slower at d <= 4.
+//     sys.gradient = [&](const Eigen::VectorXd& q, Eigen::VectorXd& g) { grad(q, g); };
+//     erkn::Integrator callback(method, sys, 0.01, q0, p0);
+//     callback.integrate(10.0);
+//     const bool same = run.q() == callback.q() && run.p() == callback.p();
+//     std::printf("q(10) = %.17g; the callback's the same: %s\n", run.q()[0], same ? "yes" : "no");
+//     return same ? 0 : 1;
+//   }
+//
+// The functor is called as gradient(q, g) with q and g Eigen column vectors of doubles of the
+// system's dimension: Eigen::Matrix<double, D, 1> (D = 1..4) inside the compiled steps,
+// Eigen::VectorXd elsewhere, so write it as a template (or a generic lambda); g arrives sized.
+// It is instantiated for every D up to 4 whatever the dimension, so it must compile for each.
+//
+// The installed package has the runtime's stepper headers under erkn/detail/.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <utility>
+
+#include "erkn/error.hpp"
+#include "erkn/integrator.hpp"
+#if __has_include("detail/explicit_stepper.hpp")  // (installed)
+#include "detail/explicit_stepper.hpp"
+#include "detail/transforms.hpp"
+#else  // (the source tree)
+#include "../../src/explicit_stepper.hpp"
+#include "../../src/transforms.hpp"
+#endif
+
+namespace erkn {
+namespace detail {
+
+/// The explicit steppers of d = 1..kFixedMaxD in the identity eigenbasis with G compiled in.
+template <class G>
+class CompiledStepperSet final : public CompiledSteppers {
+ public:
+  explicit CompiledStepperSet(G gradient) : gradient_(std::move(gradient)) {}
+
+  std::unique_ptr<StepperBase> make(bool diagonal, const Method& method, System&& system, double h,
+                                    const Options& options, const Eigen::VectorXd& lambda,
+                                    Eigen::Index d) const override {
+    if (diagonal) return make_for<Eigen::ArrayXd>(method, std::move(system), h, options, lambda, d);
+    return make_for<double>(method, std::move(system), h, options, lambda, d);
+  }
+
+ private:
+  template <class Coef, int D = 1>
+  std::unique_ptr<StepperBase> make_for(const Method& method, System&& system, double h,
+                                        const Options& options, const Eigen::VectorXd& lambda,
+                                        Eigen::Index d) const {
+    if constexpr (D > kFixedMaxD) {
+      throw Error("compiled gradient: no compiled stepper for dimension " + std::to_string(d));
+    } else {
+      using Stepper = ExplicitStepper<IdentityTransform, Coef, D, FixedGradient<G, D>>;
+      if (d == D)
+        return std::make_unique<Stepper>(method, std::move(system), h, options, IdentityTransform{},
+                                         lambda, d, FixedGradient<G, D>{gradient_});
+      return make_for<Coef, D + 1>(method, std::move(system), h, options, lambda, d);
+    }
+  }
+
+  G gradient_;
+};
+
+}  // namespace detail
+
+/// An Integrator as Integrator(method, system, h, q0, p0, options, t0) with `gradient` as
+/// grad U (see above): System::gradient must be empty (erkn::Error otherwise) and becomes a call
+/// of `gradient`; explicit methods at d <= 4 with M's identity eigenbasis step with it inlined.
+template <class G>
+Integrator make_integrator(const Method& method, System system, G gradient, double h,
+                           const Eigen::VectorXd& q0, const Eigen::VectorXd& p0,
+                           const Options& options = {}, double t0 = 0) {
+  if (system.gradient)
+    throw Error(
+        "make_integrator: System::gradient is set as well as the compiled gradient; "
+        "give one of them");
+  system.gradient = [gradient](const Eigen::VectorXd& q, Eigen::VectorXd& g) { gradient(q, g); };
+  return Integrator(method, std::move(system), h, q0, p0, options, t0,
+                    std::make_shared<const detail::CompiledStepperSet<G>>(std::move(gradient)));
+}
+
+}  // namespace erkn
