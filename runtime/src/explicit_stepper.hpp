@@ -506,7 +506,7 @@ class ExplicitStepper final : public StepperBase {
   EIGEN_ALWAYS_INLINE PassBits apply(const State& from, State& to, double hd, const Scalar* g,
                                      int k) {
     const PassArrays a = arrays(from), b = arrays(to);
-    const auto f = flow_of(k);
+    const auto f = kind.flow ? flow_of(k) : decltype(flow_of(k)){};  // (a kick has none)
     const double* gd = reinterpret_cast<const double*>(g);
     double* save = reinterpret_cast<double*>(arrays_.G);
     double* Q = stage_input();
@@ -541,7 +541,7 @@ class ExplicitStepper final : public StepperBase {
     return {d(x.q), d(x.p), d(x.eq), d(x.ep)};
   }
   // Flow k's coefficients: the one value of each (scalar M) or pointers to the arrays.
-  auto flow_of(int k) const {
+  EIGEN_ALWAYS_INLINE auto flow_of(int k) const {
     if constexpr (std::is_same_v<Coef, double>)
       return PassFlow<double>{flows_.cos(k), flows_.cm1(k), flows_.sinc(k), flows_.msinc(k)};
     else

@@ -9,7 +9,6 @@
 #include <complex>
 #include <memory>
 #include <numbers>
-#include <utility>
 #include <vector>
 
 #include "grid_backend.hpp"
@@ -127,12 +126,12 @@ struct HalfSpectrumTransform {
   std::unique_ptr<HalfSpectrumBackend> backend;
   Eigen::ArrayXd weight;  // half_spectrum_weights
   Eigen::Index spectral_size(Eigen::Index) const { return weight.size(); }
-  /// (Through the transforms bound to the last two pairs of arrays: a stepper's gradients
-  /// transform the same arrays every time, or two in turn when it keeps the last force, FSAL.)
+  /// (Through the transforms bound to the last three pairs of arrays: a stepper's gradients
+  /// transform the same arrays every time, or two in turn when it keeps the last force (FSAL), and
+  /// reading its state transforms two more.)
   template <class X, class Y>
   void forward(const X& x, Y&& y) {
-    bound(forward_, x.data(), y.data(),
-          [&] { return backend->bind_forward(x.data(), y.data()); })();
+    forward_(x.data(), y.data(), [&] { return backend->bind_forward(x.data(), y.data()); })();
   }
   template <class Y, class X>
   void inverse(const Y& y, X&& x) {
@@ -144,8 +143,7 @@ struct HalfSpectrumTransform {
   double staging_scale() const { return backend->staging_scale(); }
   template <class X>
   void inverse_staged(X&& x) {
-    bound(inverse_staged_, staging_, x.data(),
-          [&] { return backend->bind_inverse_staged(x.data()); })();
+    inverse_staged_(staging_, x.data(), [&] { return backend->bind_inverse_staged(x.data()); })();
   }
   /// The squared 2-norm of the physical vector.
   template <class Y>
@@ -154,17 +152,23 @@ struct HalfSpectrumTransform {
   }
 
  private:
-  // The binding of (in, out) in cache, or a new one from bind() replacing the older entry.
-  template <class Bind>
-  static BoundTransform& bound(BoundTransform (&cache)[2], const void* in, void* out, Bind&& bind) {
-    for (BoundTransform& b : cache)
-      if (b.run && b.in == in && b.out == out) return b;
-    std::swap(cache[0], cache[1]);  // (the newest first)
-    return cache[0] = bind();
-  }
+  // The transforms bound to the last three pairs of arrays, replaced in turn.
+  struct Bound {
+    BoundTransform entry[3];
+    int next = 0;
+    // The binding of (in, out), or a new one from bind().
+    template <class Bind>
+    BoundTransform& operator()(const void* in, void* out, Bind&& bind) {
+      for (BoundTransform& b : entry)
+        if (b.run && b.in == in && b.out == out) return b;
+      BoundTransform& b = entry[next];
+      next = (next + 1) % 3;
+      return b = bind();
+    }
+  };
 
   double* staging_;  // backend's staging buffer
-  BoundTransform forward_[2], inverse_staged_[2];
+  Bound forward_, inverse_staged_;
 };
 
 /// Grid M (Stiffness::grid) with a Dirichlet or Neumann axis, or without FFTW: the separable real

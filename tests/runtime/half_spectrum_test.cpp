@@ -116,11 +116,11 @@ TEST(HalfSpectrum, EigenvaluesDiagonaliseMAndAnotherOrderDoesNot) {
   }
 }
 
-// The transforms are bound to the arrays they last saw (the last two pairs): arrays taken in turn,
-// one of them off FFTW's planned alignment (one double into a buffer), two inputs into one output,
-// must each get their own transform, as must staged inverses into outputs in turn (a cache keyed
-// on the input or on the output alone fails here). Negative control: the inputs' DFTs differ by
-// far more than the tolerance, so an output from another array's binding would show.
+// The transforms are bound to the arrays they last saw (the last three pairs): arrays taken in
+// turn, one of them off FFTW's planned alignment (one double into a buffer), two inputs into one
+// output, must each get their own transform, as must staged inverses into outputs in turn (a cache
+// keyed on the input or on the output alone fails here). Negative control: the inputs' DFTs differ
+// by far more than the tolerance, so an output from another array's binding would show.
 TEST(HalfSpectrum, ArraysTransformedInTurnEachGetTheirOwnTransform) {
   for (const auto& axes : periodic_grids()) {
     if (!detail::half_spectrum_available(axes)) continue;
