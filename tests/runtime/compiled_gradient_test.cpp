@@ -116,6 +116,33 @@ TEST(CompiledGradient, EveryExplicitMethodGivesTheCallbackPathsStatesBitForBit) 
   EXPECT_GE(cases, 16 * 10);
 }
 
+TEST(CompiledGradient, RknMethodsAddMQThroughCopiesOnEveryStructure) {
+  // The registry's explicit methods as RKN methods (force M Q + grad U, the identity basis for
+  // every M): the compiled steps take M Q through Eigen::VectorXd copies of Q and g.
+  const Eigen::MatrixXd dense = (Eigen::MatrixXd(3, 3) << 5, 1, 0, 1, 4, 1, 0, 1, 6).finished();
+  const Stiffness structures[] = {Stiffness::scalar(25), Stiffness::dense(dense),
+                                  Stiffness::circulant(Eigen::Vector3d(4, -1, -1))};
+  for (const Method& m : Method::all()) {
+    if (!m.is_explicit() || m.is_processed()) continue;
+    generated::Table table = m.table();
+    table.rkn = true;
+    const Method rkn(m.id(), &table);
+    for (const Stiffness& M : structures) {
+      SCOPED_TRACE(std::string(m.name()) + " as RKN, structure " +
+                   std::to_string(int(M.structure())));
+      long calls = 0, unused = 0;
+      System s = system_without_gradient(3, false);
+      s.M = M;
+      const Eigen::VectorXd q0 = Eigen::VectorXd::LinSpaced(3, 0.3, 0.9), p0 = -q0;
+      const Outcome compiled = run(make_integrator(rkn, s, Gradient{&calls}, 0.02, q0, p0));
+      const Gradient g{&unused};
+      s.gradient = [g](const Eigen::VectorXd& q, Eigen::VectorXd& out) { g(q, out); };
+      EXPECT_TRUE(identical(compiled, run(Integrator(rkn, s, 0.02, q0, p0))));
+      EXPECT_EQ(calls, compiled.stats.gradient_evaluations);
+    }
+  }
+}
+
 TEST(CompiledGradient, NegativeControlsOtherArithmeticDiffersAndLargerSystemsUseTheCallback) {
   const Method& m = Method::by_name("SABA2");
   long calls = 0;
