@@ -81,7 +81,7 @@ struct SystemGradient {
 /// The gradient G compiled into the step: g(q, out) on fixed-size vectors of dimension D.
 template <class G, int D>
 struct FixedGradient {
-  using Vector = Eigen::Matrix<double, D, 1>;
+  using Vector = Eigen::Matrix<double, D, 1, Eigen::DontAlign>;  // (see Physical)
   void operator()(const System&, const Vector& q, Vector& g) const { gradient(q, g); }
   G gradient;
 };
@@ -149,22 +149,28 @@ class ExplicitStepper final : public StepperBase {
   };
   // Physical coordinates: the stage Q and its gradient g (the gradient's arguments), M Q for RKN
   // methods, and (fixed-size Q and g, callbacks besides the gradient: RKN, modified kicks) their
-  // copies as Eigen::VectorXd.
+  // copies as Eigen::VectorXd, in a block of their own. (With the copies inside and Q, g aligned
+  // to 16 bytes the stepper of d = 4 with an 8-byte functor took 1056 bytes, beyond the 1032
+  // glibc's per-thread cache serves, allocation_test.cpp; now 1032.)
   using Vector = typename Gradient::Vector;
   static constexpr bool kDynamicVector = std::is_same_v<Vector, Eigen::VectorXd>;
   struct Copies {
     explicit Copies(Eigen::Index d) : Q(d), g(d) {}
     Eigen::VectorXd Q, g;
   };
-  struct NoCopies {  // (SystemGradient: no member, so the stepper stays as small)
-    explicit NoCopies(Eigen::Index) {}
-  };
+  struct NoCopies {};  // (SystemGradient: no member, so the stepper stays as small)
+  static auto copies(Eigen::Index d, bool callbacks) {
+    if constexpr (kDynamicVector)
+      return NoCopies{};
+    else
+      return callbacks ? std::make_unique<Copies>(d) : nullptr;
+  }
   struct Physical {
     Physical(Eigen::Index d, bool rkn, bool callbacks)
-        : Q(Vector::Zero(d)), g(Vector::Zero(d)), Mq(rkn ? d : 0), x(callbacks ? d : 0) {}
+        : Q(Vector::Zero(d)), g(Vector::Zero(d)), Mq(rkn ? d : 0), x(copies(d, callbacks)) {}
     Vector Q, g;
     Eigen::VectorXd Mq;
-    [[no_unique_address]] std::conditional_t<kDynamicVector, NoCopies, Copies> x;
+    [[no_unique_address]] decltype(copies(0, false)) x;
   };
   // A processed method's processor (processor.hpp) and the state pi or pi^-1 works on (other
   // methods have none: the stepper of a small dimension stays a block glibc's per-thread cache
@@ -605,9 +611,9 @@ class ExplicitStepper final : public StepperBase {
     if constexpr (kDynamicVector) {
       f(physical_.Q, physical_.g);
     } else {
-      physical_.x.Q = physical_.Q, physical_.x.g = physical_.g;
-      f(physical_.x.Q, physical_.x.g);
-      physical_.g = physical_.x.g;
+      physical_.x->Q = physical_.Q, physical_.x->g = physical_.g;
+      f(physical_.x->Q, physical_.x->g);
+      physical_.g = physical_.x->g;
     }
   }
 

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cstdlib>
+#include <erkn/compiled_gradient.hpp>
 #include <new>
 
 #include "problems.hpp"
@@ -67,6 +68,16 @@ TEST(Allocation, SmallExplicitIntegratorsUseCachedBlocks) {
         Integrator run(m, sine_gordon(M), 1.0 / 40, q0, p0);
         EXPECT_LE(largest.load(), kCached);
         EXPECT_GT(largest.load(), 0u);  // (the stepper's block was seen)
+        // The same with the gradient compiled in (erkn/compiled_gradient.hpp), a functor of 8
+        // bytes.
+        largest = 0;
+        System bare = sine_gordon(M);
+        bare.gradient = nullptr;
+        const double kappa = 1;
+        const auto sine = [kappa](const auto& q, auto& g) { g = kappa * q.array().sin().matrix(); };
+        Integrator compiled = make_integrator(m, bare, sine, 1.0 / 40, q0, p0);
+        EXPECT_LE(largest.load(), kCached);
+        EXPECT_GT(largest.load(), 0u);
       }
   }
   largest = 0;  // (negative control: a larger block is seen as one)

@@ -36,9 +36,11 @@
 //   }
 //
 // The functor is called as gradient(q, g) with q and g Eigen column vectors of doubles of the
-// system's dimension: Eigen::Matrix<double, D, 1> (D = 1..4) inside the compiled steps,
-// Eigen::VectorXd elsewhere, so write it as a template (or a generic lambda); g arrives sized.
-// It is instantiated for every D up to 4 whatever the dimension, so it must compile for each.
+// system's dimension: Eigen::Matrix<double, D, 1, Eigen::DontAlign> (D = 1..4) inside the compiled
+// steps, Eigen::VectorXd elsewhere, so write it as a template (or a generic lambda); g arrives
+// sized. It is instantiated for every D up to 4 whatever the dimension, so it must compile for
+// each. A functor of up to 8 bytes keeps the stepper of d = 4 within a block glibc's per-thread
+// cache serves (1032 bytes; larger ones work, their constructions cost more).
 //
 // The installed package has the runtime's stepper headers under erkn/detail/.
 #pragma once
