@@ -36,9 +36,12 @@ from splitting_family import Family  # noqa: E402
 
 # name: (scene, stages, layout, order, start, [(steps, tol)], simplex size). SDT = designed at
 # a tolerance by this search; the family is classical order `order` only (the start's
-# generalized conditions released: six free directions for 9 kicks, four for 7).
+# generalized or order-6 conditions released: six free directions for 9 kicks, four for 7,
+# eight for SRKN11b's 12).
 DESIGNS = {
-    # SG2D at 1e-10 in 8 steps of 9 kicks (SD9 needs 9, PMLF6 14).
+    # SG2D at 1e-10 in 6 steps of 11 gradients (12 kicks, BAB; SRKN11b needs 8, PMLF6 14).
+    "SDT11b(4)": ("SG2D", 12, "BAB", 4, "SRKN11b", [(6, 1e-10)], 0.01),
+    # SG2D at 1e-10 in 8 steps of 9 kicks (SD9 needs 9; superseded by SDT11b(4)).
     "SDT9(4)": ("SG2D", 9, "ABA", 4, "SD9(10,6,4)", [(8, 1e-10)], 0.01),
     # SG2D at 1e-8 in 4 steps of 7 kicks (ABA864 needs 6, SRKN6b 6 of 6 gradients).
     "SDT7(4)": ("SG2D", 7, "ABA", 4, "ABA864", [(4, 1e-8)], 0.03),
