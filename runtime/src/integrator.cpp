@@ -149,7 +149,7 @@ Integrator::Integrator(const Method& method, System system, double h, const Eige
                        const Eigen::VectorXd& p0, const Options& options, double t0)
     : Integrator(method, std::move(system), h, q0, p0, options, t0, nullptr) {}
 
-Integrator::Integrator(const Method& method, System system, double h, const Eigen::VectorXd& q0,
+Integrator::Integrator(const Method& method, System&& system, double h, const Eigen::VectorXd& q0,
                        const Eigen::VectorXd& p0, const Options& options, double t0,
                        std::shared_ptr<const detail::CompiledSteppers> compiled)
     : method_(method),

@@ -115,8 +115,9 @@ class Integrator {
              const Eigen::VectorXd& p0, const Options& options = {}, double t0 = 0);
   /// The same with the explicit steppers of a small dimension (d <= 4, M's identity eigenbasis)
   /// from `compiled`, the gradient compiled into them: see erkn::make_integrator
-  /// (erkn/compiled_gradient.hpp), which makes them; nullptr: as above.
-  Integrator(const Method& method, System system, double h, const Eigen::VectorXd& q0,
+  /// (erkn/compiled_gradient.hpp), which makes them; nullptr: as above. (The system by rvalue
+  /// reference: the constructor above hands its own on without a move, 50 instructions at d = 1.)
+  Integrator(const Method& method, System&& system, double h, const Eigen::VectorXd& q0,
              const Eigen::VectorXd& p0, const Options& options, double t0,
              std::shared_ptr<const detail::CompiledSteppers> compiled);
   ~Integrator();
