@@ -4,13 +4,18 @@
 // followed by the next stage's flow is one pass, not two, over the same arrays.
 //
 // Compensated summation (Options::compensated_summation) keeps with q and p the low-order parts
-// eq, ep that rounding has dropped (the state is q + eq, p + ep): each update adds the rounding
-// error of its sums q + dq, p + dp to eq, ep, dq = (cos - 1) q + sinc p for the flow. Where the
-// step is a chain of dependent operations on a few values (kFold: a fixed dimension) the errors
-// are folded into q and p at the kick, from values known before dp (whose gradient comes last).
-// Over arrays, where the passes' memory traffic counts, each update folds them into its own
-// increments (dq + eq, dp + ep) and keeps the residuals of the sums: the flow then reads cos - 1
-// but not cos, and the kick makes one sum, not two.
+// eq, ep that rounding has dropped (the state is q + eq, p + ep). Where the step is a chain of
+// dependent operations on a few values (a fixed dimension: flow_update, kick_update) each update
+// adds the rounding error of its sums q + dq, p + dp to eq, ep, dq = (cos - 1) q + sinc p for the
+// flow, and the errors are folded into q and p at the kick, from values known before dp (whose
+// gradient comes last). Over arrays, where the passes' memory traffic counts, the state stays as
+// it was at the step's start while the passes accumulate the step's increments dq, dp in plain
+// arithmetic (increment form: flow_increment, kicks add to dp); the step's last pass adds them
+// to the state in one compensated sum (fold_increment), eq and ep with them. An increment is
+// O(h) of the state, and so is the rounding of its sums; the sum q + dq, whose rounding is not,
+// is compensated. A pass then reads and writes two arrays of increments besides the state it
+// reads, where compensating every pass's sums read and wrote four (and cost ~2.4 times the extra
+// instructions over plain passes; explicit_stepper.hpp).
 #pragma once
 
 #include <Eigen/Core>
@@ -24,42 +29,60 @@ namespace erkn::detail {
 
 /// The flow of (q, p) with coefficients cos, cos - 1, sin(w tau)/w, -w sin(w tau) (T: a double
 /// or a fixed-size array, C: a double or an array of T's size).
-template <bool kKahan, bool kFold, class T, class C>
+template <bool kKahan, class T, class C>
 EIGEN_ALWAYS_INLINE void flow_update(const C& cos, const C& cm1, const C& sinc, const C& msinc,
                                      T& q, T& p, T& eq, T& ep) {
   const T q0 = q, p0 = p;
-  if constexpr (kKahan && !kFold) {
-    const T dq = (cm1 * q0 + sinc * p0) + eq, dp = (msinc * q0 + cm1 * p0) + ep;
-    q = q0 + dq, p = p0 + dp;
-    eq = (q0 - q) + dq, ep = (p0 - p) + dp;
-  } else {
-    const T sp = sinc * p0, mq = msinc * q0;
-    p = mq + cos * p0;
-    q = cos * q0 + sp;
-    if constexpr (kKahan) {
-      eq += (q0 - q) + (cm1 * q0 + sp);
-      ep += (p0 - p) + (mq + cm1 * p0);
-    }
+  const T sp = sinc * p0, mq = msinc * q0;
+  p = mq + cos * p0;
+  q = cos * q0 + sp;
+  if constexpr (kKahan) {
+    eq += (q0 - q) + (cm1 * q0 + sp);
+    ep += (p0 - p) + (mq + cm1 * p0);
   }
 }
 
 /// The kick p += dp.
-template <bool kKahan, bool kFold, class T>
+template <bool kKahan, class T>
 EIGEN_ALWAYS_INLINE void kick_update(const T& dp, T& q, T& p, T& eq, T& ep) {
-  if constexpr (kKahan && kFold) {
+  if constexpr (kKahan) {
     const T q1 = q + eq;
     eq = (q - q1) + eq;
     q = q1;
     const T p1 = p + ep, e1 = (p - p1) + ep;
     p = p1 + dp;
     ep = e1 + ((p1 - p) + dp);
-  } else if constexpr (kKahan) {
-    const T p0 = p, dpe = dp + ep;
-    p = p0 + dpe;
-    ep = (p0 - p) + dpe;
   } else {
     p += dp;
   }
+}
+
+/// a + b, or b when a, an increment not made yet in this step (0), is absent (kHave false).
+template <bool kHave, class V>
+EIGEN_ALWAYS_INLINE V plus(const V& a, const V& b) {
+  if constexpr (kHave)
+    return a + b;
+  else
+    return b;
+}
+
+/// Increment form: the flow's increments (cos - 1) q + sinc p and -w sin(w tau) q + (cos - 1) p
+/// at q = qn + dq, p = pn + dp (qn, pn: the state at the step's start) added to dq, dp.
+template <bool kHaveQ, bool kHaveP, class V>
+EIGEN_ALWAYS_INLINE void flow_increment(double cm1, double sinc, double msinc, const V& qn,
+                                        const V& pn, V& dq, V& dp) {
+  const V q = plus<kHaveQ>(dq, qn), p = plus<kHaveP>(dp, pn);
+  dq = plus<kHaveQ>(dq, cm1 * q + sinc * p);
+  dp = plus<kHaveP>(dp, msinc * q + cm1 * p);
+}
+
+/// Increment form, a step's end: x = x0 + (dx + ex0) compensated (Kahan), its rounding error
+/// into ex (dx: the step's increment, absent when !kHave).
+template <bool kHave, class V>
+EIGEN_ALWAYS_INLINE void fold_increment(const V& x0, const V& ex0, const V& dx, V& x, V& ex) {
+  const V a = plus<kHave>(dx, ex0);
+  x = x0 + a;
+  ex = (x0 - x) + a;
 }
 
 /// The state's arrays in eigen coordinates as doubles (a complex coordinate: re, im).
@@ -90,9 +113,11 @@ struct PassBits {
 inline constexpr double kStageBound = 0x1p512;
 
 /// What a pass does: kick (p -= hd g, g also to `save` with kSave), then flow (its q also to Q,
-/// times Q_scale, with kStage), in place or from one copy of the state into another.
+/// times Q_scale, with kStage), in place or from one copy of the state into another; compensated,
+/// in increment form, the step's first pass is the one not in place, and fold_q, fold_p add the
+/// step's increments of q (after its last flow) and of p (its last pass) to the state.
 struct PassKind {
-  bool kick, flow, in_place, save, stage;
+  bool kick, flow, in_place, save, stage, fold_q, fold_p;
 };
 
 /// The kLanes doubles of one eigen coordinate as one value (Value), on which the passes' arithmetic
@@ -131,10 +156,23 @@ EIGEN_ALWAYS_INLINE void lane_store(double* x, const V& v) {
   std::memcpy(x, &v, sizeof(V));
 }
 
+// fold_increment of the coordinate at x0, ex0 (the state at the step's start and its error) with
+// the increment dx, which becomes the new x; the new error is stored to ex. Returns the new x.
+template <bool kHave, class V>
+EIGEN_ALWAYS_INLINE V fold_at(const double* x0, const double* ex0, double* ex, V& dx) {
+  V e;
+  fold_increment<kHave>(lane_load<V>(x0), lane_load<V>(ex0), dx, dx, e);
+  lane_store(ex, e);
+  return dx;
+}
+
 // The loop of pass(), one eigen coordinate (a Lane's Value) per iteration: every pointer a
 // __restrict parameter of a function not inlined (inlined, or with the pointers as locals or
-// members, GCC 12 checks them against each other at run time). In place the *_in pointers are
-// null and the pass reads through the ones it writes.
+// members, GCC 12 checks them against each other at run time). Plain, in place, the *_in pointers
+// are null and the pass reads through the ones it writes. Compensated (increment form) q and p
+// are the step's increments dq, dp (absent, 0, before its first pass, the one not in place),
+// *_in the state at its start, read by every pass; fold_q puts the new q, eq in q, eq (the
+// stage staged is start q + dq all the same), fold_p the new p, ep in p, ep.
 template <bool kKahan, PassKind kKind, int kLanes, class C>
 [[gnu::noinline]] PassBits pass_loop(Eigen::Index n, const double* __restrict q_in,
                                      const double* __restrict p_in, const double* __restrict eq_in,
@@ -145,48 +183,63 @@ template <bool kKahan, PassKind kKind, int kLanes, class C>
                                      double* __restrict Q, double Q_scale) {
   using L = Lane<kLanes>;
   using V = typename L::Value;
+  using F = PassFlow<C>;
   constexpr bool kInPlace = kKind.in_place;
+  constexpr bool kFoldQ = kKahan && kKind.fold_q, kFoldP = kKahan && kKind.fold_p;
+  // (compensated: whether dq, dp have been made, before the flow and after it)
+  constexpr bool kHadP = !kKahan || kInPlace;  // (p read: plain, or an increment made)
+  constexpr bool kHaveQ = kInPlace, kHaveP = kInPlace || kKind.kick;
+  constexpr bool kMadeQ = kHaveQ || kKind.flow, kMadeP = kHaveP || kKind.flow;
   typename L::Bits g_bits{}, p_bits{}, stage_bits{};
   for (Eigen::Index e = 0; e < n; ++e) {
     const Eigen::Index x = kLanes * e;
-    V qx = lane_load<V>((kInPlace ? q : q_in) + x), px = lane_load<V>((kInPlace ? p : p_in) + x);
-    V eqx{}, epx{};
-    if constexpr (kKahan)
-      eqx = lane_load<V>((kInPlace ? eq : eq_in) + x),
-      epx = lane_load<V>((kInPlace ? ep : ep_in) + x);
+    V qx{}, px{};  // (plain: the state; compensated: the increments)
+    if (!kKahan || kInPlace)
+      qx = lane_load<V>((kInPlace ? q : q_in) + x), px = lane_load<V>((kInPlace ? p : p_in) + x);
     if constexpr (kKind.kick) {
       const V gx = lane_load<V>(g + x);
-      kick_update<kKahan, false>(V(-hd * gx), qx, px, eqx, epx);
+      px = plus<kHadP>(px, V(-hd * gx));
       if constexpr (kKind.save) lane_store(save + x, gx);
-      g_bits |= L::nonfinite(gx), p_bits |= L::nonfinite(px);
+      g_bits |= L::nonfinite(gx);
+      if constexpr (!kKahan) p_bits |= L::nonfinite(px);
     }
+    V Qx{};  // (the stage's q)
     if constexpr (kKind.flow) {
-      using F = PassFlow<C>;
-      flow_update<kKahan, false>(F::at(cos, e), F::at(cm1, e), F::at(sinc, e), F::at(msinc, e), qx,
-                                 px, eqx, epx);
-      if constexpr (kKind.stage) {
-        const V Qx = Q_scale * qx;
-        lane_store(Q + x, Qx);
-        stage_bits |= L::nonfinite(V(kStageBound * Qx));
+      if constexpr (kKahan) {
+        const V qn = lane_load<V>(q_in + x), pn = lane_load<V>(p_in + x);
+        flow_increment<kHaveQ, kHaveP>(F::at(cm1, e), F::at(sinc, e), F::at(msinc, e), qn, pn, qx,
+                                       px);
+        Qx = qn + qx;
+      } else {
+        V unused{};
+        flow_update<false>(F::at(cos, e), F::at(cm1, e), F::at(sinc, e), F::at(msinc, e), qx, px,
+                           unused, unused);
+        Qx = qx;
       }
     }
-    if (kKind.flow || !kInPlace) lane_store(q + x, qx);  // (a kick in place leaves q where it is)
+    if constexpr (kFoldQ) fold_at<kMadeQ>(q_in + x, eq_in + x, eq + x, qx);
+    if constexpr (kFoldP) p_bits |= L::nonfinite(fold_at<kMadeP>(p_in + x, ep_in + x, ep + x, px));
+    if constexpr (kKind.flow && kKind.stage) {
+      Qx = Q_scale * Qx;
+      lane_store(Q + x, Qx);
+      stage_bits |= L::nonfinite(V(kStageBound * Qx));
+    }
+    if (kKind.flow || !kInPlace || kFoldQ) lane_store(q + x, qx);  // (a kick in place: q stays)
     lane_store(p + x, px);
-    if (kKahan && (kKind.flow || !kInPlace)) lane_store(eq + x, eqx);
-    if (kKahan) lane_store(ep + x, epx);
   }
   return {L::any(g_bits), L::any(p_bits), L::any(stage_bits)};
 }
 
 /// One pass over n eigen coordinates (kLanes doubles each) from `from` into `to` (in place: the
-/// same arrays) as kKind says; returns the non-finite bits of the force and p a kick read and
-/// wrote and of the Q it staged (PassBits). The arithmetic per coordinate is that of the kick
-/// followed by that of the flow.
+/// same arrays; compensated, from the state at the step's start and the increments in `to`) as
+/// kKind says; returns the non-finite bits of the force a kick read, of the p it wrote (plain) or
+/// the fold wrote (compensated), and of the Q it staged (PassBits). The arithmetic per coordinate
+/// is that of the kick followed by that of the flow (and the fold).
 template <bool kKahan, PassKind kKind, int kLanes, class C>
 EIGEN_ALWAYS_INLINE PassBits pass(Eigen::Index n, const PassArrays& from, const PassArrays& to,
                                   double hd, const double* g, double* save, const PassFlow<C>& f,
                                   double* Q, double Q_scale) {
-  const PassArrays in = kKind.in_place ? PassArrays{} : from;
+  const PassArrays in = kKind.in_place && !kKahan ? PassArrays{} : from;
   return pass_loop<kKahan, kKind, kLanes, C>(n, in.q, in.p, in.eq, in.ep, to.q, to.p, to.eq, to.ep,
                                              hd, g, save, f.cos, f.cm1, f.sinc, f.msinc, Q,
                                              Q_scale);

@@ -38,15 +38,30 @@
 // is the space's to_eigen_force (M Q added there for RKN methods), and so is apply_M.
 //
 // Compensated summation (Options::compensated_summation) keeps with q and p the low-order parts
-// eq, ep that rounding has dropped (explicit_passes.hpp); get_state returns q + eq and p + ep.
+// eq, ep that rounding has dropped; get_state returns q + eq and p + ep. With arrays it works in
+// increment form (explicit_passes.hpp): a step's passes accumulate its increments of q and p from
+// the state at its start in plain arithmetic, and one compensated sum per step adds them to the
+// state (q's in the step's last flow, p's in its last kick). Compensating every pass's sums, as
+// before, had every pass read and write eq and ep as well.
 //
-// Its cost (construction + integrate, erkn_integrate_benchmark --short as scripts/main.sh runs
-// it: each method's defaults ratio over its compensation-off ratio against the same peer, median
-// over the 12 explicit methods, main 02edd6f, quiet machine, the two runs of docs/benchmarks.md):
-// sine-Gordon N = 32 1.038-1.050x, N = 512 1.057-1.059x, N = 2048 1.055-1.059x, N = 8192
-// 1.051-1.052x, 256^2 1.059-1.060x; Duffing 0.99x, stellar orbits 0.99-1.01x.
-// That is above the 5 % the runtime allows itself for a default, and it stays the default all
-// the same: without it the round-off of q_n + dq grows with the number of steps (a random walk,
+// Its cost (construction + integrate, erkn_integrate_benchmark --short: each method's defaults
+// ratio over its compensation-off ratio against the same peer, median over 3 rounds alternated
+// with a build before this change, load 2-6; the median over the 12 methods, their range, and
+// the build before in the same runs): sine-Gordon N = 512 1.038x (1.025-1.047; 1.056x),
+// N = 2048 1.033x (1.025-1.040; 1.052x), N = 8192 1.035x (1.025-1.042; 1.047x), 256^2 1.046x
+// (1.030-1.079; 1.058x). callgrind, N = 512, 40 steps: Strang 1.057x the instructions, SABA2
+// 1.039x, Yoshida4 1.032x, ABA864 1.025x, SRKN14a 1.022x (each 1.067x before); N = 32 Strang
+// 1.058x (1.063x). Duffing and stellar orbits (a fixed dimension, unchanged): 0.99-1.01x.
+// What it leaves (against a long-double run of the same map with the runtime's coefficients;
+// harmonic oscillators d = 8: SABA2, Yoshida4, ABA864, SRKN14a; sine-Gordon N = 32: SABA2,
+// ABA864; N = 512: SABA2; 1e3 to 1e6 steps): errors of q and of the energy 1.5-5 orders below
+// the plain path's at every step count, as before; both compensations leave the rounding of the
+// increments themselves (~sqrt(n) eps h |w p|), in increment form 0.015-12x the previous one's
+// (e.g. 1e6 steps of the 14-stage SRKN14a, |q - q_ref| 2.2e-14 against 4.5e-15, plain 1.9e-10;
+// sine-Gordon N = 32 is chaotic: after 1e4 steps every run has left the reference).
+// That is still above the 5 % the runtime allows itself for a default in cells of the 256^2 grid
+// (ABA864 1.079x, SABA2 1.062x) and close to it elsewhere, and it stays the default all the
+// same: without it the round-off of q_n + dq grows with the number of steps (a random walk,
 // ~sqrt(n) eps |q|), which is what the energy and long-time charts show and what the paper's
 // claims rest on; Options::compensated_summation = false is the fast path.
 #pragma once
@@ -407,14 +422,16 @@ class ExplicitStepper final : public StepperBase {
   // the last kick's p (arrays; with Values 0: they are checked whole).
   template <bool kKahan, class S>
   EIGEN_ALWAYS_INLINE std::uint64_t stages(const S& start, S& to, Counts& evaluations) {
-    const S* from = &start;
     const bool reuse = kicks_.fsal() && have_history_;  // (stage 1's force; its flow never moves)
-    const int first = pending_ ? flows_.merged(method_) : 0;
+    const int merged = pending_ ? flows_.merged(method_) : 0;
+    bool first = true;    // (no pass made yet: the state is `start`)
+    bool folded = false;  // (compensated: q's increments added, after the step's last flow)
     bool staged = false;  // (stage i's Q written by the last pass)
     PassBits bits;        // (the last pass's)
-    if (flows_.moves(first)) {
-      bits = apply<kKahan, kFlowStaged>(*from, to, 0, nullptr, first);
-      from = &to;
+    if (flows_.moves(merged)) {
+      folded = last_flow_ == 0;
+      bits = apply<kKahan, kFlowStaged>(start, to, first, folded, 0, nullptr, merged);
+      first = false;
       staged = kStage;
     }
     for (int i = 0; i < kicks_.stages(); ++i) {
@@ -422,20 +439,42 @@ class ExplicitStepper final : public StepperBase {
       const double hd = kicks_.h() * (reused ? *kicks_.fsal() : kicks_.weight(i));
       // (A staged Q below kStageBound is finite; a fixed dimension's is checked in registers.)
       const bool bounded = !kFixed && staged && bits.stage == 0;
-      const Scalar* g =
-          reused ? arrays_.G_last : evaluate(&from->q[0], staged, bounded, i, evaluations);
+      const Scalar* g = reused ? arrays_.G_last
+                               : evaluate(stage_q<kKahan>(start, to, first, folded, staged), staged,
+                                          bounded, i, evaluations);
       staged = i + 1 < kicks_.stages() && flows_.moves(i + 1);
-      if (staged)
-        bits = apply<kKahan, kKickFlow>(*from, to, hd, g, i + 1);
-      else if (kIdentity && i == kicks_.stages() - 1)  // (the FSAL force)
-        bits = apply<kKahan, kKickSaved>(*from, to, hd, g, 0);
-      else
-        bits = apply<kKahan, kKick>(*from, to, hd, g, 0);
+      if (staged) {
+        const bool fold = i + 1 == last_flow_;
+        bits = apply<kKahan, kKickFlow>(start, to, first, fold, hd, g, i + 1);
+        folded = folded || fold;
+      } else if (i == kicks_.stages() - 1) {  // (the FSAL force; compensated, p's fold)
+        bits = apply<kKahan, kKickLast>(start, to, first, !folded, hd, g, 0);
+      } else {
+        bits = apply<kKahan, kKick>(start, to, first, false, hd, g, 0);
+      }
       staged = staged && kStage;
       if (!reused && bits.g) fail([&] { non_finite_gradient(i, place_); });
-      from = &to;
+      first = false;
     }
     return bits.p;
+  }
+  // The stage's q in eigen coordinates where the gradient reads it (not staged, or a deferred
+  // space's RKN force): the state's before the step's first pass, else the second copy's, which
+  // compensated holds the increment until q is folded: then start.q + dq, summed into its eq
+  // (unused until the fold) as a flow stages it.
+  template <bool kKahan, class S>
+  const Scalar* stage_q(const S& start, S& to, bool first, bool folded, bool staged) {
+    if constexpr (std::is_same_v<S, State>) {
+      if (first) return start.q;
+      if (!kKahan || folded || (staged && !(kDeferred && rkn_))) return to.q;
+      const double* __restrict qn = lanes(start.q);
+      const double* __restrict dq = lanes(to.q);
+      double* __restrict sum = lanes(to.eq);
+      for (Eigen::Index j = 0; j < kLanes * n(); ++j) sum[j] = qn[j] + dq[j];
+      return to.eq;
+    } else {
+      return &to.q[0];  // (Values: start is to)
+    }
   }
 
   // get_state: q + eq and p + ep after the pending flow, rounded (with a dynamic dimension: in
@@ -445,12 +484,12 @@ class ExplicitStepper final : public StepperBase {
     if constexpr (kFixed) {
       Values v{Fixed(arrays_.state.q), Fixed(arrays_.state.p), Fixed(arrays_.state.eq),
                Fixed(arrays_.state.ep)};
-      if (pending_) apply<kKahan, kFlow>(v, v, 0, nullptr, kicks_.stages());
+      if (pending_) apply<kKahan, kFlow>(v, v, true, true, 0, nullptr, kicks_.stages());
       q = (v.q + v.eq).matrix(), p = (v.p + v.ep).matrix();
     } else {
       const State* from = &arrays_.state;
       if (pending_)
-        apply<kKahan, kFlow>(arrays_.state, arrays_.work, 0, nullptr, kicks_.stages()),
+        apply<kKahan, kFlow>(arrays_.state, arrays_.work, true, true, 0, nullptr, kicks_.stages()),
             from = &arrays_.work;
       if constexpr (kStaged) {  // (the sum, scaled, straight into the staging buffer)
         inverse_of_sum<kKahan>(from->q, from->eq, q);
@@ -496,43 +535,55 @@ class ExplicitStepper final : public StepperBase {
     if (!q_ok || !all_finite<D>(v.p.data(), D)) non_finite_result(q_ok, place_);
   }
 
-  // The passes a step makes (explicit_passes.hpp, PassKind {kick, flow, in place, save, stage}):
-  // a flow, the first one staging Q (identity basis: physical_.Q, else the transform's staging
-  // buffer, if any); kicks, the last one saving the force to arrays_.G (identity basis); a kick and
-  // the next flow, staging its Q.
+  // The passes a step makes (explicit_passes.hpp, PassKind {kick, flow, in place, save, stage,
+  // fold q, fold p}): a flow, the first one staging Q (identity basis: physical_.Q, else the
+  // transform's staging buffer, if any), get_state's folding both (compensated); kicks, the last
+  // one saving the force to arrays_.G (identity basis) and folding p; a kick and the next flow,
+  // staging its Q. Compensated, the step's last flow folds q (apply's fold_q), or else its last
+  // kick does.
   static constexpr bool kStage = kIdentity || kStaged;
-  static constexpr PassKind kFlow{false, true, false, false, false};
-  static constexpr PassKind kFlowStaged{false, true, false, false, kStage};
-  static constexpr PassKind kKick{true, false, true, false, false};
-  static constexpr PassKind kKickSaved{true, false, true, kIdentity, false};
-  static constexpr PassKind kKickFlow{true, true, true, false, kStage};
+  static constexpr PassKind kFlow{false, true, false, false, false, true, true};
+  static constexpr PassKind kFlowStaged{false, true, false, false, kStage, false, false};
+  static constexpr PassKind kKick{true, false, true, false, false, false, false};
+  static constexpr PassKind kKickLast{true, false, true, kIdentity, false, false, true};
+  static constexpr PassKind kKickFlow{true, true, true, false, kStage, false, false};
+  static constexpr PassKind folding_q(PassKind kind) {
+    kind.fold_q = true;
+    return kind;
+  }
 
-  // The pass `kind` (in place when from is to) with the kick's hd and g and flow k.
+  // The pass `kind` from `start` into `to` (the step's first pass) or in place in `to`
+  // (compensated: from `start` and the increments in `to`, folding q when fold_q) with the
+  // kick's hd and g and flow k.
   template <bool kKahan, PassKind kind>
-  EIGEN_ALWAYS_INLINE PassBits apply(const State& from, State& to, double hd, const Scalar* g,
-                                     int k) {
-    const PassArrays a = arrays(from), b = arrays(to);
+  EIGEN_ALWAYS_INLINE PassBits apply(const State& start, State& to, bool first, bool fold_q,
+                                     double hd, const Scalar* g, int k) {
+    if constexpr (kKahan && !kind.fold_q)
+      if (fold_q) return apply<kKahan, folding_q(kind)>(start, to, first, false, hd, g, k);
+    const PassArrays a = arrays(start), b = arrays(to);
     const auto f = kind.flow ? flow_of(k) : decltype(flow_of(k)){};  // (a kick has none)
     const double* gd = reinterpret_cast<const double*>(g);
     double* save = reinterpret_cast<double*>(arrays_.G);
     double* Q = stage_input();
-    constexpr PassKind copy{kind.kick, kind.flow, false, kind.save, kind.stage};
-    constexpr PassKind in_place{kind.kick, kind.flow, true, kind.save, kind.stage};
-    if (&from == &to)
-      return pass<kKahan, in_place, kLanes>(n(), a, b, hd, gd, save, f, Q, stage_scale_);
+    constexpr PassKind copy{kind.kick,  kind.flow,   false,      kind.save,
+                            kind.stage, kind.fold_q, kind.fold_p};
+    constexpr PassKind in_place{kind.kick,  kind.flow,   true,       kind.save,
+                                kind.stage, kind.fold_q, kind.fold_p};
+    if (!first) return pass<kKahan, in_place, kLanes>(n(), a, b, hd, gd, save, f, Q, stage_scale_);
     return pass<kKahan, copy, kLanes>(n(), a, b, hd, gd, save, f, Q, stage_scale_);
   }
   // (Fixed dimension: in place, whole arrays; checked by checked_gradient and require_finite.)
   template <bool kKahan, PassKind kind>
-  EIGEN_ALWAYS_INLINE PassBits apply(const Values&, Values& v, double hd, const Scalar* g, int k) {
+  EIGEN_ALWAYS_INLINE PassBits apply(const Values&, Values& v, bool, bool, double hd,
+                                     const Scalar* g, int k) {
     if constexpr (kind.kick) {
-      kick_update<kKahan, true>(Fixed(-hd * Eigen::Map<const Fixed>(g)), v.q, v.p, v.eq, v.ep);
+      kick_update<kKahan>(Fixed(-hd * Eigen::Map<const Fixed>(g)), v.q, v.p, v.eq, v.ep);
       if (kind.save)
         for (int e = 0; e < D; ++e) arrays_.G[e] = g[e];
     }
     if constexpr (kind.flow) {
-      flow_update<kKahan, true>(fixed(flows_.cos(k)), fixed(flows_.cm1(k)), fixed(flows_.sinc(k)),
-                                fixed(flows_.msinc(k)), v.q, v.p, v.eq, v.ep);
+      flow_update<kKahan>(fixed(flows_.cos(k)), fixed(flows_.cm1(k)), fixed(flows_.sinc(k)),
+                          fixed(flows_.msinc(k)), v.q, v.p, v.eq, v.ep);
       if (kind.stage)
         for (int e = 0; e < D; ++e) physical_.Q[e] = v.q[e];
     }
@@ -617,6 +668,12 @@ class ExplicitStepper final : public StepperBase {
     }
   }
 
+  static int last_moving_flow(const FlowCoefficients<Coef>& flows, int s) {
+    for (int k = s - 1; k > 0; --k)
+      if (flows.moves(k)) return k;
+    return 0;
+  }
+
   // M applied in physical coordinates (none with a deferred space: it applies M itself).
   static std::optional<MOperator> m_operator(const Stiffness& M, Eigen::Index d) {
     if constexpr (kDeferred)
@@ -672,6 +729,8 @@ class ExplicitStepper final : public StepperBase {
   [[no_unique_address]] Gradient gradient_;
   ModifiedForce modified_;
   std::unique_ptr<Processing> processing_;
+  // The last of flows 1 .. s - 1 that moves (0: none), after which q's increments are complete.
+  int last_flow_ = last_moving_flow(flows_, method_.stages());
   bool have_history_ = false;
   bool pending_ = false;  // the stored state awaits flow s (the last of the step)
   StepPlace place_{&method_, 0, 0};
