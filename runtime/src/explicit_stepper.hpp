@@ -572,12 +572,13 @@ class ExplicitStepper final : public StepperBase {
     if (!first) return pass<kKahan, in_place, kLanes>(n(), a, b, hd, gd, save, f, Q, stage_scale_);
     return pass<kKahan, copy, kLanes>(n(), a, b, hd, gd, save, f, Q, stage_scale_);
   }
-  // (Fixed dimension: in place, whole arrays; checked by checked_gradient and require_finite.)
+  // (Fixed dimension: in place, whole arrays; checked by checked_gradient and require_finite. The
+  // kick reads the callback's g entry by entry, callback_entries.)
   template <bool kKahan, PassKind kind>
   EIGEN_ALWAYS_INLINE PassBits apply(const Values&, Values& v, bool, bool, double hd,
                                      const Scalar* g, int k) {
     if constexpr (kind.kick) {
-      kick_update<kKahan>(Fixed(-hd * Eigen::Map<const Fixed>(g)), v.q, v.p, v.eq, v.ep);
+      kick_update<kKahan>(Fixed(-hd * callback_entries<D>(g)), v.q, v.p, v.eq, v.ep);
       if (kind.save)
         for (int e = 0; e < D; ++e) arrays_.G[e] = g[e];
     }
