@@ -15,7 +15,7 @@ namespace erkn::detail {
 // samples in this loop: perf, d = 1.)
 template <class Space, class Coef>
 bool StageSolver<Space, Coef>::fixed_point(int i, Statistics& stats) {
-  double delta_old = 0, norm2_Q = 0, change_first = 0;
+  double delta_old = 0, norm2_Q = 0, first2 = 0;  // (first2: |dQ|^2 of the first iteration)
   Change c{};
   int extra = 0;  // iterations after convergence from a cold start (reset_tightening)
   const auto abar_ii = Space::co(k_.abar(i, i));
@@ -33,7 +33,7 @@ bool StageSolver<Space, Coef>::fixed_point(int i, Statistics& stats) {
     // huge and the next theta ~ 0, which would pass the stopping test without converging.
     // One reduce: |dQ|^2, |Q_new|^2, at the first iteration |Q|^2 (later the previous iterate's
     // |Q_new|^2), at the second the contraction's (record_contraction).
-    const bool measure = it == 2 && change_first > 0 && measures_contraction(delta_old);
+    const bool measure = it == 2 && first2 > 0 && measures_contraction(delta_old);
     if (measure) x_.g_first_hat = abar_ii * (G_i - x_.g_first_hat);
     const auto sums = space_.reduce(
         std::array{space_.squared_norm(x_.Q_hat_new - x_.Q_hat), space_.squared_norm(x_.Q_hat_new),
@@ -45,10 +45,10 @@ bool StageSolver<Space, Coef>::fixed_point(int i, Statistics& stats) {
     swap_views(x_.Q_hat, x_.Q_hat_new);
     if (it == 1) {
       if (c.X > 0 && contraction_proves(i, c)) return true;
-      change_first = std::sqrt(sums[0]), x_.g_first_hat = G_i;
+      first2 = sums[0], x_.g_first_hat = G_i;
+      delta_old = std::sqrt(c.X / c.N);
     } else {
-      if (it == 2 && change_first > 0)
-        record_contraction(i, change_first, c, delta_old, std::sqrt(sums[3]));
+      if (it == 2 && first2 > 0) record_contraction(i, first2, c, delta_old, sums[3]);
       // A first update below round-off (X = 0) proves nothing: the guess then holds the
       // extrapolation's error below round-off, and stopping there let RKN3s4(2) drift in energy
       // over 1e6 steps of P3 (h = 1e-3).
@@ -56,27 +56,32 @@ bool StageSolver<Space, Coef>::fixed_point(int i, Statistics& stats) {
       const Verdict v = verdict(i, it, c, delta_old, extra);
       if (v != Verdict::iterate) return v == Verdict::converged;
     }
-    delta_old = std::sqrt(c.X / c.N);
   }
   // Out of iterations: accept only round-off noise, or a converged stage's extra iterations.
   return extra > 0 || c.X <= square(options_.roundoff_level) * c.N;
 }
 
-// The decision after iteration it > 1 (c: its change, X > 0; delta_old: the one before):
-// converged once theta/(1-theta) delta <= tolerance (theta = delta / delta_old; reset_tightening
-// may ask for more), failed when theta >= max_theta above round-off (stagnation at round-off
-// converges) or when the tolerance is out of reach (too_slow), else iterate on.
+// The decision after iteration it > 1 (c: its change, X > 0; delta_old: the one before, replaced
+// by this iteration's delta when it iterates on): converged once theta/(1-theta) delta <=
+// tolerance (theta = delta / delta_old; reset_tightening may ask for more), failed when theta >=
+// max_theta above round-off (stagnation at round-off converges) or when the tolerance is out of
+// reach (too_slow), else iterate on. (delta's square root is formed only on the way to another
+// iteration, and too_slow's theta from it with one division.)
 template <class Space, class Coef>
-auto StageSolver<Space, Coef>::verdict(int i, int it, Change c, double delta_old, int& extra) const
+auto StageSolver<Space, Coef>::verdict(int i, int it, Change c, double& delta_old, int& extra) const
     -> Verdict {
-  if (within(c, delta_old, options_.tolerance))
-    return reset_tightening(c, delta_old, extra) ? Verdict::iterate : Verdict::converged;
+  if (within(c, delta_old, options_.tolerance)) {
+    if (!reset_tightening(c, delta_old, extra)) return Verdict::converged;
+    delta_old = std::sqrt(c.X / c.N);
+    return Verdict::iterate;
+  }
   if (extra > 0) return Verdict::converged;  // (converged before; this iteration did not contract)
   const bool noise = c.X <= square(options_.roundoff_level) * c.N;  // delta <= roundoff_level
   if (c.X >= square(options_.max_theta * delta_old) * c.N)          // theta >= max_theta
     return noise ? Verdict::converged : Verdict::failed;
-  if (!noise && too_slow(i, it, std::sqrt(c.X / (c.N * delta_old * delta_old)), delta_old))
-    return Verdict::failed;
+  const double delta = std::sqrt(c.X / c.N);
+  if (!noise && too_slow(i, it, delta / delta_old, delta_old)) return Verdict::failed;
+  delta_old = delta;
   return Verdict::iterate;
 }
 
@@ -147,13 +152,19 @@ bool StageSolver<Space, Coef>::too_slow(int i, int it, double theta, double delt
 // extrapolation's, systematic, so it adds up over the steps (a converged second iteration leaves
 // round-off): at the full tolerance P1's error at 1e-9 changed by up to 25% against stages
 // iterated to round-off (erkn_stage_evaluations, "vs tol 0"), at a hundredth of it by < 2e-11.
-// theta/(1-theta) delta weight_i <= kFirstShare * tolerance, as delta^2 <= first_limit2, i.e.
-// X <= first_limit2 N.
+// theta_s/(1-theta_s) delta weight_i <= kFirstShare * tolerance with theta_s = kThetaSafety theta
+// < 1/2 (else never), delta^2 = X / N: multiplied out, X (theta_s weight_i)^2 <= (kFirstShare
+// tolerance (1 - theta_s))^2 N (theta_s = 0 passes). Formed here rather than when theta is
+// measured: there the products waited on its division and square root at the end of the stage
+// (perf, P2: SERKN1s2(1) ~6 % more CPU per grad U).
 template <class Space, class Coef>
 bool StageSolver<Space, Coef>::contraction_proves(int i, Change c) {
   StageRecord& r = record_[i];
   if (r.theta < 0 || ++r.theta_age >= kThetaRefresh) return false;
-  return c.X <= r.first_limit2 * c.N;
+  const double theta = kThetaSafety * r.theta;
+  if (!(theta < 0.5)) return false;
+  const double lhs = theta * r.weight, rhs = kFirstShare * options_.tolerance * (1 - theta);
+  return c.X * (lhs * lhs) <= (rhs * rhs) * c.N;
 }
 
 // theta along the first update, |h^2 abar_ii (g(Q_1) - g(Q_0))| / |Q_1 - Q_0|, with g(Q_0) in
@@ -170,25 +181,21 @@ bool StageSolver<Space, Coef>::measures_contraction(double delta_first) {
   return delta_first >= 1e3 * kEps;
 }
 
-// (c: the second iteration's change; measure: |h^2 abar_ii (g(Q_1) - g(Q_0))| when
-// measures_contraction(delta_first). Unmeasured, the ratio of the updates, delta / delta_first
-// with delta floored at kEps, renews the old theta when it is <= kThetaSafety theta.)
+// (first2: |Q_1 - Q_0|^2; c: the second iteration's change; measure2: |h^2 abar_ii (g(Q_1) -
+// g(Q_0))|^2 when measures_contraction(delta_first), and theta = sqrt(measure2 / first2): one
+// division and one root. Unmeasured, the ratio of the updates, delta / delta_first with delta
+// floored at kEps, renews the old theta when it is <= kThetaSafety theta.)
 template <class Space, class Coef>
-void StageSolver<Space, Coef>::record_contraction(int i, double change_first, Change c,
-                                                  double delta_first, double measure) {
+void StageSolver<Space, Coef>::record_contraction(int i, double first2, Change c,
+                                                  double delta_first, double measure2) {
   StageRecord& r = record_[i];
   if (!measures_contraction(delta_first)) {
     const double bound = kThetaSafety * r.theta * delta_first;  // on delta
     if (r.theta >= 0 && (c.X == 0 ? kEps <= bound : c.X <= bound * bound * c.N)) r.theta_age = 0;
     return;
   }
-  r.theta = measure / change_first;
+  r.theta = std::sqrt(measure2 / first2);
   r.theta_age = 0;
-  const double theta = kThetaSafety * r.theta;
-  const double limit = kFirstShare * options_.tolerance * (1 - theta) / (theta * r.weight);
-  r.first_limit2 = !(theta < 0.5) ? -1.0
-                   : theta > 0    ? limit * limit
-                                  : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace erkn::detail

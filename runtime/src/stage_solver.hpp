@@ -61,7 +61,6 @@ class StageSolver {
   struct StageRecord {
     double theta = -1;            // the contraction measured; < 0: none
     int theta_age = 0;            // stage solves since the measurement
-    double first_limit2 = 0;      // the largest delta^2 a first iteration may stop at
     double weight = 0;            // max(1, |bbar_i| / |abar_ii|, |b_i| / (h |abar_ii|))
     double newton_cost = 0;       // evaluations of its last Newton solve; 0: none
     bool explicit_stage = false;  // abar_ii = 0: Q_i = r_i, one evaluation
@@ -91,7 +90,7 @@ class StageSolver {
   template <class State>
   void start_stage(int i, const State& q_hat, const State& p_hat);
   bool fixed_point(int i, Statistics& stats);
-  Verdict verdict(int i, int it, Change c, double delta_old, int& extra) const;
+  Verdict verdict(int i, int it, Change c, double& delta_old, int& extra) const;
   static bool within(Change c, double delta_old, double tol);
   static Change in_range(double change2, double norm2);
   bool reset_tightening(Change c, double delta_old, int& extra) const;
@@ -99,7 +98,7 @@ class StageSolver {
   bool too_slow(int i, int it, double theta, double delta_old) const;
   bool contraction_proves(int i, Change c);
   static bool measures_contraction(double delta_first);
-  void record_contraction(int i, double change_first, Change c, double delta_first, double measure);
+  void record_contraction(int i, double first2, Change c, double delta_first, double measure2);
   static double square(double x) { return x * x; }
 
   // stage_newton.hpp
