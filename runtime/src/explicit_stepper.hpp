@@ -187,14 +187,20 @@ class ExplicitStepper final : public StepperBase {
     Eigen::VectorXd Mq;
     [[no_unique_address]] decltype(copies(0, false)) x;
   };
-  // A processed method's processor (processor.hpp) and the state pi or pi^-1 works on (other
-  // methods have none: the stepper of a small dimension stays a block glibc's per-thread cache
-  // serves, allocation_test.cpp).
+  // A processed method's processor (processor.hpp), the state pi or pi^-1 works on, get_state's
+  // physical copy of the kernel's state, and the kernel's saved state (save_kernel: the state
+  // arrays, the last stage's force, have_history_, pending_). Other methods have none: the
+  // stepper of a small dimension stays a block glibc's per-thread cache serves,
+  // allocation_test.cpp.
   struct Processing {
-    Processing(const Method& method, double h, const Eigen::VectorXd& lambda, Eigen::Index m)
-        : coefficients(method, h, lambda), q(m), p(m) {}
+    Processing(const Method& method, double h, const Eigen::VectorXd& lambda, Eigen::Index m,
+               Eigen::Index d)
+        : coefficients(method, h, lambda), q(m), p(m), kernel_q(d), kernel_p(d), saved(5 * m) {}
     ProcessorCoefficients coefficients;
     Spectral q, p;
+    Eigen::VectorXd kernel_q, kernel_p;
+    Spectral saved;  // q, p, eq, ep, G_last, m entries each
+    bool history = false, pending = false;
   };
 
  public:
@@ -216,7 +222,7 @@ class ExplicitStepper final : public StepperBase {
         gradient_(std::move(gradient)),
         modified_(method.has_modified_kicks() || method.is_processed() ? d : 0),
         processing_(method.is_processed()
-                        ? std::make_unique<Processing>(method, h, lambda, arrays_.m)
+                        ? std::make_unique<Processing>(method, h, lambda, arrays_.m, d)
                         : nullptr) {}
 
   ExplicitStepper(const ExplicitStepper&) = delete;  // (the pointers view its own buffer)
@@ -241,18 +247,38 @@ class ExplicitStepper final : public StepperBase {
   }
 
   void get_state(Eigen::VectorXd& q, Eigen::VectorXd& p, Statistics& stats) override {
+    const bool processed = method_.is_processed();  // (then q, p are written once pi succeeds)
+    Eigen::VectorXd& kernel_q = processed ? processing_->kernel_q : q;
+    Eigen::VectorXd& kernel_p = processed ? processing_->kernel_p : p;
     if (kahan_)
-      load<true>(q, p);
+      load<true>(kernel_q, kernel_p);
     else
-      load<false>(q, p);
-    if (!method_.is_processed()) return;
+      load<false>(kernel_q, kernel_p);
+    if (!processed) return;
     Counts counts;  // pi of the kernel's state, in eigen coordinates
-    transform_.forward(q, processing_->q);
-    transform_.forward(p, processing_->p);
-    process(processing_->q.data(), processing_->p.data(), true, counts);
-    transform_.inverse(processing_->q, q);
-    transform_.inverse(processing_->p, p);
+    Processing& x = *processing_;
+    transform_.forward(x.kernel_q, x.q);
+    transform_.forward(x.kernel_p, x.p);
+    process(x.q.data(), x.p.data(), true, counts);
+    transform_.inverse(x.q, q);
+    transform_.inverse(x.p, p);
     count(counts, stats);
+  }
+
+  // (A processed method's only: Integrator::batch.)
+  void save_kernel() override {
+    Processing& x = *processing_;
+    const Scalar* from[] = {arrays_.state.q, arrays_.state.p, arrays_.state.eq, arrays_.state.ep,
+                            arrays_.G_last};
+    for (int k = 0; k < 5; ++k) std::copy_n(from[k], n(), x.saved.data() + k * arrays_.m);
+    x.history = have_history_, x.pending = pending_;
+  }
+  void restore_kernel() override {
+    const Processing& x = *processing_;
+    Scalar* to[] = {arrays_.state.q, arrays_.state.p, arrays_.state.eq, arrays_.state.ep,
+                    arrays_.G_last};
+    for (int k = 0; k < 5; ++k) std::copy_n(x.saved.data() + k * arrays_.m, n(), to[k]);
+    have_history_ = x.history, pending_ = x.pending;
   }
 
   void step(long step_number, double t, Statistics& stats) override {

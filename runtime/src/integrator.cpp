@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <string>
 #include <type_traits>
@@ -205,20 +206,26 @@ inline bool Integrator::took(long steps) {
   return guard_->due_after(steps);
 }
 
+// The batch's n steps; done: those completed (on error: the ones before the step that failed).
+inline void Integrator::take(long n, long& done) {
+  // One step (step(), the energy monitor's batches): the stepper's step(), without the loop
+  // of steps() (callgrind, Duffing Strang by step(): 331 -> 287 instructions per step).
+  if (n == 1)
+    checked_step(*stepper_), done = 1;
+  else
+    stepper_->steps(n, statistics_.steps + 1, grid_, statistics_, done);
+}
+
 // n steps, as many calls of step() (n <= the guard's steps until its check): the stepper loops
 // over them (StepperBase::steps), so a step costs no call through the integrator.
 void Integrator::batch(long n) {
   // (Known at every restart of the grid and at every guard check: stepping alone needs ~1e14
   // steps to leave the resolved range.)
   if (!time_resolved_) grid_.require_resolved();
+  if (method_.is_processed()) return processed_batch(n);
   long done = 0;
   try {
-    // One step (step(), the energy monitor's batches): the stepper's step(), without the loop
-    // of steps() (callgrind, Duffing Strang by step(): 331 -> 287 instructions per step).
-    if (n == 1)
-      checked_step(*stepper_), done = 1;
-    else
-      stepper_->steps(n, statistics_.steps + 1, grid_, statistics_, done);
+    take(n, done);
   } catch (const Error& e) {  // (a blow-up often ends in a failed stage: say so)
     took(done);               // (no check due: fewer steps than until_due())
     if (guard_->on()) check_guard(e.what());
@@ -228,6 +235,85 @@ void Integrator::batch(long n) {
     throw;
   }
   if (took(n)) check_guard();
+}
+
+// A processed method's batch (psi = pi o K o pi^-1: the stepper steps the kernel K) is accepted
+// with the state a user sees, pi of the kernel's: pi is applied where the batch ends (load_state,
+// whose q_, p_ q() and p() then return: on a good run nothing is computed that reading the state
+// would not compute), and a batch whose steps' states pi maps to a non-finite one keeps only the
+// steps before the first such (keep_readable). So q() and p() never fail, and the error names
+// the step. Otherwise as batch(): the guard's check on an erkn::Error, the steps kept counted.
+void Integrator::processed_batch(long n) {
+  const Statistics start = statistics_;
+  stepper_->save_kernel();
+  long done = 0;
+  std::exception_ptr failure;
+  try {
+    take(n, done);
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  done = keep_readable(done, start, failure);
+  const bool due = took(done);
+  stale_ = false;  // (q_, p_: pi of the state kept)
+  if (!failure) {
+    if (due) check_guard();
+    return;
+  }
+  try {
+    std::rethrow_exception(failure);
+  } catch (const Error& e) {
+    if (guard_->on()) check_guard(e.what());
+    throw;
+  }
+}
+
+// pi of the state after the `done` steps of the batch that began at statistics `start` (its
+// kernel's state saved), into q_, p_. If pi's image is not finite (or pi fails otherwise), the
+// steps are retaken from the batch's start one at a time, each followed by pi: the run keeps
+// those before the first that fails, bit for bit the batch's (the same arithmetic from the same
+// saved state), counted with the processor applications that read them; `failure` becomes that
+// step's error. Returns the number of steps kept. (The energy monitor has read the state: its
+// batches are one checked_step.)
+long Integrator::keep_readable(long done, const Statistics& start, std::exception_ptr& failure) {
+  if (done == 0 || options_.energy_tolerance > 0) return done;
+  try {
+    load_state();
+    return done;
+  } catch (...) {
+  }
+  stepper_->restore_kernel();
+  statistics_ = start;
+  for (long k = 0; k < done; ++k) {
+    stepper_->save_kernel();
+    const Statistics before = statistics_;
+    try {
+      stepper_->step(start.steps + k + 1, grid_.ahead(k), statistics_);
+      load_state();
+    } catch (...) {
+      stepper_->restore_kernel();
+      statistics_ = before;
+      failure = unreadable(start.steps + k + 1, grid_.ahead(k));
+      return k;
+    }
+  }
+  return done;  // (pi failed once and not again: a gradient that is not a function of q)
+}
+
+// The error of step `step` (from t) on whose state the processor failed, from the current
+// exception: an erkn::Error says so, naming the step; the user's own exception is passed on.
+std::exception_ptr Integrator::unreadable(long step, double t) const {
+  try {
+    throw;
+  } catch (const Error& e) {
+    return std::make_exception_ptr(
+        Error("step " + std::to_string(step) + " (t = " + format(t) + ") of " +
+              std::string(method_.name()) +
+              " is refused, the state before it kept: the processor fails on the state after it (" +
+              e.what() + "); is h unstable for this problem? see erkn::advise_step_size"));
+  } catch (...) {
+    return std::current_exception();
+  }
 }
 
 using detail::coarse_wall_seconds;
@@ -366,11 +452,21 @@ detail::StepperBase& Integrator::stepper_of_size(double h) {
   return *short_.stepper;
 }
 
+// (A processed method's pi after the step, or pi^-1 before the next, may fail: then nothing
+// changes, the step's counts included.)
 void Integrator::step_to(double t_end) {
   detail::StepperBase& s = stepper_of_size(t_end - t());
+  const Statistics before = statistics_;
   checked_step(s);
-  s.get_state(q_, p_, statistics_);
-  stepper_->set_state(q_, p_, statistics_);  // (the next step of h does not follow a step of h)
+  short_.q.resize(q_.size()), short_.p.resize(q_.size());  // (allocated once)
+  try {
+    s.get_state(short_.q, short_.p, statistics_);
+    stepper_->set_state(short_.q, short_.p, statistics_);  // (the next step of h does not follow
+  } catch (...) {                                          // a step of h)
+    statistics_ = before;
+    std::rethrow_exception(unreadable(before.steps + 1, t()));
+  }
+  q_.swap(short_.q), p_.swap(short_.p);
   grid_.restart(t_end);
   time_resolved_ = grid_.resolved();
   if (guard_->due()) check_guard();

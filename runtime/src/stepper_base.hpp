@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <memory>
 
+#include "erkn/error.hpp"
 #include "erkn/integrator.hpp"
 
 namespace erkn::detail {
@@ -48,6 +49,16 @@ class StepperBase {
   }
   virtual void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) = 0;
   virtual System& system() = 0;
+  /// A processed method's stepper (the explicit one: Method::add refuses a processor on an
+  /// implicit table) saves everything its next steps read and change, which restore_kernel()
+  /// puts back: Integrator::batch retakes a batch's steps from its start when pi fails at its
+  /// end. Other steppers are never asked.
+  virtual void save_kernel() {
+    throw Error("save_kernel: the stepper of a method without a processor");
+  }
+  virtual void restore_kernel() {
+    throw Error("restore_kernel: the stepper of a method without a processor");
+  }
 };
 
 /// Dimensions up to this with M's identity eigenbasis (scalar, diagonal M; RKN methods) step with

@@ -30,11 +30,12 @@ Member sine_gordon_member(std::size_t i) {
   return m;
 }
 
-TrajectoryResult serial(const Method& method, const Member& m, long max_steps = -1) {
+// (One call of step(n): a processed method reads its state, pi, where a call ends.)
+TrajectoryResult serial(const Method& method, const Member& m) {
   TrajectoryResult r;
   Integrator run(method, m.system, kH, m.q0, m.p0);
   try {
-    for (long n = run.steps_until(kTEnd); n > 0 && max_steps != 0; --n, --max_steps) run.step();
+    run.step(run.steps_until(kTEnd));
   } catch (const Error& e) {
     r.error = e.what();
   }

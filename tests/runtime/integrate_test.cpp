@@ -48,6 +48,7 @@ TEST(Integrate, SetStateAndSetStepSizeRestartFromTheNewValues) {
 // integrate(t_end) keeps the state in M's eigen coordinates: it transforms back only when q() or
 // p() asks (once), and an observer's calls load it once each (the negative control: the same
 // steps with an observer every step load it every step); the result is bit-identical either way.
+// A processed method loads it (pi) once where each call ends, which q() and p() then reuse.
 TEST(Integrate, WithoutAnObserverTheStateIsTransformedBackOnlyWhenAskedFor) {
   const Eigen::Vector3d q0(0.6, -0.4, 0.3), p0(0.2, 0.5, -0.7);
   for (const Method& m : Method::all()) {
@@ -64,11 +65,12 @@ TEST(Integrate, WithoutAnObserverTheStateIsTransformedBackOnlyWhenAskedFor) {
     EXPECT_EQ(quiet.q(), watched.q());
     EXPECT_EQ(quiet.p(), watched.p());
     EXPECT_EQ(quiet.statistics().steps, watched.statistics().steps);
-    quiet.integrate(4.05);  // (11 steps on the grid that restarted at 2.95)
-    EXPECT_EQ(quiet.statistics().state_loads, 1);
+    quiet.integrate(4.05);                       // (11 steps on the grid that restarted at 2.95)
+    const long read = m.is_processed() ? 1 : 0;  // (where the call ends)
+    EXPECT_EQ(quiet.statistics().state_loads, 1 + read);
     const long loads = quiet.statistics().state_loads;
     quiet.q(), quiet.p(), quiet.q();
-    EXPECT_EQ(quiet.statistics().state_loads, loads + 1);
+    EXPECT_EQ(quiet.statistics().state_loads, loads + 1 - read);
   }
 }
 

@@ -2,13 +2,17 @@
 // applies pi^-1 when a state is set and pi to every state a user sees. Checked against a
 // processor written here independently around the kernel stepped alone; the kernel alone has
 // its own, lower order (the registry's order test checks psi's); the statistics count the
-// processor. (The MPI grid integrator refuses these methods: tests/mpi.)
+// processor; every accepted state can be read (pi's image of a finite kernel state can overflow:
+// such a step is refused). (The MPI grid integrator refuses these methods: tests/mpi.)
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <deque>
+#include <optional>
+#include <string>
 
 #include "problems.hpp"
+#include "refusals.hpp"
 
 namespace erkn::test {
 namespace {
@@ -107,8 +111,9 @@ TEST(Processing, TheKernelAloneHasALowerOrder) {
   }
 }
 
-// pi^-1 at construction and set_state, pi when a state is looked at (once per state), each with
-// its kicks' gradients (and Hessian-vector products) in the counts.
+// pi^-1 at construction and set_state, pi once per state a call of steps ends at (it is read
+// there: EveryAcceptedStateCanBeRead), each with its kicks' gradients (and Hessian-vector
+// products) in the counts; reading the state then costs nothing more.
 TEST(Processing, StatisticsCountTheProcessor) {
   const problems::Problem P = problems::henon_heiles();
   for (const Method& m : processed_methods()) {
@@ -119,20 +124,109 @@ TEST(Processing, StatisticsCountTheProcessor) {
     Integrator run(m, problems::system(P), 0.1, P.q0, P.p0);
     EXPECT_EQ(run.statistics().processor_applications, 1);
     EXPECT_EQ(run.statistics().gradient_evaluations, kicks);
+    EXPECT_EQ(run.statistics().hessian_vector_products, modified);
+    const Statistics start = run.statistics();
     run.step(5);
     const Statistics before = run.statistics();
-    run.q(), run.p(), run.q();  // (one state: pi once)
+    EXPECT_EQ(before.processor_applications, start.processor_applications + 1);
+    EXPECT_EQ(before.gradient_evaluations - start.gradient_evaluations,  // (kernel: 1 per stage)
+              before.stage_iterations - start.stage_iterations + kicks);
+    run.q(), run.p(), run.q();  // (the state step(5) read)
     const Statistics& after = run.statistics();
-    EXPECT_EQ(after.processor_applications, before.processor_applications + 1);
-    EXPECT_EQ(after.gradient_evaluations, before.gradient_evaluations + kicks);
-    EXPECT_EQ(after.hessian_vector_products, before.hessian_vector_products + modified);
+    EXPECT_EQ(after.processor_applications, before.processor_applications);
+    EXPECT_EQ(after.gradient_evaluations, before.gradient_evaluations);
+    EXPECT_EQ(after.hessian_vector_products, before.hessian_vector_products);
     run.set_state(P.q0, P.p0, 0.0);
-    EXPECT_EQ(run.statistics().processor_applications, before.processor_applications + 2);
+    EXPECT_EQ(run.statistics().processor_applications, before.processor_applications + 1);
+    EXPECT_EQ(run.statistics().hessian_vector_products, before.hessian_vector_products + modified);
   }
   // Control: an unprocessed method applies none.
   Integrator plain(Method::by_name("Strang"), problems::system(P), 0.1, P.q0, P.p0);
   plain.step(5), plain.q();
   EXPECT_EQ(plain.statistics().processor_applications, 0);
+}
+
+// q'' + q = -q^3 (U = q^4 / 4, d = 1), whose processor's kicks overflow on a finite kernel
+// state of large enough energy: a quartic force cubes q, its modified force is 6 q^5.
+System quartic() {
+  System s;
+  s.M = Stiffness::scalar(1.0);
+  s.gradient = [](const Vec& q, Vec& g) { g = q.array().cube().matrix(); };
+  s.hessian_vector_product = [](const Vec& q, const Vec& v, Vec& hv) {
+    hv = (3 * q.array().square() * v.array()).matrix();
+  };
+  return s;
+}
+
+// The run of one processed method from q0 = a with step h, `steps` steps one step() at a time:
+// after each step() that succeeds q() and p() are read (and must be: finite), a refused one
+// changes nothing. Returns the message of the refused step ("" if none) and leaves the run at
+// the state before it.
+std::string step_by_step(Integrator& run, long steps) {
+  for (long n = 0; n < steps; ++n) {
+    const Snapshot before(run);
+    const std::string refused = error_of([&] { run.step(); });
+    if (!refused.empty()) {
+      before.expect_same(run);
+      return refused;
+    }
+    std::string read = error_of([&] { EXPECT_TRUE(run.q().allFinite() && run.p().allFinite()); });
+    EXPECT_EQ(read, "") << "the state after step " << run.statistics().steps << " cannot be read";
+    if (!read.empty()) return read;
+  }
+  return "";
+}
+
+// Every accepted step's state can be read: the integrator refuses, naming it, the step whose
+// kernel state pi maps to a non-finite one (on this quartic system, from q0 = 1 ... 3, h = 0.5
+// ... 2, every processed method reaches one after at least one good step; on main before this
+// test step() accepted such a step and q() threw). One step() at a time it is the step refused;
+// integrate() over the same steps (one batch) keeps the same steps, bit for bit the same state,
+// and names the same step; integrate() from there to half a step beyond (an off-grid step) is
+// refused or succeeds, and a refusal changes nothing. Negative control: the runs of small h q0
+// end without error, batch and step by step alike.
+TEST(Processing, EveryAcceptedStateCanBeRead) {
+  Options unguarded;  // (the guard would return to its last check instead)
+  unguarded.blowup_guard = false;
+  const long steps = 60;
+  for (const Method& m : processed_methods()) {
+    int refused_later = 0, clean = 0;
+    for (double h : {0.5, 0.75, 1.0, 1.5, 2.0})
+      for (double a = 1; a <= 3; a += 0.125) {
+        SCOPED_TRACE(std::string(m.name()) + ", h = " + std::to_string(h) +
+                     ", q0 = " + std::to_string(a));
+        const Vec q0 = Vec::Constant(1, a), p0 = Vec::Zero(1);
+        std::optional<Integrator> one;
+        if (!error_of([&] { one.emplace(m, quartic(), h, q0, p0, unguarded); }).empty())
+          continue;  // (pi^-1 of the start fails: refused at construction)
+        const std::string message = step_by_step(*one, steps);
+        Integrator batch(m, quartic(), h, q0, p0, unguarded);
+        const std::string batch_message = error_of([&] { batch.integrate(double(steps) * h); });
+        EXPECT_EQ(batch.statistics().steps, one->statistics().steps);
+        EXPECT_EQ(batch.t(), one->t());
+        EXPECT_EQ(batch.q(), one->q());
+        EXPECT_EQ(batch.p(), one->p());
+        if (message.empty()) {
+          EXPECT_EQ(batch_message, "");
+          ++clean;
+          continue;
+        }
+        const std::string step = "step " + std::to_string(one->statistics().steps + 1) + " (t = ";
+        EXPECT_CONTAINS(message, step);
+        EXPECT_CONTAINS(batch_message, step);
+        if (message.find("processor pi ") == std::string::npos) continue;  // (the kernel failed)
+        EXPECT_CONTAINS(batch_message, "processor pi ");
+        refused_later += one->statistics().steps > 0;
+        const Snapshot before(batch);
+        const double t_end = batch.t() + 0.5 * h;
+        if (error_of([&] { batch.integrate(t_end); }).empty())
+          EXPECT_EQ(batch.t(), t_end);
+        else
+          before.expect_same(batch);
+      }
+    EXPECT_GT(refused_later, 0) << m.name() << ": no run reached a state pi cannot map";
+    EXPECT_GT(clean, 0) << m.name() << ": no run ended without error";
+  }
 }
 
 TEST(Processing, TheRegistryHasProcessedMethodsWithTheirKernelsOrders) {

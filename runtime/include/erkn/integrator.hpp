@@ -28,6 +28,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <memory>
 #include <string>
 
@@ -123,6 +124,13 @@ class Integrator {
   ~Integrator();
   Integrator(Integrator&&) noexcept;
   Integrator& operator=(Integrator&&) noexcept;
+
+  // A processed method (Method::is_processed) steps its kernel and shows pi of the kernel's
+  // state: every call that steps (step, integrate) applies pi where it ends, as reading the state
+  // would (q() and p() then reuse it; a loop of step() without reading the state pays a pi per
+  // call that step(n) or integrate pays once), and refuses the step whose state pi maps to a
+  // non-finite one, naming it, with the steps before it kept bit for bit. So q() and p() never
+  // fail.
 
   /// One step of size h.
   void step();
@@ -241,6 +249,7 @@ class Integrator {
   struct ShortStepper {
     std::unique_ptr<detail::StepperBase> stepper;
     double h = 0;
+    Eigen::VectorXd q, p;  // its state after a step (step_to), the integrator's once accepted
   } short_;
 
   // Adds the wall and CPU time of its lifetime to statistics_ unless an outer Timer (a nested
@@ -278,6 +287,10 @@ class Integrator {
   // n steps of h (n calls of step()), in batches that end where the guard checks.
   void advance(long n);
   void batch(long n);
+  void take(long n, long& done);
+  void processed_batch(long n);
+  long keep_readable(long done, const Statistics& start, std::exception_ptr& failure);
+  std::exception_ptr unreadable(long step, double t) const;
   bool took(long steps);  // steps taken: the state is stale, t() moves; true when the guard is due
   TimeGrid::Plan prepare_end(double t_end, long every);
   void require_output_times(double t_end, const Eigen::Ref<const Eigen::VectorXd>& times) const;
