@@ -9,7 +9,9 @@ the state in M's eigenbasis, the exact flow of q'' + M q = 0 over h (c_(i+1) - c
 p -= h d_i grad U(Q_i), the last drift of a step merged with the first of the next (BAB's kicks
 are not merged: the same error up to round-off). The reference is
 the same run of SRKN14a, the steps doubled from 64 until two runs agree to 1e-13 (the
-benchmark's reference is erkn's, to 1e-12).
+benchmark's reference is erkn's, to 1e-12). Scenes: SG2D and P1, the benchmark's scenes with a
+Fourier basis; on P1 the fewest steps of ABA864, ABA1064, SD9(10,6,4), SRKN14a and SDT7(4) at
+1e-4, 1e-6, 1e-8 are the benchmark's.
 """
 import math
 
@@ -97,4 +99,15 @@ def sg2d():
                  np.asarray(pr.q0, float), np.asarray(pr.p0, float), pr.t_span[1])
 
 
-SCENES = {"SG2D": sg2d}
+def p1():
+    """1-D sine-Gordon N = 32 (problems.cpp's sine_gordon): M the circulant of the periodic
+    second difference, dx = 2 / N, t_error = 10."""
+    import erkn
+    pr = erkn.problems.sine_gordon(32)
+    n, dx = 32, 2.0 / 32
+    lam = (2 - 2 * np.cos(2 * np.pi * np.arange(n // 2 + 1) / n)) / dx**2
+    return Scene("P1", lam, np.fft.rfft, lambda y: np.fft.irfft(y, n), np.sin,
+                 np.asarray(pr.q0, float), np.asarray(pr.p0, float), pr.t_span[1])
+
+
+SCENES = {"SG2D": sg2d, "P1": p1}
