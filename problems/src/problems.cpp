@@ -226,7 +226,7 @@ Stiffness stiffness(const LinearPart& m) {
 }
 
 System system(const Problem& p) {
-  return system(stiffness(p.M), {p.grad_u, p.potential, p.hessian_u, p.hessian_vector_u});
+  return system(stiffness(p.M), {p.grad_u, p.potential, p.hessian_u, p.hessian_vector_u, nullptr});
 }
 
 System system(Stiffness M, const Potential& u) {

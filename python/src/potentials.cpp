@@ -22,6 +22,12 @@ System from(problems::Potential u) {
   return s;
 }
 
+// A built-in potential's PySystem for dimension d: u's System and its compiled gradient.
+PySystem builtin(const std::string& name, problems::Potential u, Eigen::Index d) {
+  auto compiled = std::move(u.compiled_grad_u);
+  return {from(std::move(u)), d, false, "built-in " + name, std::move(compiled)};
+}
+
 // Fermi-Pasta-Ulam in the coordinates of Hairer, Lubich & Wanner (GNI, I.5.1): d = 2m,
 // q = (x_1..x_m, y_1..y_m), y the stiff springs' elongations (M = diag(0, omega^2) is the
 // caller's). Its U reads q[0..d-1]: a q of another size is refused.
@@ -64,19 +70,21 @@ const std::map<std::string, std::map<std::string, double>>& builtin_potentials()
   return all;
 }
 
-System builtin_potential(const std::string& name, const std::map<std::string, double>& params,
-                         Eigen::Index d) {
+PySystem builtin_potential(const std::string& name, const std::map<std::string, double>& params,
+                           Eigen::Index d) {
   const auto& all = builtin_potentials();
   const auto it = all.find(name);
   if (it == all.end())
     throw Error("unknown built-in potential '" + name + "'; known: sine, duffing, fpu, phi4");
   if (it->second.empty() && !params.empty())
     throw Error("the " + name + " potential has no parameters");
-  if (name == "sine") return from(problems::sine_potential());
-  if (name == "fpu") return fpu(d);
+  if (name == "sine") return builtin(name, problems::sine_potential(), d);
+  if (name == "fpu") return {fpu(d), d, false, "built-in fpu"};
   const double value = parameter(name, params, it->second);
-  return from(name == "duffing" ? problems::duffing_potential(value)
-                                : problems::quartic_potential(value));
+  return builtin(
+      name,
+      name == "duffing" ? problems::duffing_potential(value) : problems::quartic_potential(value),
+      d);
 }
 
 }  // namespace erkn::python

@@ -5,14 +5,15 @@
 #include <map>
 #include <string>
 
-#include "erkn/system.hpp"
+#include "system.hpp"
 
 namespace erkn::python {
 
-/// A System's U with its gradient, Hessian and Hessian-vector product (closed forms) for
-/// dimension d (M is set by the caller).
-System builtin_potential(const std::string& name, const std::map<std::string, double>& params,
-                         Eigen::Index d);
+/// A System's U with its gradient (also compiled into the small explicit steppers where the
+/// problems library has it so), Hessian and Hessian-vector product (closed forms) for dimension
+/// d (M is set by the caller).
+PySystem builtin_potential(const std::string& name, const std::map<std::string, double>& params,
+                           Eigen::Index d);
 
 /// The names, each with its parameters and their defaults, for messages and documentation.
 const std::map<std::string, std::map<std::string, double>>& builtin_potentials();

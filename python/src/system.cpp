@@ -200,7 +200,7 @@ void bind_system_factories(py::module_& m) {
       "_builtin_system",
       [](const Stiffness& M, const std::string& name, const std::map<std::string, double>& params,
          Eigen::Index d) {
-        PySystem s{builtin_potential(name, params, d), d, false, "built-in " + name};
+        PySystem s = builtin_potential(name, params, d);
         s.system.M = M;
         return s;
       },

@@ -81,6 +81,39 @@ def test_builtin_energies_wait_until_asked_for_and_equal_the_runs_own():
     assert partial.energy.shape == partial.t.shape and np.isfinite(partial.energy).all()
 
 
+def _explicit_methods():
+    return [m["name"] for m in erkn.methods()
+            if not np.diag(np.asarray(erkn.tableau(m["name"])["abar"])).any()]
+
+
+@pytest.mark.parametrize("name,k", [("duffing", 0.5), ("phi4", 2.0)])
+def test_builtins_at_small_d_give_a_python_gradients_states_bit_for_bit(name, k):
+    # d <= 4 with scalar or diagonal M: the built-ins' explicit steps call their gradient
+    # compiled in (problems::Potential::compiled_grad_u); the same arithmetic in NumPy through
+    # the callback path gives the same bits, for every explicit method.
+    def callbacks(param):  # (grad and Hess U v, in the built-ins' order of operations)
+        if name == "duffing":
+            c = -(param * param)
+            return dict(grad=lambda q, out: np.multiply(c, 2 * (q * q * q) - q, out=out),
+                        hessian_vector_product=lambda q, v: c * (6 * (q * q) - 1) * v)
+        return dict(grad=lambda q, out: np.multiply(param, q * q * q, out=out),
+                    hessian_vector_product=lambda q, v: 3 * param * (q * q) * v)
+
+    builtin = erkn.potential(name, **{"k" if name == "duffing" else "beta": k})
+    moved = k * (1 + 2.0**-40)  # (negative control: the comparison sees this change)
+    for d in range(1, 5):
+        q0, p0 = np.linspace(0.4, 1.3, d), np.linspace(1.0, -0.5, d)
+        for M in (9.0, np.linspace(4.0, 16.0, d)):
+            for method in _explicit_methods():
+                kw = dict(q0=q0, p0=p0, t_span=(0, 3.01), h=0.05, method=method, every=7)
+                a = erkn.solve(M, builtin, **kw)
+                b = erkn.solve(M, **callbacks(k), **kw)
+                assert np.array_equal(a.q, b.q) and np.array_equal(a.p, b.p), (method, d, M)
+                assert a.stats["gradient_evaluations"] == b.stats["gradient_evaluations"]
+        c = erkn.solve(M, **callbacks(moved), **kw)
+        assert not np.array_equal(a.q, c.q)
+
+
 @pytest.mark.parametrize("name,d,params", [("sine", 3, {}), ("duffing", 3, {"k": 0.3}),
                                            ("phi4", 3, {"beta": 2.0}), ("fpu", 6, {})])
 def test_builtin_gradient_and_hessian_are_derivatives_of_the_potential(name, d, params):

@@ -9,8 +9,10 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <erkn/integrator.hpp>
 #include <erkn/system.hpp>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +39,10 @@ struct Potential {
   std::function<Eigen::MatrixXd(const Vec& q)> hessian_u;
   /// hv = Hess U(q) v in closed form (modified kicks form grad(|grad U|^2) = 2 Hess U grad U).
   std::function<void(const Vec& q, const Vec& v, Vec& hv)> hessian_vector_u;
+  /// grad_u's functor compiled into the explicit steppers of d <= 4 with M's identity eigenbasis
+  /// (erkn/compiled_gradient.hpp), for Integrator's constructor that takes them: the same
+  /// arithmetic as grad_u without a std::function call per stage; nullptr where there is none.
+  std::shared_ptr<const detail::CompiledSteppers> compiled_grad_u;
 };
 
 /// U = -kappa sum_i cos q_i (sine-Gordon: grad U = kappa sin q).
