@@ -48,7 +48,6 @@ __all__ = ["Ensemble", "Error", "Integrator", "Options", "Solution", "StepSizeAd
 # (its per-method table, copied into the README: "Choosing a method").
 _DEFAULT_METHOD = "SD9(10,6,4)"
 _FLOAT64 = np.dtype(np.float64)  # (NumPy's one instance: arrays of doubles share it)
-_NO_PARAMETERS = {}  # (a built-in potential named by a string: its defaults; never changed)
 
 
 class Options(_erkn._Options):
@@ -126,6 +125,10 @@ class potential:
         args = "".join(f", {k}={v!r}" for k, v in self.params.items())
         return f"erkn.potential({self.name!r}{args})"
 
+    def _key(self):
+        """The parameters as sorted (name, value) pairs (hashable)."""
+        return tuple(sorted(self.params.items()))
+
 
 @functools.cache
 def _builtin_names():
@@ -165,18 +168,31 @@ def system(M, grad, d, potential=None, hessian=None, hessian_vector_product=None
     return _system(M, grad, d, potential, hessian, hessian_vector_product)
 
 
+@functools.lru_cache(maxsize=32)
+def _builtin_system(M, name, params, d):
+    """A built-in potential's System with M (params: sorted (name, value) pairs). Cached for M
+    a float or an erkn.Stiffness (both immutable): the C++ System costs about a microsecond
+    (four callbacks and the compiled steppers), a third of a short solve's fixed cost; the
+    Integrators built from it copy it."""
+    return _erkn._builtin_system(_stiffness(M), name, dict(params), d)
+
+
 def _system(M, grad, d, potential_fn, hessian, hessian_vector_product=None):
+    if isinstance(grad, (str, potential)):  # (a name: its defaults; C++ checks the name)
+        if potential_fn is not None or hessian is not None or hessian_vector_product is not None:
+            _stiffness(M)  # (a bad M is reported first, as with any grad)
+            raise Error("a built-in potential brings its own potential and Hessian")
+        name, params = (grad, ()) if isinstance(grad, str) else (grad.name, grad._key())
+        # (Immutable keys: a float, except 0.0 and -0.0, equal keys of two Stiffnesses; a
+        # Stiffness, by identity.)
+        if (type(M) is float and M != 0) or isinstance(M, Stiffness):
+            return _builtin_system(M, name, params, d)
+        return _builtin_system.__wrapped__(M, name, params, d)
     M = _stiffness(M)
     if isinstance(grad, System):  # (a problem's: its U in C++, with this M)
         if potential_fn is not None or hessian is not None:
             raise Error("an erkn.System brings its own potential and Hessian")
         return _erkn._with_stiffness(grad, M, d)
-    if isinstance(grad, (str, potential)):  # (a name: its defaults; C++ checks the name)
-        if potential_fn is not None or hessian is not None or hessian_vector_product is not None:
-            raise Error("a built-in potential brings its own potential and Hessian")
-        if isinstance(grad, str):
-            return _erkn._builtin_system(M, grad, _NO_PARAMETERS, d)
-        return _erkn._builtin_system(M, grad.name, grad.params, d)
     if not callable(grad):
         raise Error("grad must be a built-in potential's name, an erkn.potential, or a callable")
     if hessian_vector_product is not None and not callable(hessian_vector_product):
@@ -233,11 +249,9 @@ class Integrator(_erkn._Integrator):
     def __init__(self, M, grad, *, q0, p0, h, method=_DEFAULT_METHOD, t0=0.0, potential=None,
                  hessian=None, options=None, energy_tolerance=None, check_stability=None,
                  hessian_vector_product=None):
-        q0, p0 = _state(q0, "q0"), _state(p0, "p0")
-        options = Options._of(options, energy_tolerance=energy_tolerance,
-                              check_stability=check_stability)
-        system = _system(M, grad, q0.size, potential, hessian, hessian_vector_product)
-        super().__init__(method, system, _real(h, "h"), q0, p0, _real(t0, "t0"), options)
+        super().__init__(*_integrator_arguments(M, grad, q0, p0, h, method, t0, potential, hessian,
+                                                options, energy_tolerance, check_stability,
+                                                hessian_vector_product))
 
     @property
     def options(self):
@@ -248,9 +262,24 @@ class Integrator(_erkn._Integrator):
         """(t, q, p, energy, events, stopped): the state at t_eval, or else at the start, every
         `every`-th step and t_end; with events (see erkn.solve), (t_events, q_events, p_events,
         statistics) and whether a terminal event stopped the run. progress: see erkn.solve."""
-        t_end = _real(t_end, "t_end")
-        return self._run(t_end, t_eval, _every(every), bool(energy), _events(events),
-                         _progress(progress, self.t, t_end))
+        return self._run(*_run_arguments(self.t, t_end, t_eval, every, energy, events, progress))
+
+
+def _integrator_arguments(M, grad, q0, p0, h, method, t0, potential, hessian, options,
+                          energy_tolerance, check_stability, hessian_vector_product):
+    """Integrator's arguments (see there), checked, as the C++ constructor takes them."""
+    q0, p0 = _state(q0, "q0"), _state(p0, "p0")
+    options = Options._of(options, energy_tolerance=energy_tolerance,
+                          check_stability=check_stability)
+    system = _system(M, grad, q0.size, potential, hessian, hessian_vector_product)
+    return method, system, _real(h, "h"), q0, p0, _real(t0, "t0"), options
+
+
+def _run_arguments(t, t_end, t_eval, every, energy, events, progress):
+    """Integrator.run's arguments (see there; t: the run's time), checked, as _run takes them."""
+    t_end = _real(t_end, "t_end")
+    return (t_end, t_eval, _every(every), bool(energy), _events(events),
+            _progress(progress, t, t_end))
 
 
 class _ProgressBar:
@@ -394,7 +423,8 @@ def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None
     output up to the last completed step as its `solution` attribute."""
     if len(t_span) != 2:
         raise Error(f"t_span must be (t0, t1); got {t_span!r}")
-    t0, t1 = (_real(x, "t_span") for x in t_span)
+    t0, t1 = t_span
+    t0, t1 = _real(t0, "t_span"), _real(t1, "t_span")
     choice = None
     if tol is not None and (method in (None, "auto") or h is None):
         q0, p0 = _state(q0, "q0"), _state(p0, "p0")
@@ -407,16 +437,17 @@ def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None
         method, h = choice["method"], choice["h"]
     elif h is None or method == "auto":
         raise Error("solve: give h (and a method), or tol= to let erkn choose them")
-    run = Integrator(M, grad, q0=q0, p0=p0, h=h, method=method or _DEFAULT_METHOD, t0=t0,
-                     potential=potential, hessian=hessian, options=options,
-                     energy_tolerance=energy_tolerance, check_stability=check_stability,
-                     hessian_vector_product=hessian_vector_product)
+    # (erkn.Integrator's construction and run, through the C++ class: its Python subclass's
+    # calls cost a microsecond, a sixth of a short solve's fixed cost)
+    run = _erkn._Integrator(*_integrator_arguments(
+        M, grad, q0, p0, h, method or _DEFAULT_METHOD, t0, potential, hessian, options,
+        energy_tolerance, check_stability, hessian_vector_product))
     if t_eval is not None:
         t_eval = np.ascontiguousarray(t_eval, dtype=float)
     later = run._energy_can_wait
     try:
-        t, q, p, energy, found, stopped = run.run(t1, t_eval, every, energy=not later,
-                                                  events=events, progress=progress)
+        t, q, p, energy, found, stopped = run._run(
+            *_run_arguments(t0, t1, t_eval, every, not later, events, progress))
     except BaseException as e:  # keep the output up to the last completed step (if one began)
         if run._partial is not None:
             t, q, p, energy, found, _ = run._partial

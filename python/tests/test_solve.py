@@ -114,6 +114,30 @@ def test_builtins_at_small_d_give_a_python_gradients_states_bit_for_bit(name, k)
         assert not np.array_equal(a.q, c.q)
 
 
+def test_a_built_in_systems_cache_gives_the_uncached_solutions():
+    # solve keeps a built-in's System for a float M or an erkn.Stiffness (erkn._builtin_system):
+    # each key gives the System built for it, whatever was asked for before.
+    kw = dict(q0=[0.3, -0.2], p0=[1.0, 0.5], t_span=(0, 2), h=0.05, method="SABA2")
+    M = erkn.diagonal(np.array([4.0, 9.0]))
+    duffing = erkn.potential("duffing", k=0.5)
+    runs = {}
+    for rep in range(2):  # (the second time from the cache)
+        for key, (m, grad) in {"float": (9.0, duffing), "other float": (4.0, duffing),
+                               "Stiffness": (M, duffing), "name": (9.0, "duffing"),
+                               "other k": (9.0, erkn.potential("duffing", k=0.25))}.items():
+            sol = erkn.solve(m, grad, **kw)
+            assert key not in runs or np.array_equal(runs[key], sol.q), key
+            runs[key] = sol.q
+    # The uncached forms of the same M give the same bits; every key its own solution.
+    assert np.array_equal(erkn.solve(np.float64(9.0), duffing, **kw).q, runs["float"])
+    assert np.array_equal(erkn.solve(np.array([4.0, 9.0]), duffing, **kw).q, runs["Stiffness"])
+    qs = list(runs.values())
+    assert all(not np.array_equal(a, b) for i, a in enumerate(qs) for b in qs[i + 1:])
+    # A potential's parameters changed after a solve are those of the next one.
+    duffing.params["k"] = 0.25
+    assert np.array_equal(erkn.solve(9.0, duffing, **kw).q, runs["other k"])
+
+
 @pytest.mark.parametrize("name,d,params", [("sine", 3, {}), ("duffing", 3, {"k": 0.3}),
                                            ("phi4", 3, {"beta": 2.0}), ("fpu", 6, {})])
 def test_builtin_gradient_and_hessian_are_derivatives_of_the_potential(name, d, params):
