@@ -59,11 +59,12 @@ class StageSolver {
   };
   // What the solver knows of stage i between steps.
   struct StageRecord {
-    double theta = -1;            // the contraction measured; < 0: none
-    int theta_age = 0;            // stage solves since the measurement
-    double weight = 0;            // max(1, |bbar_i| / |abar_ii|, |b_i| / (h |abar_ii|))
-    double newton_cost = 0;       // evaluations of its last Newton solve; 0: none
-    bool explicit_stage = false;  // abar_ii = 0: Q_i = r_i, one evaluation
+    double theta = -1;                  // the contraction measured; < 0: none
+    double due_num2 = 0, due_den2 = 0;  // a new measurement, theta^2 as a fraction; 0: none
+    int theta_age = 0;                  // stage solves since the measurement
+    double weight = 0;                  // max(1, |bbar_i| / |abar_ii|, |b_i| / (h |abar_ii|))
+    double newton_cost = 0;             // evaluations of its last Newton solve; 0: none
+    bool explicit_stage = false;        // abar_ii = 0: Q_i = r_i, one evaluation
   };
   // Newton's workspace (allocated at the first fallback): dense (d <= kDenseNewtonMaxD) or
   // Newton-Krylov.
