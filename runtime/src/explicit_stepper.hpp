@@ -422,14 +422,19 @@ class ExplicitStepper final : public StepperBase {
   // all of its outputs). Every stage's physical Q is checked before the gradient is called, so q
   // after the step is finite (the last stage's, or the state's); p is the last kick's. A Q a flow
   // stages is checked on the way, as below kStageBound (explicit_passes.hpp), and scanned only
-  // when it is not (callgrind, sine-Gordon N = 32: the scan was 2.8 % of a plain run).
+  // when it is not (callgrind, sine-Gordon N = 32: the scan was 2.8 % of a plain run). A fixed
+  // dimension checks the same: every stage's Q and g (checked_gradient) and the p of the last kick,
+  // its bits taken in registers as that pass makes it. Checking q and p of the step's values after
+  // the step instead (reloaded in halves from the stack, where the kick had stored p whole: not
+  // forwarded on this AMD EPYC) cost P3 Strang, construct + integrate, ~30 % against the
+  // specialist's loop: 1.03 -> 0.77, SABA2 0.81 -> 0.68; taking the bits in every kick as well cost
+  // P2 (d = 1, callback) ~12 %.
   template <bool kKahan>
   void passes(Counts& evaluations) {
     if constexpr (kFixed) {
       Values v{Fixed(arrays_.state.q), Fixed(arrays_.state.p), Fixed::Zero(), Fixed::Zero()};
       if (kKahan) v.eq = Fixed(arrays_.state.eq), v.ep = Fixed(arrays_.state.ep);
-      stages<kKahan>(v, v, evaluations);
-      require_finite(v);
+      if (stages<kKahan>(v, v, evaluations)) non_finite_result(true, place_);
       FixedMap(arrays_.state.q) = v.q, FixedMap(arrays_.state.p) = v.p;
       if (kKahan) FixedMap(arrays_.state.eq) = v.eq, FixedMap(arrays_.state.ep) = v.ep;
     } else {
@@ -445,7 +450,7 @@ class ExplicitStepper final : public StepperBase {
   // In the identity basis each flow before a gradient writes the stage's physical_.Q as it goes
   // (with a staging transform: the inverse transform's input), and the last kick saves the gradient
   // to arrays_.G for FSAL: no pass reloads what the last one stored. Returns the non-finite bits of
-  // the last kick's p (arrays; with Values 0: they are checked whole).
+  // the last kick's p.
   template <bool kKahan, class S>
   EIGEN_ALWAYS_INLINE std::uint64_t stages(const S& start, S& to, Counts& evaluations) {
     const bool reuse = kicks_.fsal() && have_history_;  // (stage 1's force; its flow never moves)
@@ -556,11 +561,6 @@ class ExplicitStepper final : public StepperBase {
     }
   }
 
-  void require_finite(const Values& v) const {
-    const bool q_ok = all_finite<D>(v.q.data(), D);
-    if (!q_ok || !all_finite<D>(v.p.data(), D)) non_finite_result(q_ok, place_);
-  }
-
   // The passes a step makes (explicit_passes.hpp, PassKind {kick, flow, in place, save, stage,
   // fold q, fold p}): a flow, the first one staging Q (identity basis: physical_.Q, else the
   // transform's staging buffer, if any), get_state's folding both (compensated); kicks, the last
@@ -598,8 +598,8 @@ class ExplicitStepper final : public StepperBase {
     if (!first) return pass<kKahan, in_place, kLanes>(n(), a, b, hd, gd, save, f, Q, stage_scale_);
     return pass<kKahan, copy, kLanes>(n(), a, b, hd, gd, save, f, Q, stage_scale_);
   }
-  // (Fixed dimension: in place, whole arrays; checked by checked_gradient and require_finite. The
-  // kick reads the callback's g entry by entry, callback_entries.)
+  // (Fixed dimension: in place, whole arrays; Q and g checked by checked_gradient, the p a kick
+  // wrote as it is in registers. The kick reads the callback's g entry by entry, callback_entries.)
   template <bool kKahan, PassKind kind>
   EIGEN_ALWAYS_INLINE PassBits apply(const Values&, Values& v, bool, bool, double hd,
                                      const Scalar* g, int k) {
@@ -608,13 +608,16 @@ class ExplicitStepper final : public StepperBase {
       if (kind.save)
         for (int e = 0; e < D; ++e) arrays_.G[e] = g[e];
     }
+    PassBits bits;  // (the p a kick wrote, in registers; the last pass is a kick alone)
+    if constexpr (kind.kick && !kind.flow)
+      for (int e = 0; e < D; ++e) bits.p |= nonfinite_bits(v.p[e]);
     if constexpr (kind.flow) {
       flow_update<kKahan>(fixed(flows_.cos(k)), fixed(flows_.cm1(k)), fixed(flows_.sinc(k)),
                           fixed(flows_.msinc(k)), v.q, v.p, v.eq, v.ep);
       if (kind.stage)
         for (int e = 0; e < D; ++e) physical_.Q[e] = v.q[e];
     }
-    return {};
+    return bits;
   }
 
   // The arrays' passes run over doubles: a complex eigen coordinate (half spectrum) is kLanes = 2

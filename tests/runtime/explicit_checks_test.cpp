@@ -1,10 +1,10 @@
 // The explicit stepper's finiteness checks ride on its passes over arrays (explicit_stepper.hpp,
 // nonfinite_bits): a stage's q as the flow writes it, the gradient as the kick reads it, p after
-// the last kick. They must refuse what the separate checks refused, with the same messages, on
-// every eigenbasis of M the array passes run in, for every explicit method: a non-finite value
-// from the gradient (named by stage), a stage that overflows, a p that overflows; each leaves
-// the state, t and the counts as they were, and the same run without the fault steps on
-// (negative control).
+// the last kick (with a fixed dimension: in registers). They must refuse what the separate checks
+// refused, with the same messages, on every eigenbasis of M the array passes run in, for every
+// explicit method: a non-finite value from the gradient (named by stage), a stage that overflows, a
+// p that overflows; each leaves the state, t and the counts as they were, and the same run without
+// the fault steps on (negative control).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -27,7 +27,9 @@ struct Basis {
   Stiffness M;
 };
 
-// One of each eigenbasis with arrays of a dynamic size (d above the fixed-size limit of 4).
+// One of each eigenbasis with arrays of a dynamic size (d above the fixed-size limit of 4), and
+// the identity basis at d = 2 and 4, whose steps run on fixed-size values in registers (their
+// checks: the stage's Q and g at the gradient, p as the last kick makes it).
 std::vector<Basis> bases() {
   using B = GridAxis::Boundary;
   Eigen::VectorXd col = Eigen::VectorXd::Zero(16);
@@ -41,7 +43,9 @@ std::vector<Basis> bases() {
           {"Dirichlet grid (real transform)",
            Stiffness::grid({{4, 0.5, B::dirichlet}, {3, 0.5, B::dirichlet}})},
           {"periodic grid (half spectrum)",
-           Stiffness::grid({{4, 0.5, B::periodic}, {4, 0.5, B::periodic}})}};
+           Stiffness::grid({{4, 0.5, B::periodic}, {4, 0.5, B::periodic}})},
+          {"diagonal d = 2 (fixed size)", Stiffness::diagonal(Eigen::Vector2d(1, 2))},
+          {"diagonal d = 4 (fixed size)", Stiffness::diagonal(Eigen::Vector4d(1, 2, 3, 4))}};
 }
 
 std::vector<Method> explicit_methods() {
