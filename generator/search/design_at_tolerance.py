@@ -14,7 +14,8 @@ conditions by Gauss-Newton), Nelder-Mead in the coordinates of the conditions' t
 at that point (each trial point projected back onto the conditions), restarted a fixed number
 of times from the best point (the simplex halved after a restart that did not improve). Prints
 the result as a methods.spec block (17 significant digits: erkn-generate polishes them onto the
-conditions and certifies); designed_at_tolerance.spec holds the blocks it printed.
+conditions and certifies); generator/methods.spec (and, for those not in the registry,
+generator/search/designed_at_tolerance.spec) hold the blocks it printed.
 
   PYTHONPATH=build/python /usr/bin/python3 generator/search/design_at_tolerance.py DESIGN
 
