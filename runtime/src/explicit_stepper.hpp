@@ -268,16 +268,14 @@ class ExplicitStepper final : public StepperBase {
   // (A processed method's only: Integrator::batch.)
   void save_kernel() override {
     Processing& x = *processing_;
-    const Scalar* from[] = {arrays_.state.q, arrays_.state.p, arrays_.state.eq, arrays_.state.ep,
-                            arrays_.G_last};
-    for (int k = 0; k < 5; ++k) std::copy_n(from[k], n(), x.saved.data() + k * arrays_.m);
+    const std::array<Scalar*, 5> kernel = kernel_arrays();
+    for (int k = 0; k < 5; ++k) std::copy_n(kernel[k], n(), x.saved.data() + k * arrays_.m);
     x.history = have_history_, x.pending = pending_;
   }
   void restore_kernel() override {
     const Processing& x = *processing_;
-    Scalar* to[] = {arrays_.state.q, arrays_.state.p, arrays_.state.eq, arrays_.state.ep,
-                    arrays_.G_last};
-    for (int k = 0; k < 5; ++k) std::copy_n(x.saved.data() + k * arrays_.m, n(), to[k]);
+    const std::array<Scalar*, 5> kernel = kernel_arrays();
+    for (int k = 0; k < 5; ++k) std::copy_n(x.saved.data() + k * arrays_.m, n(), kernel[k]);
     have_history_ = x.history, pending_ = x.pending;
   }
 
@@ -379,6 +377,12 @@ class ExplicitStepper final : public StepperBase {
     }
     place_.processor = nullptr;
     ++counts.applications;
+  }
+
+  // What the kernel's next steps read and change (with have_history_ and pending_): the state's
+  // arrays and the last stage's force, in Processing::saved's order.
+  std::array<Scalar*, 5> kernel_arrays() {
+    return {arrays_.state.q, arrays_.state.p, arrays_.state.eq, arrays_.state.ep, arrays_.G_last};
   }
 
   // A state array as its kLanes * n() doubles.
