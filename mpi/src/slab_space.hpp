@@ -32,6 +32,7 @@ class SlabSpace {
   template <int slots>
   using Block = Eigen::ArrayXd;
   static constexpr bool kDenseNewton = false;  // (no rank holds a d x d Jacobian)
+  static constexpr bool kFixed = false;        // (the dimension is not a compile-time constant)
 
   /// rkn: add_MQ adds M Q (the force of RKN methods).
   SlabSpace(MPI_Comm comm, DistributedTransform& T, bool rkn)

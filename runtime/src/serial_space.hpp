@@ -10,7 +10,8 @@
 // dot/squared_norm of physical vectors, reduce({sums...}) and reduce_max(x) over every process;
 // gradient (the user's callback with its checks), add_MQ (g += M Q) and to_eigen_force (the
 // stage's force in eigen coordinates, M Q added where it is cheapest); settle() after a stage's
-// last evaluation; kDenseNewton (whether a d x d Jacobian may be formed).
+// last evaluation; kDenseNewton (whether a d x d Jacobian may be formed); kFixed (whether Array
+// has a compile-time size: the stage solver then iterates on values, stage_solver.hpp's Work).
 #pragma once
 
 #include <Eigen/Core>
@@ -105,9 +106,16 @@ class SerialSpace {
   template <class Y>
   void to_eigen(const Eigen::VectorXd& x, Y&& y);
   /// G = forward(g + M Q) of the stage path (g += M Q for RKN methods: in physical coordinates,
-  /// where it is a stencil or an inline product).
+  /// where it is a stencil or an inline product; with a fixed D and M scalar or diagonal, g's
+  /// entries plus m_k Q_k in registers, g left as the callback wrote it).
   template <class Y, class G>
-  void to_eigen_force(const Eigen::VectorXd& Q, const Y& /*Q_hat*/, Eigen::VectorXd& g, G&& G_hat) {
+  void to_eigen_force(const Eigen::VectorXd& Q, const Y& Q_hat, Eigen::VectorXd& g, G&& G_hat) {
+    if constexpr (kFixed) {
+      if (rkn_ && m_diagonal_) {
+        G_hat = callback_entries<D>(g.data()) + m_diag_ * Q_hat;
+        return;
+      }
+    }
     add_MQ(Q, g);
     to_eigen(g, G_hat);
   }

@@ -19,19 +19,23 @@ bool StageSolver<Space, Coef>::fixed_point(int i, Statistics& stats) {
   Change c{};
   int extra = 0;  // iterations after convergence from a cold start (reset_tightening)
   const auto abar_ii = Space::co(k_.abar(i, i));
-  // (G(i) and the iteration limit held in locals: after each call of the user's gradient the
-  // compiler reloads what it reads through members.)
-  const Map G_i = G(i);
+  // (G(i), the iteration limit and the arrays (Work) held in locals: after each call of the
+  // user's gradient the compiler reloads what it reads through members.)
+  Map G_i = G(i);
   const int max_iterations = options_.max_fixed_point_iterations;
+  const Work r_hat = work(x_.r_hat);
+  Work Q_hat = work(x_.Q_hat), Q_hat_new = scratch(x_.Q_hat_new), G = scratch(G_i),
+       g_first_hat = scratch(x_.g_first_hat);
   // A new measurement's theta (record_contraction), formed before the first evaluation, whose
   // latency hides its division and root: formed at the measurement, at the end of a stage, they
   // were ~19 % of this loop's samples (perf, P2, SERKN1s2(1)).
   if (StageRecord& r = record_[i]; r.due_den2 > 0)
     r.theta = std::sqrt(r.due_num2 / r.due_den2), r.due_den2 = 0;
   for (int it = 1; it <= max_iterations; ++it) {
-    if (it > 1) space_.to_physical(x_.Q_hat, x_.Q);  // (start_stage did it for the guess)
-    stage_force(i, G_i, stats);
-    x_.Q_hat_new = x_.r_hat - abar_ii * G_i;
+    if (it > 1) space_.to_physical(Q_hat, x_.Q);  // (start_stage did it for the guess)
+    stage_force(i, Q_hat, G, stats);
+    if constexpr (Space::kFixed) G_i = G;  // (a view: G is G_i)
+    Q_hat_new = r_hat - abar_ii * G;
     ++stats.stage_iterations;
     // |dQ| / max(|Q_new|, |Q_old|) in eigen coordinates, so a converged stage needs no inverse
     // transform. Both iterates: an iterate at 0 (a 2-cycle r -> 0 -> r) must not make delta
@@ -39,18 +43,18 @@ bool StageSolver<Space, Coef>::fixed_point(int i, Statistics& stats) {
     // One reduce: |dQ|^2, |Q_new|^2, at the first iteration |Q|^2 (later the previous iterate's
     // |Q_new|^2), at the second the contraction's (record_contraction).
     const bool measure = it == 2 && first2 > 0 && measures_contraction(delta_old);
-    if (measure) x_.g_first_hat = abar_ii * (G_i - x_.g_first_hat);
-    const auto sums = space_.reduce(
-        std::array{space_.squared_norm(x_.Q_hat_new - x_.Q_hat), space_.squared_norm(x_.Q_hat_new),
-                   it == 1 ? space_.squared_norm(x_.Q_hat) : 0.0,
-                   measure ? space_.squared_norm(x_.g_first_hat) : 0.0});
+    if (measure) g_first_hat = abar_ii * (G - g_first_hat);
+    const auto sums = space_.reduce(std::array{space_.squared_norm(Q_hat_new - Q_hat),
+                                               space_.squared_norm(Q_hat_new),
+                                               it == 1 ? space_.squared_norm(Q_hat) : 0.0,
+                                               measure ? space_.squared_norm(g_first_hat) : 0.0});
     if (it == 1) norm2_Q = sums[2];
     c = in_range(sums[0], std::max(sums[1], norm2_Q));
     norm2_Q = sums[1];
-    swap_views(x_.Q_hat, x_.Q_hat_new);
+    swap_views(Q_hat, Q_hat_new);
     if (it == 1) {
       if (c.X > 0 && contraction_proves(i, c)) return true;
-      first2 = sums[0], x_.g_first_hat = G_i;
+      first2 = sums[0], g_first_hat = G;
       delta_old = std::sqrt(c.X / c.N);
     } else {
       if (it == 2 && first2 > 0) record_contraction(i, first2, c, delta_old, sums[3]);
@@ -59,11 +63,23 @@ bool StageSolver<Space, Coef>::fixed_point(int i, Statistics& stats) {
       // over 1e6 steps of P3 (h = 1e-3).
       if (c.X == 0) return true;
       const Verdict v = verdict(i, it, c, delta_old, extra);
-      if (v != Verdict::iterate) return v == Verdict::converged;
+      if (v == Verdict::converged) return true;
+      if (v == Verdict::failed) return keep_iterate(Q_hat), false;
     }
   }
   // Out of iterations: accept only round-off noise, or a converged stage's extra iterations.
-  return extra > 0 || c.X <= square(options_.roundoff_level) * c.N;
+  if (extra > 0 || c.X <= square(options_.roundoff_level) * c.N) return true;
+  return keep_iterate(Q_hat), false;
+}
+
+// x_.Q_hat = the last iterate Q_hat of a failed fixed point (Newton-Krylov may start from it):
+// stored (a value), or the view of it taken (a view of x_.Q_hat or x_.Q_hat_new).
+template <class Space, class Coef>
+void StageSolver<Space, Coef>::keep_iterate(const Work& Q_hat) {
+  if constexpr (Space::kFixed)
+    x_.Q_hat = Q_hat;
+  else if (Q_hat.data() != x_.Q_hat.data())
+    swap_views(x_.Q_hat, x_.Q_hat_new);
 }
 
 // The decision after iteration it > 1 (c: its change, X > 0; delta_old: the one before, replaced

@@ -16,6 +16,8 @@
 #include <new>
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <utility>
 
 #include "erkn/error.hpp"
 #include "erkn/integrator.hpp"
@@ -50,6 +52,11 @@ class StageSolver {
   void reset() { predictor_.reset(); }
 
  private:
+  // The fixed point's iterates, force and contraction measure: with a fixed D values, which the
+  // compiler keeps in registers (spilled to the stack around the user's gradient only), else
+  // views of x_'s arrays. (Through views into x_ every iteration stored and reloaded its arrays
+  // and their pointers: P2, P3.)
+  using Work = std::conditional_t<Space::kFixed, typename Space::Array, Map>;
   // The arrays of one stage: r_i, the iterate Q (eigen coordinates and physical), the next one,
   // the starting guess's gradient, g(Q_0) of the first iteration, g at the iterate.
   struct Arrays {
@@ -91,6 +98,7 @@ class StageSolver {
   template <class State>
   void start_stage(int i, const State& q_hat, const State& p_hat);
   bool fixed_point(int i, Statistics& stats);
+  void keep_iterate(const Work& Q_hat);
   Verdict verdict(int i, int it, Change c, double& delta_old, int& extra) const;
   static bool within(Change c, double delta_old, double tol);
   static Change in_range(double change2, double norm2);
@@ -120,10 +128,11 @@ class StageSolver {
   void set_preconditioner(int i, double sigma);
   void jacobian(int i, Statistics& stats);
 
-  // G_i = G(i) = the force at the iterate (Q, Q_hat) in eigen coordinates.
-  void stage_force(int i, Map G_i, Statistics& stats) {
+  // G_i = the force at the iterate (Q, Q_hat) in eigen coordinates.
+  template <class Y, class G>
+  void stage_force(int i, const Y& Q_hat, G&& G_i, Statistics& stats) {
     gradient(x_.Q, x_.g, i, stats);
-    space_.to_eigen_force(x_.Q, x_.Q_hat, x_.g, G_i);
+    space_.to_eigen_force(x_.Q, Q_hat, x_.g, G_i);
   }
   // g = grad U(Q) (+ M Q for RKN methods).
   void force(const Eigen::VectorXd& Q, int i, Statistics& stats) {
@@ -142,11 +151,24 @@ class StageSolver {
     return sums;
   }
 
-  // Exchanges the arrays two maps view (Map::swap would exchange their contents).
+  // x's values (fixed D) or a view of x.
+  static Work work(const Map& x) { return Work(x); }
+  // Storage for an array the fixed point writes before it reads: x itself as a view, or a value.
+  static Work scratch(const Map& x) {
+    if constexpr (Space::kFixed)
+      return Work();
+    else
+      return x;
+  }
+  // Exchanges the arrays two maps view (Map::swap would exchange their contents), or two values.
   static void swap_views(Map& a, Map& b) {
     auto* const data = a.data();
     new (&a) Map(b.data(), b.size());
     new (&b) Map(data, a.size());
+  }
+  template <class A>
+  static void swap_views(A& a, A& b) {
+    std::swap(a, b);
   }
 
   // Tuning (the comments at their uses say why).
@@ -235,7 +257,7 @@ void StageSolver<Space, Coef>::solve(const State& q_hat, const State& p_hat, con
 template <class Space, class Coef>
 void StageSolver<Space, Coef>::solve_stage(int i, Statistics& stats) {
   if (record_[i].explicit_stage) {  // (Q = r exactly: its gradient is the stage's)
-    stage_force(i, G(i), stats);
+    stage_force(i, x_.Q_hat, G(i), stats);
     ++stats.stage_iterations;
     space_.settle();
     return;
