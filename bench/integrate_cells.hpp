@@ -123,8 +123,8 @@ Cell measure_cell(const Scene& s, const erkn::Method& m, const Basis& basis, Gra
 inline const std::string kCompiledRows = " with templated gradient";  // (no comma: csv)
 
 /// Every explicit method with a peer: erkn with the problems library's System (System::gradient,
-/// a std::function, as users of the callback path call it), and for a scalar or diagonal M also
-/// with the peer's gradient compiled in (erkn/compiled_gradient.hpp; rows kCompiledRows).
+/// a std::function, as users of the callback path call it), and also with the peer's gradient
+/// compiled in (erkn/compiled_gradient.hpp; rows kCompiledRows).
 template <class Basis, class Gradient>
 void measure_scene(const Scene& s, const Basis& basis, Gradient g, const Config& cfg,
                    Results& out) {
@@ -136,7 +136,6 @@ void measure_scene(const Scene& s, const Basis& basis, Gradient g, const Config&
     g(q.array(), a);
   };
   for (bool templated : {false, true}) {
-    if (templated && !Basis::kIdentity) break;
     for (const erkn::Method& m : erkn::Method::all()) {
       // (The peer kicks with grad U only and has no processor: methods with modified kicks or a
       // processor have no peer here.)

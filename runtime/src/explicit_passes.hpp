@@ -99,8 +99,8 @@ struct PassFlow {
   static double at(const double* values, Eigen::Index e) { return values[e]; }
 };
 
-/// The non-finite bits (nonfinite_bits) of the force a kick read and of the p it wrote, and of
-/// kStageBound times the Q a flow staged (0: every |Q| < 2^512, see kStageBound).
+/// The non-finite bits (nonfinite_bits) of the force a kick read and of the p a step's last kick
+/// wrote, and of kStageBound times the Q a flow staged (0: every |Q| < 2^512, see kStageBound).
 struct PassBits {
   std::uint64_t g = 0, p = 0, stage = 0;
 };
@@ -201,7 +201,9 @@ template <bool kKahan, PassKind kKind, int kLanes, class C>
       px = plus<kHadP>(px, V(-hd * gx));
       if constexpr (kKind.save) lane_store(save + x, gx);
       g_bits |= L::nonfinite(gx);
-      if constexpr (!kKahan) p_bits |= L::nonfinite(px);
+      // (Only a step's last pass, a kick alone, returns p's bits the step checks: a non-finite
+      // p a kick and flow wrote stays non-finite to the end, or stages a non-finite Q.)
+      if constexpr (!kKahan && !kKind.flow) p_bits |= L::nonfinite(px);
     }
     V Qx{};  // (the stage's q)
     if constexpr (kKind.flow) {
@@ -232,9 +234,9 @@ template <bool kKahan, PassKind kKind, int kLanes, class C>
 
 /// One pass over n eigen coordinates (kLanes doubles each) from `from` into `to` (in place: the
 /// same arrays; compensated, from the state at the step's start and the increments in `to`) as
-/// kKind says; returns the non-finite bits of the force a kick read, of the p it wrote (plain) or
-/// the fold wrote (compensated), and of the Q it staged (PassBits). The arithmetic per coordinate
-/// is that of the kick followed by that of the flow (and the fold).
+/// kKind says; returns the non-finite bits of the force a kick read, of the p a kick without a
+/// flow wrote (plain) or the fold wrote (compensated), and of the Q it staged (PassBits). The
+/// arithmetic per coordinate is that of the kick followed by that of the flow (and the fold).
 template <bool kKahan, PassKind kKind, int kLanes, class C>
 EIGEN_ALWAYS_INLINE PassBits pass(Eigen::Index n, const PassArrays& from, const PassArrays& to,
                                   double hd, const double* g, double* save, const PassFlow<C>& f,

@@ -22,12 +22,15 @@
 // identity eigenbasis) that copy is a set of fixed-size arrays the compiler keeps in registers.
 //
 // The gradient is the policy Gradient's: System::gradient, a std::function on Eigen::VectorXd
-// (SystemGradient), or, with a fixed D, a functor compiled into the step on fixed-size vectors
-// (FixedGradient, erkn/compiled_gradient.hpp), so that the values of a stage stay in registers
-// across the call (through a std::function every double live across it is spilled: on x86-64 the
-// vector registers are caller-saved). The arithmetic is the same on both: the same step, the same
-// checks and messages; System's other callbacks (the Hessians of modified kicks) and M Q (RKN
-// methods) take exact copies of the fixed-size Q and g as Eigen::VectorXd.
+// (SystemGradient), or a functor compiled into the step (CompiledGradient,
+// erkn/compiled_gradient.hpp): with a fixed D on fixed-size vectors, so that the values of a
+// stage stay in registers across the call (through a std::function every double live across it
+// is spilled: on x86-64 the vector registers are caller-saved); in a half-spectrum basis on the
+// stepper's vectors, its loop inlined where the specialist's is (through System::gradient,
+// sine-Gordon N = 32 costs 5-10 % more, and so does the specialist's loop through it). The
+// arithmetic is the same on both: the same step, the same checks and messages; System's other
+// callbacks (the Hessians of modified kicks) and M Q (RKN methods) take exact copies of the
+// fixed-size Q and g as Eigen::VectorXd.
 //
 // The transform may also be a space of several processes (mpi/src/slab_space.hpp: a grid or
 // circulant M distributed over MPI ranks, whose transforms are collective). Such a space defers
@@ -93,11 +96,20 @@ struct SystemGradient {
   using Vector = Eigen::VectorXd;
   void operator()(const System& system, const Vector& q, Vector& g) const { system.gradient(q, g); }
 };
-/// The gradient G compiled into the step: g(q, out) on fixed-size vectors of dimension D.
+/// The gradient G compiled into the step: g(q, out) on fixed-size vectors of dimension D, or
+/// (D = Eigen::Dynamic) on maps of the stepper's Eigen::VectorXd (g sized, not to be resized).
 template <class G, int D>
-struct FixedGradient {
-  using Vector = Eigen::Matrix<double, D, 1, Eigen::DontAlign>;  // (see Physical)
-  void operator()(const System&, const Vector& q, Vector& g) const { gradient(q, g); }
+struct CompiledGradient {
+  using Vector = std::conditional_t<D == Eigen::Dynamic, Eigen::VectorXd,
+                                    Eigen::Matrix<double, D, 1, Eigen::DontAlign>>;  // (Physical)
+  void operator()(const System&, const Vector& q, Vector& g) const {
+    if constexpr (D == Eigen::Dynamic) {
+      Eigen::Map<Eigen::VectorXd> out(g.data(), g.size());
+      gradient(Eigen::Map<const Eigen::VectorXd>(q.data(), q.size()), out);
+    } else {
+      gradient(q, g);
+    }
+  }
   G gradient;
 };
 
@@ -420,11 +432,11 @@ class ExplicitStepper final : public StepperBase {
   // stay zero).
   //
   // With arrays two of the finiteness checks ride on the kick passes, which OR the bits of x - x
-  // (0 exactly when x is finite; nonfinite_bits) over the force they read and the p they write:
-  // a reduction that vectorises with the pass, where a separate check would reread the arrays.
-  // The force is non-finite when the gradient is (a transform spreads a non-finite entry over
-  // all of its outputs). Every stage's physical Q is checked before the gradient is called, so q
-  // after the step is finite (the last stage's, or the state's); p is the last kick's. A Q a flow
+  // (0 exactly when x is finite; nonfinite_bits) over the force they read and the p the last
+  // writes: a reduction that vectorises with the pass, where a separate check would reread the
+  // arrays. The force is non-finite when the gradient is (a transform spreads a non-finite entry
+  // over all of its outputs). Every stage's physical Q is checked before the gradient is called, so
+  // q after the step is finite (the last stage's, or the state's); p is the last kick's. A Q a flow
   // stages is checked on the way, as below kStageBound (explicit_passes.hpp), and scanned only
   // when it is not (callgrind, sine-Gordon N = 32: the scan was 2.8 % of a plain run). A fixed
   // dimension checks the same: every stage's Q and g (checked_gradient) and the p of the last kick,

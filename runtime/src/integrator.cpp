@@ -90,8 +90,22 @@ std::unique_ptr<detail::StepperBase> identity_stepper(bool explicit_method,
                                              options, IdentityTransform{}, lambda);
 }
 
-// compiled: the explicit steppers of a fixed dimension with the user's gradient compiled in, or
-// nullptr (erkn/compiled_gradient.hpp).
+// The stepper in the half-spectrum basis of `axes` (circulant M, a periodic grid): an explicit
+// one from `compiled` when given.
+std::unique_ptr<detail::StepperBase> half_spectrum_stepper(
+    bool explicit_method, const detail::CompiledSteppers* compiled, const Method& method,
+    System&& system, double h, const Options& options, const std::vector<GridAxis>& axes,
+    const Eigen::VectorXd& lambda, Eigen::Index d) {
+  using detail::HalfSpectrumTransform;
+  if (compiled && explicit_method)
+    return compiled->make_half_spectrum(method, std::move(system), h, options, axes, lambda, d);
+  return stepper_of<HalfSpectrumTransform, Eigen::ArrayXd>(explicit_method, d, method,
+                                                           std::move(system), h, options,
+                                                           HalfSpectrumTransform(axes), lambda);
+}
+
+// compiled: the explicit steppers with the user's gradient compiled in (a fixed dimension, a
+// half-spectrum basis), or nullptr (erkn/compiled_gradient.hpp).
 std::unique_ptr<detail::StepperBase> make_stepper(const Method& method, System&& system, double h,
                                                   const Options& options, Eigen::Index d,
                                                   const detail::CompiledSteppers* compiled) {
@@ -123,14 +137,13 @@ std::unique_ptr<detail::StepperBase> make_stepper(const Method& method, System&&
         return stepper_of<FourierBasisTransform, Eigen::ArrayXd>(
             x, d, method, std::move(system), h, options, FourierBasisTransform(d),
             FourierBasisTransform::coordinate_eigenvalues(lambda, d));
-      return stepper_of<HalfSpectrumTransform, Eigen::ArrayXd>(
-          x, d, method, std::move(system), h, options, HalfSpectrumTransform(axis), lambda);
+      return half_spectrum_stepper(x, compiled, method, std::move(system), h, options, axis, lambda,
+                                   d);
     }
     case Stiffness::Structure::grid:
       if (half_spectrum_available(M.axes()))
-        return stepper_of<HalfSpectrumTransform, Eigen::ArrayXd>(
-            x, d, method, std::move(system), h, options, HalfSpectrumTransform(M.axes()),
-            half_spectrum_eigenvalues(M.axes(), M.shift()));
+        return half_spectrum_stepper(x, compiled, method, std::move(system), h, options, M.axes(),
+                                     half_spectrum_eigenvalues(M.axes(), M.shift()), d);
       return stepper_of<GridTransform, Eigen::ArrayXd>(x, d, method, std::move(system), h, options,
                                                        GridTransform(M.axes()), lambda);
   }

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <vector>
 
 #include "erkn/error.hpp"
 #include "erkn/integrator.hpp"
@@ -65,9 +66,10 @@ class StepperBase {
 /// the dimension as a compile-time constant.
 inline constexpr Eigen::Index kFixedMaxD = 4;
 
-/// The explicit steppers of the dimensions 1..kFixedMaxD in M's identity eigenbasis with a
-/// gradient compiled into them (erkn/compiled_gradient.hpp, instantiated where the user's gradient
-/// is known), which the runtime asks for in place of its own (System::gradient) ones.
+/// The explicit steppers of the dimensions 1..kFixedMaxD in M's identity eigenbasis, and those in
+/// a half-spectrum basis, with a gradient compiled into them (erkn/compiled_gradient.hpp,
+/// instantiated where the user's gradient is known), which the runtime asks for in place of its own
+/// (System::gradient) ones.
 class CompiledSteppers {
  public:
   virtual ~CompiledSteppers() = default;
@@ -78,6 +80,13 @@ class CompiledSteppers {
                                             double h, const Options& options,
                                             const Eigen::VectorXd& lambda,
                                             Eigen::Index d) const = 0;
+  /// The stepper of an explicit method in the half-spectrum basis of `axes` (circulant M, a
+  /// periodic grid) with eigenvalues lambda, constructed as the runtime's own.
+  virtual std::unique_ptr<StepperBase> make_half_spectrum(const Method& method, System&& system,
+                                                          double h, const Options& options,
+                                                          const std::vector<GridAxis>& axes,
+                                                          const Eigen::VectorXd& lambda,
+                                                          Eigen::Index d) const = 0;
 };
 
 }  // namespace erkn::detail

@@ -1,25 +1,28 @@
 // erkn::make_integrator (erkn/compiled_gradient.hpp): the gradient compiled into the explicit
-// steppers of d <= 4 gives the states, statistics and errors of System::gradient (one step
-// template, one arithmetic), and is what those steppers call.
+// steppers of d <= 4 and of the half-spectrum bases (circulant M, periodic grids) gives the
+// states, statistics and errors of System::gradient (one step template, one arithmetic), and is
+// what those steppers call.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <erkn/compiled_gradient.hpp>
 #include <erkn/erkn.hpp>
 #include <string>
+#include <type_traits>
 
 namespace erkn::test {
 namespace {
 
 /// grad U of U = sum_i (q_i^4/4 - k q_i^2/2) + eps sum_i q_i^2 q_{i+1} (cyclic), counting its
-/// calls on fixed-size vectors (the compiled steps') in *fixed_calls; scale multiplies the
-/// quartic term (1: the gradient itself; else a negative control with other arithmetic).
+/// calls from the compiled steps (on fixed-size vectors, or on maps in a half-spectrum basis) in
+/// *compiled_calls; scale multiplies the quartic term (1: the gradient itself; else a negative
+/// control with other arithmetic).
 struct Gradient {
-  long* fixed_calls;
+  long* compiled_calls;
   double scale = 1;
   template <class Q, class G>
   void operator()(const Q& q, G& g) const {
-    if constexpr (Q::SizeAtCompileTime != Eigen::Dynamic) ++*fixed_calls;
+    if constexpr (!std::is_same_v<Q, Eigen::VectorXd>) ++*compiled_calls;
     const Eigen::Index d = q.size();
     for (Eigen::Index i = 0; i < d; ++i) {
       const Eigen::Index next = (i + 1) % d, prev = (i + d - 1) % d;
@@ -156,6 +159,46 @@ TEST(CompiledGradient, NegativeControlsOtherArithmeticDiffersAndLargerSystemsUse
   EXPECT_TRUE(
       identical(compiled_run(implicit, 2, false, {}, calls), callback_run(implicit, 2, false, {})));
   EXPECT_EQ(calls, 0);
+}
+
+/// Every explicit method with M's half-spectrum basis (circulant M, d = 96, and a periodic grid
+/// 8 x 12 when its transform is a half spectrum: with FFTW): the callback path's results bit for
+/// bit, every gradient a compiled call; a moved quartic coefficient (2^-40) differs.
+TEST(CompiledGradient, HalfSpectrumBasesGiveTheCallbackPathsStatesBitForBit) {
+  Eigen::VectorXd column = Eigen::VectorXd::Zero(96);
+  column[0] = 2.5, column[1] = column[95] = -1;
+  const std::vector<GridAxis> axes{{8, 0.5, GridAxis::Boundary::periodic},
+                                   {12, 0.4, GridAxis::Boundary::periodic}};
+  const Stiffness structures[] = {Stiffness::circulant(column), Stiffness::grid(axes, 0.5)};
+  const bool half_spectrum[] = {true, detail::half_spectrum_available(axes)};
+  int cases = 0;
+  for (const Method& m : Method::all()) {
+    if (!m.is_explicit()) continue;
+    for (int k = 0; k < 2; ++k)
+      for (bool compensated : {false, true}) {
+        SCOPED_TRACE(std::string(m.name()) + (k ? " grid" : " circulant") +
+                     (compensated ? " comp" : " plain"));
+        Options o;
+        o.compensated_summation = compensated;
+        System s = system_without_gradient(96, false);
+        s.M = structures[k];
+        const Eigen::VectorXd q0 = Eigen::VectorXd::LinSpaced(96, 0.3, 0.9), p0 = 0.5 - q0.array();
+        long calls = 0, unused = 0;
+        const Outcome compiled = run(make_integrator(m, s, Gradient{&calls}, 0.05, q0, p0, o));
+        const Gradient g{&unused};
+        s.gradient = [g](const Eigen::VectorXd& q, Eigen::VectorXd& out) { g(q, out); };
+        EXPECT_TRUE(identical(compiled, run(Integrator(m, s, 0.05, q0, p0, o))));
+        EXPECT_EQ(calls, half_spectrum[k] ? compiled.stats.gradient_evaluations : 0);
+        EXPECT_EQ(unused, 0);
+        if (cases == 0) {  // (negative control, once)
+          s.gradient = nullptr;
+          EXPECT_FALSE(identical(compiled, run(make_integrator(m, s, Gradient{&unused, 1 + 0x1p-40},
+                                                               0.05, q0, p0, o))));
+        }
+        ++cases;
+      }
+  }
+  EXPECT_GE(cases, 4 * 10);
 }
 
 std::string error_of(const std::function<void()>& f) {

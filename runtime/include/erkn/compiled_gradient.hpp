@@ -6,10 +6,14 @@
 // eigenbasis: scalar or diagonal M, or an RKN method) make_integrator instantiates the runtime's
 // explicit stepper for d = 1..4 in the calling translation unit with the functor's type known
 // (as Boost.odeint's templated systems or Eigen's header-only templates): the functor is inlined
-// into the step on fixed-size vectors. Everything else is the Integrator's: the same step (one
-// template, explicit_stepper.hpp), checks, messages, statistics, observers and output times, and
-// bit-identical results for the same arithmetic. Other dimensions, bases and implicit methods use
-// System::gradient, which make_integrator sets to call the same functor.
+// into the step on fixed-size vectors. With circulant M or a periodic grid (FFTW's half spectrum)
+// it instantiates the explicit stepper of that basis with the functor inlined into its gradient
+// loop, as a specialist's loop has it (measured: a pointwise gradient such as sine-Gordon's
+// through the std::function costs 5-10 % more at N = 32, the specialist's loop through it too).
+// Everything else is the Integrator's: the same step (one template, explicit_stepper.hpp),
+// checks, messages, statistics, observers and output times, and bit-identical results for the
+// same arithmetic. Other dimensions, bases and implicit methods use System::gradient, which
+// make_integrator sets to call the same functor.
 //
 //   #include <cstdio>
 //   #include <erkn/compiled_gradient.hpp>
@@ -37,10 +41,11 @@
 //
 // The functor is called as gradient(q, g) with q and g Eigen column vectors of doubles of the
 // system's dimension: Eigen::Matrix<double, D, 1, Eigen::DontAlign> (D = 1..4) inside the compiled
-// steps, Eigen::VectorXd elsewhere, so write it as a template (or a generic lambda); g arrives
-// sized. It is instantiated for every D up to 4 whatever the dimension, so it must compile for
-// each. A functor of up to 8 bytes keeps the stepper of d = 4 within a block glibc's per-thread
-// cache serves (1032 bytes; larger ones work, their constructions cost more).
+// steps of a fixed dimension, Eigen::Map<const Eigen::VectorXd> and Eigen::Map<Eigen::VectorXd>
+// in those of a half-spectrum basis, Eigen::VectorXd elsewhere, so write it as a template (or a
+// generic lambda); g arrives sized. It is instantiated for every D up to 4 whatever the dimension,
+// so it must compile for each. A functor of up to 8 bytes keeps the stepper of d = 4 within a block
+// glibc's per-thread cache serves (1032 bytes; larger ones work, their constructions cost more).
 //
 // The installed package has the runtime's stepper headers under erkn/detail/.
 #pragma once
@@ -63,7 +68,8 @@
 namespace erkn {
 namespace detail {
 
-/// The explicit steppers of d = 1..kFixedMaxD in the identity eigenbasis with G compiled in.
+/// The explicit steppers of d = 1..kFixedMaxD in the identity eigenbasis, and of any d in a
+/// half-spectrum basis, with G compiled in.
 template <class G>
 class CompiledStepperSet final : public CompiledSteppers {
  public:
@@ -75,6 +81,17 @@ class CompiledStepperSet final : public CompiledSteppers {
     if (diagonal) return make_for<Eigen::ArrayXd>(method, std::move(system), h, options, lambda, d);
     return make_for<double>(method, std::move(system), h, options, lambda, d);
   }
+  std::unique_ptr<StepperBase> make_half_spectrum(const Method& method, System&& system, double h,
+                                                  const Options& options,
+                                                  const std::vector<GridAxis>& axes,
+                                                  const Eigen::VectorXd& lambda,
+                                                  Eigen::Index d) const override {
+    using Gradient = CompiledGradient<G, Eigen::Dynamic>;
+    using Stepper =
+        ExplicitStepper<HalfSpectrumTransform, Eigen::ArrayXd, Eigen::Dynamic, Gradient>;
+    return std::make_unique<Stepper>(method, std::move(system), h, options,
+                                     HalfSpectrumTransform(axes), lambda, d, Gradient{gradient_});
+  }
 
  private:
   template <class Coef, int D = 1>
@@ -84,10 +101,10 @@ class CompiledStepperSet final : public CompiledSteppers {
     if constexpr (D > kFixedMaxD) {
       throw Error("compiled gradient: no compiled stepper for dimension " + std::to_string(d));
     } else {
-      using Stepper = ExplicitStepper<IdentityTransform, Coef, D, FixedGradient<G, D>>;
+      using Stepper = ExplicitStepper<IdentityTransform, Coef, D, CompiledGradient<G, D>>;
       if (d == D)
         return std::make_unique<Stepper>(method, std::move(system), h, options, IdentityTransform{},
-                                         lambda, d, FixedGradient<G, D>{gradient_});
+                                         lambda, d, CompiledGradient<G, D>{gradient_});
       return make_for<Coef, D + 1>(method, std::move(system), h, options, lambda, d);
     }
   }
@@ -99,7 +116,8 @@ class CompiledStepperSet final : public CompiledSteppers {
 
 /// An Integrator as Integrator(method, system, h, q0, p0, options, t0) with `gradient` as
 /// grad U (see above): System::gradient must be empty (erkn::Error otherwise) and becomes a call
-/// of `gradient`; explicit methods at d <= 4 with M's identity eigenbasis step with it inlined.
+/// of `gradient`; explicit methods at d <= 4 with M's identity eigenbasis, and with circulant M or
+/// a periodic grid in FFTW's half spectrum, step with it inlined.
 template <class G>
 Integrator make_integrator(const Method& method, System system, G gradient, double h,
                            const Eigen::VectorXd& q0, const Eigen::VectorXd& p0,
