@@ -127,13 +127,20 @@ class Stepper final : public StepperBase {
     add(p_hat_, ep_hat_, dp);
   }
 
-  // x += dx in eigen coordinates, Kahan-compensated when enabled (compensated_sum.hpp).
+  // x += dx in eigen coordinates, Kahan-compensated when enabled (compensated_sum.hpp; with a
+  // fixed D on values the compiler keeps in registers: through the maps each of its sums was
+  // stored and reloaded).
   template <class Increment>
   [[gnu::always_inline]] void add(Map& x, Map& error, Increment& dx) {
-    if (options_.compensated_summation)
-      compensated_add(x, error, dx);
-    else
+    if (!options_.compensated_summation) {
       x += dx;
+    } else if constexpr (Map::RowsAtCompileTime == Eigen::Dynamic) {
+      compensated_add(x, error, dx);
+    } else {
+      typename Map::PlainObject x_value = x, error_value = error;
+      compensated_add(x_value, error_value, dx);
+      x = x_value, error = error_value;
+    }
   }
 
   Method method_;
