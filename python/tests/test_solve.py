@@ -86,18 +86,23 @@ def _explicit_methods():
             if not np.diag(np.asarray(erkn.tableau(m["name"])["abar"])).any()]
 
 
+def _builtin_callbacks(name, param):
+    # A built-in's grad and Hess U v in NumPy, in the built-in's order of operations.
+    if name == "duffing":
+        c = -(param * param)
+        return dict(grad=lambda q, out: np.multiply(c, 2 * (q * q * q) - q, out=out),
+                    hessian_vector_product=lambda q, v: c * (6 * (q * q) - 1) * v)
+    return dict(grad=lambda q, out: np.multiply(param, q * q * q, out=out),
+                hessian_vector_product=lambda q, v: 3 * param * (q * q) * v)
+
+
 @pytest.mark.parametrize("name,k", [("duffing", 0.5), ("phi4", 2.0)])
 def test_builtins_at_small_d_give_a_python_gradients_states_bit_for_bit(name, k):
     # d <= 4 with scalar or diagonal M: the built-ins' explicit steps call their gradient
     # compiled in (problems::Potential::compiled_grad_u); the same arithmetic in NumPy through
     # the callback path gives the same bits, for every explicit method.
-    def callbacks(param):  # (grad and Hess U v, in the built-ins' order of operations)
-        if name == "duffing":
-            c = -(param * param)
-            return dict(grad=lambda q, out: np.multiply(c, 2 * (q * q * q) - q, out=out),
-                        hessian_vector_product=lambda q, v: c * (6 * (q * q) - 1) * v)
-        return dict(grad=lambda q, out: np.multiply(param, q * q * q, out=out),
-                    hessian_vector_product=lambda q, v: 3 * param * (q * q) * v)
+    def callbacks(param):
+        return _builtin_callbacks(name, param)
 
     builtin = erkn.potential(name, **{"k" if name == "duffing" else "beta": k})
     moved = k * (1 + 2.0**-40)  # (negative control: the comparison sees this change)
@@ -112,6 +117,26 @@ def test_builtins_at_small_d_give_a_python_gradients_states_bit_for_bit(name, k)
                 assert a.stats["gradient_evaluations"] == b.stats["gradient_evaluations"]
         c = erkn.solve(M, **callbacks(moved), **kw)
         assert not np.array_equal(a.q, c.q)
+
+
+@pytest.mark.parametrize("name,k", [("duffing", 0.5), ("phi4", 2.0)])
+def test_builtins_with_half_spectrum_bases_give_a_python_gradients_states_bit_for_bit(name, k):
+    # Circulant M and a periodic grid (FFTW's half spectrum; without FFTW circulant M of N > 64):
+    # the built-ins' gradients compiled into the explicit steps of that basis give the states of
+    # the same arithmetic in NumPy through the callback path, for every explicit method.
+    col = np.zeros(80)
+    col[0], col[1], col[-1] = 6.0, -1.0, -1.0
+    forms = [erkn.circulant(col), erkn.grid([(8, 0.5, "periodic"), (10, 0.4, "periodic")])]
+    builtin = erkn.potential(name, **{"k" if name == "duffing" else "beta": k})
+    for M in forms:
+        q0, p0 = 0.3 * np.sin(np.linspace(0, 6, 80)), np.linspace(0.2, -0.4, 80)
+        for method in _explicit_methods():
+            kw = dict(q0=q0, p0=p0, t_span=(0, 0.51), h=0.05, method=method, every=4)
+            a = erkn.solve(M, builtin, **kw)
+            b = erkn.solve(M, **_builtin_callbacks(name, k), **kw)
+            assert np.array_equal(a.q, b.q) and np.array_equal(a.p, b.p), (method, M)
+        c = erkn.solve(M, **_builtin_callbacks(name, k * (1 + 2.0**-40)), **kw)
+        assert not np.array_equal(a.q, c.q)  # (negative control: the comparison sees it)
 
 
 def test_a_built_in_systems_cache_gives_the_uncached_solutions():
