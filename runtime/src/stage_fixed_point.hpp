@@ -14,7 +14,7 @@ namespace erkn::detail {
 // evaluated. (Tested on delta with a divide and a square root, that chain was 43-57 % of P2's
 // samples in this loop: perf, d = 1.)
 template <class Space, class Coef>
-bool StageSolver<Space, Coef>::fixed_point(int i, Statistics& stats) {
+[[gnu::always_inline]] inline bool StageSolver<Space, Coef>::fixed_point(int i, Statistics& stats) {
   double delta_old = 0, norm2_Q = 0, first2 = 0;  // (first2: |dQ|^2 of the first iteration)
   Change c{};
   int extra = 0;  // iterations after convergence from a cold start (reset_tightening)

@@ -98,6 +98,9 @@ class StageSolver {
   template <class State>
   void start_stage(int i, const State& q_hat, const State& p_hat);
   bool fixed_point(int i, Statistics& stats);
+  [[gnu::noinline]] bool fixed_point_call(int i, Statistics& stats) {
+    return fixed_point(i, stats);
+  }
   void keep_iterate(const Work& Q_hat);
   Verdict verdict(int i, int it, Change c, double& delta_old, int& extra) const;
   static bool within(Change c, double delta_old, double tol);
@@ -262,7 +265,10 @@ void StageSolver<Space, Coef>::solve_stage(int i, Statistics& stats) {
     space_.settle();
     return;
   }
-  if (fixed_point(i, stats)) return;
+  // (With a fixed D the fixed point inlined into the step: its call and frame, and the reloads
+  // of what it reads through members, were part of its ~90 instructions per call beyond the
+  // iterations, P2.)
+  if (Space::kFixed ? fixed_point(i, stats) : fixed_point_call(i, stats)) return;
   ++stats.newton_fallbacks;
   const long before = stats.gradient_evaluations;
   if constexpr (Space::kDenseNewton) {
