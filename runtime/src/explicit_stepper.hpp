@@ -249,11 +249,11 @@ class ExplicitStepper final : public StepperBase {
       map(arrays_.state.q) = processing_->q, map(arrays_.state.p) = processing_->p;
       count(counts, stats);
     } else {
-      transform_.forward(q, map(arrays_.state.q));
-      transform_.forward(p, map(arrays_.state.p));
+      forward(q, arrays_.state.q);
+      forward(p, arrays_.state.p);
     }
-    map(arrays_.state.eq).setZero();
-    map(arrays_.state.ep).setZero();
+    std::fill_n(arrays_.state.eq, n(), Scalar(0));
+    std::fill_n(arrays_.state.ep, n(), Scalar(0));
     have_history_ = false;
     pending_ = false;
   }
@@ -757,6 +757,15 @@ class ExplicitStepper final : public StepperBase {
   template <class Map>
   static Fixed fixed(const Map& values) {
     return Fixed(values.data());
+  }
+
+  // x into eigen coordinates at y (a fixed dimension: its D entries, without the out-of-line
+  // assignment loop of a map).
+  void forward(const Eigen::VectorXd& x, Scalar* y) {
+    if constexpr (kFixed)
+      std::copy_n(x.data(), D, y);
+    else
+      transform_.forward(x, map(y));
   }
 
   // An array of the storage as an Eigen array.

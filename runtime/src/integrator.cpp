@@ -111,7 +111,9 @@ std::unique_ptr<detail::StepperBase> make_stepper(const Method& method, System&&
                                                   const detail::CompiledSteppers* compiled) {
   using namespace detail;
   check_step_size(method, h, system.M.eigenvalues(), options.pole_tolerance);
-  const Stiffness M = system.M;  // (system is moved into the stepper)
+  // (A reference, not a copy: the stepper takes the system over with M's shared data, where
+  // lambda, the axes and the transforms' matrices stay; a copy cost a count up and down.)
+  const Stiffness& M = system.M;
   const Eigen::VectorXd& lambda = M.eigenvalues();
   const bool x = explicit_stages(method);
   if (method.has_modified_kicks() && !x)  // (Method::add refuses such tables)
@@ -170,7 +172,9 @@ Integrator::Integrator(const Method& method, System&& system, double h, const Ei
       options_(options),
       grid_(t0, h),  // (validates h and t0)
       compiled_(std::move(compiled)),
-      guard_(std::make_unique<detail::BlowupGuard>()) {
+      // (default-initialised by its members' initialisers: make_unique value-initialised it,
+      // zeroing the object first with a rep stos)
+      guard_(std::make_unique_for_overwrite<detail::BlowupGuard>()) {
   validate(options);
   require_state(system, q0, p0);
   if (!system.gradient) throw Error("System::gradient is not set");

@@ -9,11 +9,18 @@
 namespace erkn {
 namespace {
 
-// Throws unless ok, naming the field, its value and the range it must lie in.
-void require(bool ok, const char* field, double value, const char* range) {
-  if (!ok)
-    throw Error(std::string("Options::") + field + " = " + format(value) +
-                " is invalid; it must be " + range);
+// The error naming the field, its value and the range it must lie in (out of line: a valid
+// field costs its comparisons only: validate 110 -> 56 instructions, callgrind).
+[[noreturn, gnu::cold, gnu::noinline]] void invalid(const char* field, double value,
+                                                    const char* range) {
+  throw Error(std::string("Options::") + field + " = " + format(value) +
+              " is invalid; it must be " + range);
+}
+
+// Throws unless ok.
+inline void require(bool ok, const char* field, double value, const char* range) {
+  if (!ok) [[unlikely]]
+    invalid(field, value, range);
 }
 
 }  // namespace

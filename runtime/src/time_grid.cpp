@@ -10,10 +10,10 @@
 
 namespace erkn {
 
-TimeGrid::TimeGrid(double t0, double h) : t0_(t0), h_(h) {
+void TimeGrid::invalid(double t0, double h) {
   if (!std::isfinite(h) || h <= 0)
     throw Error("the step size h must be finite and > 0; got h = " + format(h));
-  if (!std::isfinite(t0)) throw Error("t = " + format(t0) + " is not finite");
+  throw Error("t = " + format(t0) + " is not finite");
 }
 
 double TimeGrid::window(double a, double b, double h) {

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 
 namespace erkn {
 
@@ -20,7 +21,10 @@ class TimeGrid {
 
   /// The grid t0 + n h from n = 0; erkn::Error unless t0 is finite and h finite and > 0 (the one
   /// place a step size is validated).
-  TimeGrid(double t0, double h);
+  TimeGrid(double t0, double h) : t0_(t0), h_(h) {
+    if (!(std::isfinite(h) && h > 0 && std::isfinite(t0))) [[unlikely]]
+      invalid(t0, h);
+  }
 
   double t() const { return t0_ + double(n_) * h_; }
   double h() const { return h_; }
@@ -58,6 +62,8 @@ class TimeGrid {
   double t0_, h_;
   long n_ = 0;
 
+  // The constructor's error for (t0, h) (out of line: a valid grid costs its comparisons only).
+  [[noreturn]] static void invalid(double t0, double h);
   // Round-off in forming a time a = t0 + n h near b: a few ulps of the largest magnitude
   // involved, never proportional to n h itself beyond that (issue 12, defect 2).
   static double window(double a, double b, double h);
