@@ -508,13 +508,18 @@ void Integrator::state_at(double t_out, Eigen::VectorXd& q, Eigen::VectorXd& p) 
 void Integrator::require_output_times(double t_end,
                                       const Eigen::Ref<const Eigen::VectorXd>& times) const {
   grid_.require_output_times(t_end, times);
+  if (method_.entire()) return;  // (any step size: no shorter step to check)
   for (double tau : times) require_reachable(tau);
+}
+
+bool Integrator::reach(double tau) {
+  advance(grid_.plan_to(tau).whole);
+  return is_now(tau);
 }
 
 // The step of size t_out - t_n from the last grid point t_n before t_out clears the poles (an
 // output time's or t_end's shorter step, validated before any step is taken).
 void Integrator::require_reachable(double t_out) const {
-  if (method_.entire()) return;  // (any step size: no plan needed)
   const TimeGrid::Plan plan = grid_.plan_to(t_out);
   if (!plan.shorter) return;
   const double size = t_out - grid_.ahead(plan.whole);

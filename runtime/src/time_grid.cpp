@@ -16,10 +16,6 @@ void TimeGrid::invalid(double t0, double h) {
   throw Error("t = " + format(t0) + " is not finite");
 }
 
-double TimeGrid::window(double a, double b, double h) {
-  return 4 * std::numeric_limits<double>::epsilon() * std::max({std::abs(a), std::abs(b), h});
-}
-
 bool TimeGrid::resolved() const {
   const double t0 = t();
   return h_ > 2 * window(t0, t0 + h_, h_);
@@ -32,26 +28,45 @@ void TimeGrid::require_resolved() const {
                 "larger h)");
 }
 
+namespace {
+
+// plan_to's refusals, out of its way (their messages' formatting made it save every register and
+// reserve 424 bytes of stack at each call).
+[[noreturn, gnu::cold, gnu::noinline]] void refuse_end(double t_end, double t0) {
+  throw Error("t_end = " + format(t_end, 17) +
+              " is not finite or lies before t = " + format(t0, 17));
+}
+[[noreturn, gnu::cold, gnu::noinline]] void refuse_steps(double span, double steps, double h) {
+  throw Error("t_end - t = " + format(span) + " needs " + format(steps) +
+              " steps of h = " + format(h) +
+              ", more than the step-count limit 2^53 = " + format(TimeGrid::kMaxSteps, 17) +
+              " (beyond it t0 + n h is not exact); integrate in shorter spans or with a "
+              "larger h");
+}
+[[noreturn, gnu::cold, gnu::noinline]] void refuse_unresolved(double h, double t0, double t_end) {
+  throw Error("h = " + format(h) + " is below the round-off of t = " + format(t0) +
+              " and t_end = " + format(t_end) + ": the time grid cannot be resolved");
+}
+
+}  // namespace
+
 TimeGrid::Plan TimeGrid::plan_to(double t_end) const {
   const double t0 = t(), span = t_end - t0, tol = tolerance(t_end);
-  if (!std::isfinite(span) || span < -tol)
-    throw Error("t_end = " + format(t_end, 17) +
-                " is not finite or lies before t = " + format(t0, 17));
+  if (!std::isfinite(span) || span < -tol) refuse_end(t_end, t0);
   if (span <= tol) return {0, false};
   const double steps = span / h_;
-  if (!(steps <= kMaxSteps))  // (before any conversion to an integer: no overflow)
-    throw Error("t_end - t = " + format(span) + " needs " + format(steps) + " steps of h = " +
-                format(h_) + ", more than the step-count limit 2^53 = " + format(kMaxSteps, 17) +
-                " (beyond it t0 + n h is not exact); integrate in shorter spans or with a "
-                "larger h");
-  if (h_ <= 2 * tol)
-    throw Error("h = " + format(h_) + " is below the round-off of t = " + format(t0) +
-                " and t_end = " + format(t_end) + ": the time grid cannot be resolved");
-  // The grid points around t_end; t_end within round-off of one of them is it.
-  double n = std::floor(steps);  // (a rounded quotient: may be one off, fixed below)
-  while (n > 0 && point(n) > t_end + tol) --n;
-  while (point(n + 1) <= t_end + tol) ++n;
-  return {long(n), std::abs(point(n) - t_end) > tol};
+  // (before any conversion to an integer: no overflow)
+  if (!(steps <= kMaxSteps)) refuse_steps(span, steps, h_);
+  if (h_ <= 2 * tol) refuse_unresolved(h_, t0, t_end);
+  // The grid points around t_end; t_end within round-off of one of them is it. The plan is the
+  // last n with ahead(n) <= t_end + tol (ahead is non-decreasing in n), whichever n the loops
+  // start from: here the nearest, so t_end on the grid (an output time's usual case) needs no
+  // correction, and in integers (ahead(n) forms double(n_ + n) as a double sum of the integers
+  // would: both exact below 2^53), without a floor (a dozen dependent instructions here).
+  long n = long(steps + 0.5);  // (a rounded quotient >= 0: may be one off, fixed below)
+  while (n > 0 && ahead(n) > t_end + tol) --n;
+  while (ahead(n + 1) <= t_end + tol) ++n;
+  return {n, std::abs(ahead(n) - t_end) > tol};
 }
 
 void TimeGrid::require_output_times(double t_end,

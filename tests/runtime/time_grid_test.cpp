@@ -61,6 +61,34 @@ TEST(TimeGrid, AnOffGridTimeTakesWholeStepsToTheLastGridPointBeforeIt) {
       }
 }
 
+// The plan's definition, whatever n plan_to's search starts from: the last grid point at or
+// before t_end + tolerance(t_end) (found here by counting; none when t_end is within it of t()),
+// shorter unless t_end is within the tolerance of it; on grids already advanced (t() = ahead of the
+// start), and on grids whose h is barely above twice the round-off window (the window then reaches
+// almost half a step). A search from the rounded quotient that dropped either correction fails here
+// (f = 0.5, 0.99: the nearest grid point lies after t_end; f = -0.45 on the coarse grids: t_end
+// within the window below a grid point whose quotient rounds below it).
+TEST(TimeGrid, ThePlanIsTheLastGridPointWithinTheWindowFromAnyPosition) {
+  std::vector<TimeGrid> all = grids();
+  for (double t0 : {-1e6, -3.0, -1e-3})  // (|t| decreasing: the window is 4 eps |t0|)
+    for (double ratio : {2.01, 2.05, 2.2}) all.emplace_back(t0, ratio * 4 * kEps * std::abs(t0));
+  for (TimeGrid g : all) {
+    g.advance(37);
+    for (long k : {0L, 1L, 7L, 250L})
+      for (double f : {-0.45, -1e-17, 0.0, 1e-17, 0.01, 0.5, 0.99}) {
+        const double t_end = g.ahead(k) + f * g.h();
+        if (t_end < g.t()) continue;
+        const double tol = g.tolerance(t_end), last = t_end + tol;
+        long n = 0;  // (t_end within the window of t() is t() itself)
+        while (t_end - g.t() > tol && g.ahead(n + 1) <= last) ++n;
+        const TimeGrid::Plan plan = g.plan_to(t_end);
+        EXPECT_EQ(plan.whole, n) << g.t() << " + " << k << " * " << g.h() << ", f " << f;
+        EXPECT_EQ(plan.shorter, std::abs(g.ahead(n) - t_end) > tol)
+            << g.t() << " + " << k << " * " << g.h() << ", f " << f;
+      }
+  }
+}
+
 TEST(TimeGrid, StepsAdvanceFromTheStartWithoutAccumulatingRoundOff) {
   TimeGrid g(1.0 / 3, 0.1);
   for (int n = 0; n < 100000; ++n) g.advance();

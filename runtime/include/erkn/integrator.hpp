@@ -183,8 +183,7 @@ class Integrator {
     Timer timer(*this, prepare_end(t_end, 1).whole + long(times.size()));
     Eigen::VectorXd q, p;  // (the state between grid points; sized when first needed)
     for (double tau : times) {
-      advance(steps_until(tau));
-      const bool on_grid = is_now(tau);
+      const bool on_grid = reach(tau);
       if (!on_grid) state_at(tau, q, p);
       timer.before_observer(), observer(tau, on_grid ? this->q() : q, on_grid ? this->p() : p);
     }
@@ -295,6 +294,9 @@ class Integrator {
   TimeGrid::Plan prepare_end(double t_end, long every);
   void require_output_times(double t_end, const Eigen::Ref<const Eigen::VectorXd>& times) const;
   void require_reachable(double t_out) const;
+  // Steps to the last grid point at or before the output time tau (up to round-off: as
+  // steps_until); true when tau is that point (is_now).
+  bool reach(double tau);
   detail::StepperBase& stepper_of_size(double h);
   void step_to(double t_end);
   // Energy monitor (Options::energy_tolerance > 0): H_0 and the state before the current step.

@@ -10,7 +10,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace erkn {
 
@@ -66,9 +68,10 @@ class TimeGrid {
   [[noreturn]] static void invalid(double t0, double h);
   // Round-off in forming a time a = t0 + n h near b: a few ulps of the largest magnitude
   // involved, never proportional to n h itself beyond that (issue 12, defect 2).
-  static double window(double a, double b, double h);
-  // The grid point n (a double: a plan's quotient) steps after t().
-  double point(double n) const { return t0_ + (double(n_) + n) * h_; }
+  // (Inline: out of line it cost a call at every output time, is_now and validation alike.)
+  static double window(double a, double b, double h) {
+    return 4 * std::numeric_limits<double>::epsilon() * std::max({std::abs(a), std::abs(b), h});
+  }
 };
 
 }  // namespace erkn
