@@ -9,7 +9,7 @@ set logscale x 2
 set format x '%g'
 set terminal pngcairo size 1000,620 enhanced font 'DejaVu Sans,11'
 set output 'scaling.png'
-plot 'data/scaling_serkn2s3.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3', \
+plot 'data/scaling_serkn2s4.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4', \
   'data/scaling_saba3.dat' u 1:2 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SABA3', \
   'data/scaling_serkn3s4pf_1.dat' u 1:2 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4pf(1)', \
   'data/scaling_st_rmer_verlet.dat' u 1:2 w lp lc rgb '#9467bd' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
@@ -25,7 +25,7 @@ plot 'data/scaling_serkn2s3.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps
   'data/scaling_pmlf6_processed.dat' u 1:2 w lp lc rgb '#843c39' dt (2,4) lw 2.2 pt 24 ps 1.0 t 'PMLF6 (processed)'
 set terminal svg size 1000,620 dynamic enhanced font 'DejaVu Sans,11'
 set output 'scaling.svg'
-plot 'data/scaling_serkn2s3.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s3', \
+plot 'data/scaling_serkn2s4.dat' u 1:2 w lp lc rgb '#1f77b4' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN2s4', \
   'data/scaling_saba3.dat' u 1:2 w lp lc rgb '#d62728' dt 1 lw 2.2 pt 7 ps 0.9 t 'SABA3', \
   'data/scaling_serkn3s4pf_1.dat' u 1:2 w lp lc rgb '#2ca02c' dt 1 lw 2.2 pt 7 ps 0.9 t 'SERKN3s4pf(1)', \
   'data/scaling_st_rmer_verlet.dat' u 1:2 w lp lc rgb '#9467bd' dt (2,4) lw 2.2 pt 4 ps 1.0 t 'Störmer–Verlet', \
