@@ -513,7 +513,7 @@ void Integrator::require_output_times(double t_end,
 }
 
 bool Integrator::reach(double tau) {
-  advance(grid_.plan_to(tau).whole);
+  advance(steps_until(tau));
   return is_now(tau);
 }
 
