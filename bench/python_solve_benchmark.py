@@ -4,13 +4,27 @@ target <= 1.1), for every explicit registry method on Duffing (P2, "duffing") an
 N = 32 and 2048 ("sine"): the same M, initial data, h and steps, output only at t0 and t_end
 (every = steps). The C++ side runs in `erkn_integrate_benchmark --serve` (a child process that
 times the runs it is asked for, thread CPU time); the two are interleaved in rounds, each ratio
-the median over rounds of Python / C++ in that round. Appends a section to the Markdown file.
+the median over rounds of Python / C++ in that round. Three things make two runs agree
+(python_solve_benchmark's 75 cells, two runs at load 8-9: 75 within 10 %, the largest 6.4 %):
+- One CPU for both processes (the driver pins itself to the lowest CPU it may use before
+  starting the server, which inherits that). On a shared machine the CPUs are not equally fast
+  from one moment to the next, and two processes left to the scheduler each settle on one for
+  seconds: Duffing's 25 cells, load 5-6, unpinned, 5 rounds of 2 ms, three runs: 24, 8 and 6
+  cells within 10 % between two of them; pinned, 21 rounds: 25 in all three pairs.
+- Rounds that visit every cell in turn, so that a cell's samples spread over the whole run.
+  Slow spells of about a second slow the C++ loop more than the interpreter (four C++ servers
+  asked in turn were slow together); a cell measured in one stretch of 0.1 s can fall into one
+  (Duffing Strang 2.33 in one run, 1.27 in the next).
+- One FFTW wisdom file (ERKN_FFTW_WISDOM, as scripts/main.sh sets it), so both processes use
+  the same plans; without one each measures its own, and the N = 2048 cells moved by 10 %.
+Appends a section to the Markdown file.
 
     PYTHONPATH=build/python python3 bench/python_solve_benchmark.py \\
         --server build/bench/erkn_integrate_benchmark [--short] [--markdown docs/benchmarks.md]
 """
 
 import argparse
+import os
 import statistics
 import subprocess
 import sys
@@ -21,6 +35,9 @@ import numpy as np
 import erkn
 
 TARGET = 1.1
+PINNED = "both processes pinned to one CPU (the same core for both sides)"
+WISDOM = "FFTW plans from one wisdom file (ERKN_FFTW_WISDOM)"
+OWN_PLANS = "each process's own FFTW plans (no ERKN_FFTW_WISDOM)"
 
 
 def scenes(short):
@@ -64,19 +81,37 @@ def cxx_seconds(server, scene, method, reps):
     return float(line)
 
 
-def measure(server, scene, method, rounds, min_sample):
-    python_seconds(scene, method, 1), cxx_seconds(server, scene, method, 1)  # warm-up
-    reps = max(1, int(np.ceil(min_sample / max(cxx_seconds(server, scene, method, 1), 1e-9))))
-    ratios = []
+def calibrate(server, cell, min_sample):
+    """Warms both sides up; the runs per sample (at least min_sample seconds of C++ runs)."""
+    scene, method = cell
+    python_seconds(scene, method, 1), cxx_seconds(server, scene, method, 1)
+    return max(1, int(np.ceil(min_sample / max(cxx_seconds(server, scene, method, 1), 1e-9))))
+
+
+def measure(server, cells, rounds, min_sample):
+    """(median Python / C++, median C++ seconds) of each cell over `rounds` rounds, each round
+    one sample of every cell in turn (the side timed first alternating), so that a cell's
+    samples spread over the whole run rather than over one stretch of it."""
+    reps = [calibrate(server, cell, min_sample) for cell in cells]
+    ratios, cxx = [[] for _ in cells], [[] for _ in cells]
     for r in range(rounds):
-        if r % 2 == 0:
-            py = python_seconds(scene, method, reps)
-            cxx = cxx_seconds(server, scene, method, reps)
-        else:
-            cxx = cxx_seconds(server, scene, method, reps)
-            py = python_seconds(scene, method, reps)
-        ratios.append(py / cxx)
-    return statistics.median(ratios), cxx
+        for k, ((scene, method), n) in enumerate(zip(cells, reps)):
+            if r % 2 == 0:
+                py = python_seconds(scene, method, n)
+                c = cxx_seconds(server, scene, method, n)
+            else:
+                c = cxx_seconds(server, scene, method, n)
+                py = python_seconds(scene, method, n)
+            ratios[k].append(py / c)
+            cxx[k].append(c)
+    return [(statistics.median(x), statistics.median(c)) for x, c in zip(ratios, cxx)]
+
+
+def pin_to_one_cpu():
+    """This process, and the server it starts (which inherits it), on its lowest allowed CPU
+    (Linux; elsewhere the scheduler's choice, and the header says so)."""
+    if hasattr(os, "sched_setaffinity"):
+        os.sched_setaffinity(0, {min(os.sched_getaffinity(0))})
 
 
 def main():
@@ -85,16 +120,16 @@ def main():
     ap.add_argument("--short", action="store_true")
     ap.add_argument("--markdown")
     args = ap.parse_args()
-    rounds, min_sample = (5, 2e-3) if args.short else (7, 5e-3)
+    rounds, min_sample = (41, 1e-3) if args.short else (61, 2e-3)
+    pin_to_one_cpu()
     explicit = [m["name"] for m in erkn.methods() if is_explicit(m["name"])]
+    cells = [(scene, method) for scene in scenes(args.short) for method in explicit]
     server = subprocess.Popen([args.server, "--serve"], stdin=subprocess.PIPE,
                               stdout=subprocess.PIPE, text=True)
     rows = []
-    for scene in scenes(args.short):
-        for method in explicit:
-            ratio, cxx = measure(server, scene, method, rounds, min_sample)
-            rows.append((scene[0], method, scene[7], 1e3 * cxx, ratio))
-            print(f"{scene[0]:22s} {method:9s} C++ {1e3 * cxx:9.4f} ms  Python / C++ {ratio:.3f}")
+    for (scene, method), (ratio, cxx) in zip(cells, measure(server, cells, rounds, min_sample)):
+        rows.append((scene[0], method, scene[7], 1e3 * cxx, ratio))
+        print(f"{scene[0]:22s} {method:9s} C++ {1e3 * cxx:9.4f} ms  Python / C++ {ratio:.3f}")
     server.stdin.close()
     server.wait()
     if args.markdown:
@@ -110,8 +145,12 @@ def write_markdown(args, rows, rounds, min_sample):
                 "\"duffing\", ..., every=steps)` against C++ Integrator construction + "
                 "integrate(t_end) + reading the final state on the same scene (the problems "
                 "library's System), thread CPU time, the C++ runs in a child process "
-                f"(`erkn_integrate_benchmark --serve`); median over {rounds} interleaved rounds "
-                f"of Python / C++, each sample at least {1e3 * min_sample:.0f} ms of C++ runs. "
+                "(`erkn_integrate_benchmark --serve`), "
+                f"{PINNED if hasattr(os, 'sched_setaffinity') else 'not pinned'}; "
+                f"{WISDOM if os.environ.get('ERKN_FFTW_WISDOM') else OWN_PLANS}; "
+                f"median over {rounds} rounds of Python / C++, a round one sample of each "
+                "side for every cell in turn (a cell's samples spread over the whole run), "
+                f"each sample at least {1e3 * min_sample:.0f} ms of C++ runs. "
                 f"Cells met (target <= {TARGET}): {met} / {len(rows)}.\n\n"
                 "| scene | method | steps | C++ ms per run | Python / C++ | |\n"
                 "|---|---|--:|--:|--:|---|\n")
