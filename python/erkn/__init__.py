@@ -88,11 +88,12 @@ class Options(_erkn._Options):
         return "erkn.Options(" + ", ".join(f"{k}={v!r}" for k, v in self.asdict().items()) + ")"
 
     @staticmethod
-    def _of(options, **shortcuts):
-        """A new Options from None, an Options or a dict, with the shortcuts not None set (the
-        shared defaults for None and no shortcut: callers hand the result to C++, which copies
-        it, and never change it)."""
-        if options is None and list(shortcuts.values()).count(None) == len(shortcuts):
+    def _of(options, energy_tolerance=None, check_stability=None):
+        """A new Options from None, an Options or a dict, with the shortcuts (the two fields
+        solve and Integrator take as arguments) set where not None (the shared defaults for
+        None and no shortcut: callers hand the result to C++, which copies it, and never change
+        it)."""
+        if options is None and energy_tolerance is None and check_stability is None:
             return _DEFAULT_OPTIONS
         if options is None:
             out = Options()
@@ -103,7 +104,8 @@ class Options(_erkn._Options):
         else:
             raise Error("options must be an erkn.Options or a dict of its fields; got "
                         + type(options).__name__)
-        for name, value in shortcuts.items():
+        for name, value in (("energy_tolerance", energy_tolerance),
+                            ("check_stability", check_stability)):
             if value is not None:
                 setattr(out, name, value)
         return out
@@ -225,6 +227,8 @@ def _real(x, name):
 
 def _every(every):
     """The output interval as an int in [1, 2^53]; a float must be integral (2.5 is refused)."""
+    if type(every) is int and 1 <= every <= 2**53:  # (the common case, as it is)
+        return every
     try:
         n = int(every)
         integral = n == every
@@ -437,25 +441,27 @@ def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None
         method, h = choice["method"], choice["h"]
     elif h is None or method == "auto":
         raise Error("solve: give h (and a method), or tol= to let erkn choose them")
-    # (erkn.Integrator's construction and run, through the C++ class: its Python subclass's
-    # calls cost a microsecond, a sixth of a short solve's fixed cost)
-    run = _erkn._Integrator(*_integrator_arguments(
-        M, grad, q0, p0, h, method or _DEFAULT_METHOD, t0, potential, hessian, options,
-        energy_tolerance, check_stability, hessian_vector_product))
+    # (erkn.Integrator's construction and run in one call to C++, the integrator kept in
+    # `holder` for the statistics, energies and a failed run's output: see _construct_and_run)
     if t_eval is not None:
         t_eval = np.ascontiguousarray(t_eval, dtype=float)
-    later = run._energy_can_wait
+    holder = []
     try:
-        t, q, p, energy, found, stopped = run._run(
-            *_run_arguments(t0, t1, t_eval, every, not later, events, progress))
+        name, later, (t, q, p, energy, found, stopped) = _erkn._construct_and_run(
+            holder, *_integrator_arguments(M, grad, q0, p0, h, method or _DEFAULT_METHOD, t0,
+                                           potential, hessian, options, energy_tolerance,
+                                           check_stability, hessian_vector_product),
+            *_run_arguments(t0, t1, t_eval, every, True, events, progress))
     except BaseException as e:  # keep the output up to the last completed step (if one began)
-        if run._partial is not None:
-            t, q, p, energy, found, _ = run._partial
-            e.solution = Solution(t, q, p, _energies(run, q, p) if later else energy,
+        if holder and holder[0]._partial is not None:
+            run = holder[0]
+            t, q, p, energy, found, _ = run._partial  # (energy None: left for later, or no U)
+            e.solution = Solution(t, q, p, _energies(run, q, p) if energy is None else energy,
                                   run.statistics, run.method, choice, found)
         raise
+    run = holder[0]
     return Solution(t, q, p, _energies(run, q, p) if later else energy,
-                    lambda: run.statistics, run.method, choice, found, stopped)
+                    lambda: run.statistics, name, choice, found, stopped)
 
 
 def _energies(run, q, p):

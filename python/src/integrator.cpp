@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include <limits>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -224,6 +225,25 @@ class PyIntegrator {
   py::object partial_ = py::none();
 };
 
+// erkn.solve's construction and run() in one call from Python: each call through pybind11 costs
+// ~1.5k instructions (argument and self casts, type lookups), and solve made four (the
+// constructor, _run, _energy_can_wait, method) of a 1-step solve's ~56k (callgrind, Duffing,
+// Strang). The integrator joins `holder` before it runs, so that a failed run's output stays
+// reachable (its _partial). With `energy`, the energies are computed now only if they cannot wait
+// (Python callbacks). Returns (the method's name, energies left for later, run()'s tuple).
+py::tuple construct_and_run(py::list holder, const std::string& method, const PySystem& system,
+                            double h, const VectorArg& q0, const VectorArg& p0, double t0,
+                            const Options& options, double t_end, const py::object& t_eval,
+                            long every, bool energy, const py::object& events,
+                            const py::object& progress) {
+  auto owned = std::make_unique<PyIntegrator>(method, system, h, q0, p0, t0, options);
+  PyIntegrator& run = *owned;
+  holder.append(py::cast(std::move(owned)));
+  const bool later = energy && run.energy_can_wait();
+  py::tuple out = run.run(t_end, t_eval, every, energy && !later, events, progress);
+  return py::make_tuple(std::string(run.get().method().name()), later, std::move(out));
+}
+
 }  // namespace
 
 void bind_integrator(py::module_& m) {
@@ -268,8 +288,11 @@ void bind_integrator(py::module_& m) {
       .def_property_readonly(
           "_options", [](PyIntegrator& r) { return r.get().options(); }, "a copy")
       .def_property_readonly("_partial", &PyIntegrator::partial)
-      .def("_energies", &PyIntegrator::energies, py::arg("q"), py::arg("p"))
-      .def_property_readonly("_energy_can_wait", &PyIntegrator::energy_can_wait);
+      .def("_energies", &PyIntegrator::energies, py::arg("q"), py::arg("p"));
+  m.def("_construct_and_run", &construct_and_run, py::arg("holder"), py::arg("method"),
+        py::arg("system"), py::arg("h"), py::arg("q0"), py::arg("p0"), py::arg("t0"),
+        py::arg("options"), py::arg("t_end"), py::arg("t_eval"), py::arg("every"),
+        py::arg("energy"), py::arg("events"), py::arg("progress"));
 }
 
 }  // namespace erkn::python

@@ -81,6 +81,31 @@ def test_builtin_energies_wait_until_asked_for_and_equal_the_runs_own():
     assert partial.energy.shape == partial.t.shape and np.isfinite(partial.energy).all()
 
 
+def test_python_energies_are_computed_in_the_run_and_equal_the_integrators():
+    # A Python U: the energies cannot wait (calling U later could fail where the run did not),
+    # so solve's one C++ call computes them during the run; they equal Integrator.run's, and a
+    # failed run's partial solution has them for the rows it kept.
+    M = erkn.circulant(np.array([2.0, -1.0, 0.0, -1.0]))
+    q0, p0 = np.array([0.3, -0.2, 0.1, 0.4]), np.array([0.1, 0.0, -0.3, 0.2])
+    kw = dict(potential=lambda q: float(np.sum(1 - np.cos(q))), h=0.05, method="Strang")
+    sol = erkn.solve(M, np.sin, q0=q0, p0=p0, t_span=(0, 2), every=8, **kw)
+    assert isinstance(sol._energy, np.ndarray)
+    run = erkn.Integrator(M, np.sin, q0=q0, p0=p0, **kw)
+    t, q, _, energy, _, _ = run.run(2.0, every=8)
+    assert np.array_equal(sol.t, t) and np.array_equal(sol.q, q)
+    assert np.array_equal(sol.energy, energy)
+    assert sol.method == "Strang" and sol.stats["steps"] == 40
+    # Negative control: another run's energies differ.
+    other = erkn.solve(M, np.sin, q0=2 * q0, p0=p0, t_span=(0, 2), every=8, **kw)
+    assert np.abs(other.energy - energy).max() > 1e-3
+    with pytest.raises(erkn.Error, match="energy monitor") as failure:
+        erkn.solve(M, np.sin, q0=q0, p0=p0, t_span=(0, 2), energy_tolerance=1e-12, **kw)
+    partial = failure.value.solution
+    assert 0 < partial.t.size < 41 and partial.energy.shape == partial.t.shape
+    kept = erkn.solve(M, np.sin, q0=q0, p0=p0, t_span=(0, partial.t[-1]), **kw)
+    assert np.array_equal(partial.energy, kept.energy)
+
+
 def _explicit_methods():
     return [m["name"] for m in erkn.methods()
             if not np.diag(np.asarray(erkn.tableau(m["name"])["abar"])).any()]
