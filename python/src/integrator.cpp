@@ -10,6 +10,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "bindings.hpp"
@@ -21,12 +22,28 @@
 namespace erkn::python {
 namespace {
 
-// A (rows x cols) C-order array owning `data` (moved, not copied).
-py::array_t<double> to_numpy(std::vector<double>&& data, py::ssize_t rows, py::ssize_t cols) {
-  auto* owner = new std::vector<double>(std::move(data));
-  py::capsule free(owner, [](void* p) { delete static_cast<std::vector<double>*>(p); });
-  if (cols < 0) return py::array_t<double>({rows}, owner->data(), free);
-  return py::array_t<double>({rows, cols}, owner->data(), free);
+// `value` moved to the heap and the capsule that deletes it, the base of NumPy arrays on it.
+template <class T>
+std::pair<T*, py::capsule> owned(T&& value) {
+  auto* heap = new T(std::move(value));
+  return {heap, py::capsule(heap, [](void* v) { delete static_cast<T*>(v); })};
+}
+
+// A C-order float64 array of shape (rows) (cols < 0) or (rows, cols) on `data` (no copy), which
+// `base` keeps alive. NumPy's C API through pybind11's table: py::array_t's constructor builds
+// its shape and strides in heap vectors (callgrind: ~1.2k instructions an array).
+py::object array_on(double* data, py::ssize_t rows, py::ssize_t cols, const py::capsule& base) {
+  auto& api = py::detail::npy_api::get();
+  Py_intptr_t shape[2] = {rows, cols};
+  PyObject* a = api.PyArray_NewFromDescr_(
+      api.PyArray_Type_, api.PyArray_DescrFromType_(py::detail::npy_api::NPY_DOUBLE_),
+      cols < 0 ? 1 : 2, shape, nullptr, data, data ? py::detail::npy_api::NPY_ARRAY_WRITEABLE_ : 0,
+      nullptr);
+  if (!a) throw py::error_already_set();
+  auto array = py::reinterpret_steal<py::object>(a);
+  if (data && api.PyArray_SetBaseObject_(a, base.inc_ref().ptr()) != 0)
+    throw py::error_already_set();
+  return array;
 }
 
 // Output of a run: times, states and (with a potential) energies, row k for time k.
@@ -40,14 +57,17 @@ struct Output {
     p.insert(p.end(), pk.data(), pk.data() + d);
     if (energy) H.push_back(run.energy(qk, pk));
   }
-  py::tuple to_python() {
-    const auto n = py::ssize_t(t.size());
-    py::object E = py::none();
-    if (energy) E = to_numpy(std::move(H), n, -1);
-    return py::make_tuple(to_numpy(std::move(t), n, -1), to_numpy(std::move(q), n, d),
-                          to_numpy(std::move(p), n, d), E);
-  }
 };
+
+// (t, q, p, energies or None): arrays on the output's vectors, which one capsule owns.
+py::tuple to_python(Output&& run_output) {
+  const auto n = py::ssize_t(run_output.t.size());
+  const auto [out, base] = owned(std::move(run_output));
+  const py::ssize_t d = out->d;
+  const py::object E = out->energy ? array_on(out->H.data(), n, -1, base) : py::none();
+  return py::make_tuple(array_on(out->t.data(), n, -1, base), array_on(out->q.data(), n, d, base),
+                        array_on(out->p.data(), n, d, base), E);
+}
 
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
@@ -75,7 +95,8 @@ class PyIntegrator {
     std::vector<double> H;
     for (Eigen::Index k = 0; k < q.rows(); ++k)
       H.push_back(run_.energy(q.row(k).transpose(), p.row(k).transpose()));
-    return to_numpy(std::move(H), py::ssize_t(q.rows()), -1);
+    const auto [heap, base] = owned(std::move(H));
+    return array_on(heap->data(), py::ssize_t(q.rows()), -1, base);
   }
   /// Energies may wait until asked for: U is C++ (a built-in), so computing them later cannot
   /// fail where the run did not.
@@ -181,7 +202,7 @@ class PyIntegrator {
                    bool stopped) {
     py::object hits = py::none();
     if (found) hits = hits_to_python(*found, py::len(events), run_.q().size());
-    const py::tuple o = out.to_python();
+    const py::tuple o = to_python(std::move(out));
     return py::make_tuple(o[0], o[1], o[2], o[3], hits, stopped);
   }
 

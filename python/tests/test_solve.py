@@ -106,6 +106,31 @@ def test_python_energies_are_computed_in_the_run_and_equal_the_integrators():
     assert np.array_equal(partial.energy, kept.energy)
 
 
+def test_output_arrays_outlive_the_solution_and_share_one_owner():
+    # t, q, p and the energies view the run's output vectors (no copy), which one capsule owns:
+    # the arrays stay valid and writable after the solution and its integrator are gone, and
+    # writing into one leaves the others as they were.
+    import gc
+
+    M = erkn.circulant(np.array([2.0, -1.0, 0.0, -1.0]))
+    q0, p0 = np.array([0.3, -0.2, 0.1, 0.4]), np.array([0.1, 0.0, -0.3, 0.2])
+    kw = dict(q0=q0, p0=p0, t_span=(0, 2), h=0.05, method="Strang", every=4)
+    sol = erkn.solve(M, "sine", **kw)
+    t, q, p, energy = sol.t, sol.q, sol.p, sol.energy
+    assert q.base is t.base and p.base is t.base and energy.base is not None
+    assert q.shape == p.shape == (11, 4) and t.shape == energy.shape == (11,)
+    assert all(a.flags.writeable and a.flags.c_contiguous for a in (t, q, p, energy))
+    kept = [a.copy() for a in (t, q, p, energy)]
+    del sol
+    gc.collect()
+    junk = [erkn.solve(M, "sine", **kw).q for _ in range(20)]  # (reuse any freed memory)
+    assert all(np.array_equal(a, b) for a, b in zip((t, q, p, energy), kept))
+    q[:] = 0.0
+    assert np.array_equal(p, kept[2]) and np.array_equal(t, kept[0])
+    # Negative control: the other runs' arrays are their own, not these.
+    assert not np.shares_memory(junk[0], q) and np.array_equal(junk[0], kept[1])
+
+
 def _explicit_methods():
     return [m["name"] for m in erkn.methods()
             if not np.diag(np.asarray(erkn.tableau(m["name"])["abar"])).any()]
