@@ -30,7 +30,7 @@ template <class Space, class Coef>
   // latency hides its division and root: formed at the measurement, at the end of a stage, they
   // were ~19 % of this loop's samples (perf, P2, SERKN1s2(1)).
   if (StageRecord& r = record_[i]; r.due_den2 > 0)
-    r.theta = std::sqrt(r.due_num2 / r.due_den2), r.due_den2 = 0;
+    set_theta(r, std::sqrt(r.due_num2 / r.due_den2)), r.due_den2 = 0;
   for (int it = 1; it <= max_iterations; ++it) {
     if (it > 1) space_.to_physical(Q_hat, x_.Q);  // (start_stage did it for the guess)
     stage_force(i, Q_hat, G, stats);
@@ -88,9 +88,12 @@ void StageSolver<Space, Coef>::keep_iterate(const Work& Q_hat) {
 // max_theta above round-off (stagnation at round-off converges) or when the tolerance is out of
 // reach (too_slow), else iterate on. (delta's square root is formed only on the way to another
 // iteration, and too_slow's theta from it with one division.)
+// (Always inlined: GCC left it out of line in a larger step, a call per iteration: P2,
+// RKN1s2(1) +22 instructions per grad U.)
 template <class Space, class Coef>
-auto StageSolver<Space, Coef>::verdict(int i, int it, Change c, double& delta_old, int& extra) const
-    -> Verdict {
+[[gnu::always_inline]] inline auto StageSolver<Space, Coef>::verdict(int i, int it, Change c,
+                                                                     double& delta_old,
+                                                                     int& extra) const -> Verdict {
   if (within(c, delta_old, options_.tolerance)) {
     if (!reset_tightening(c, delta_old, extra)) return Verdict::converged;
     delta_old = std::sqrt(c.X / c.N);
@@ -175,17 +178,25 @@ bool StageSolver<Space, Coef>::too_slow(int i, int it, double theta, double delt
 // iterated to round-off (erkn_stage_evaluations, "vs tol 0"), at a hundredth of it by < 2e-11.
 // theta_s/(1-theta_s) delta weight_i <= kFirstShare * tolerance with theta_s = kThetaSafety theta
 // < 1/2 (else never), delta^2 = X / N: multiplied out, X (theta_s weight_i)^2 <= (kFirstShare
-// tolerance (1 - theta_s))^2 N (theta_s = 0 passes). Formed here rather than when theta is
-// measured: there the products waited on its division and square root at the end of the stage
-// (perf, P2: SERKN1s2(1) ~6 % more CPU per grad U).
+// tolerance (1 - theta_s))^2 N (theta_s = 0 passes), the factors formed with theta (set_theta).
 template <class Space, class Coef>
 bool StageSolver<Space, Coef>::contraction_proves(int i, Change c) {
   StageRecord& r = record_[i];
   if (r.theta < 0 || ++r.theta_age >= kThetaRefresh) return false;
-  const double theta = kThetaSafety * r.theta;
-  if (!(theta < 0.5)) return false;
-  const double lhs = theta * r.weight, rhs = kFirstShare * options_.tolerance * (1 - theta);
-  return c.X * (lhs * lhs) <= (rhs * rhs) * c.N;
+  return r.first_stop && c.X * r.proof_X <= r.proof_N * c.N;
+}
+
+// r.theta = theta and contraction_proves' factors from it. Formed at the stage's next solve,
+// before its first evaluation, whose latency hides theta's division and root and these products:
+// at the end of the measuring stage they waited on them (perf, P2: SERKN1s2(1) ~6 % more CPU per
+// grad U); formed at every first iteration they were ~10 of P2's ~280 instructions per stage.
+template <class Space, class Coef>
+void StageSolver<Space, Coef>::set_theta(StageRecord& r, double theta) const {
+  r.theta = theta;
+  const double theta_s = kThetaSafety * theta;
+  r.first_stop = theta_s < 0.5;
+  const double lhs = theta_s * r.weight, rhs = kFirstShare * options_.tolerance * (1 - theta_s);
+  r.proof_X = lhs * lhs, r.proof_N = rhs * rhs;
 }
 
 // theta along the first update, |h^2 abar_ii (g(Q_1) - g(Q_0))| / |Q_1 - Q_0|, with g(Q_0) in

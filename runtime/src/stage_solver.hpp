@@ -72,6 +72,10 @@ class StageSolver {
     double weight = 0;                  // max(1, |bbar_i| / |abar_ii|, |b_i| / (h |abar_ii|))
     double newton_cost = 0;             // evaluations of its last Newton solve; 0: none
     bool explicit_stage = false;        // abar_ii = 0: Q_i = r_i, one evaluation
+    // contraction_proves' factors, formed with theta (set_theta): whether theta allows a
+    // first-iteration stop, (theta_s weight)^2 and (kFirstShare tolerance (1 - theta_s))^2.
+    bool first_stop = false;
+    double proof_X = 0, proof_N = 0;
   };
   // Newton's workspace (allocated at the first fallback): dense (d <= kDenseNewtonMaxD) or
   // Newton-Krylov.
@@ -94,7 +98,21 @@ class StageSolver {
   };
   enum class Verdict { iterate, converged, failed };
 
+  // Stage i: inlined into solve with a fixed D (as calls, their frames and the reloads of what
+  // they read through members were ~80 instructions per stage, P2), one call otherwise.
+  template <class State>
+  [[gnu::always_inline]] void stage(int i, const State& q_hat, const State& p_hat,
+                                    Statistics& stats) {
+    start_stage(i, q_hat, p_hat);
+    solve_stage(i, stats);
+  }
+  template <class State>
+  [[gnu::noinline]] void stage_call(int i, const State& q_hat, const State& p_hat,
+                                    Statistics& stats) {
+    stage(i, q_hat, p_hat, stats);
+  }
   void solve_stage(int i, Statistics& stats);
+  [[gnu::noinline, gnu::cold]] void fall_back(int i, Statistics& stats);
   template <class State>
   void start_stage(int i, const State& q_hat, const State& p_hat);
   bool fixed_point(int i, Statistics& stats);
@@ -109,6 +127,7 @@ class StageSolver {
   static double relative_change2(double change2, double norm2);
   bool too_slow(int i, int it, double theta, double delta_old) const;
   bool contraction_proves(int i, Change c);
+  void set_theta(StageRecord& r, double theta) const;
   static bool measures_contraction(double delta_first);
   void record_contraction(int i, double first2, Change c, double delta_first, double measure2);
   static double square(double x) { return x * x; }
@@ -250,15 +269,17 @@ void StageSolver<Space, Coef>::solve(const State& q_hat, const State& p_hat, con
                                      Statistics& stats) {
   at_ = &at;
   for (int i = 0; i < s_; ++i) {
-    start_stage(i, q_hat, p_hat);
-    solve_stage(i, stats);
+    if constexpr (Space::kFixed)
+      stage(i, q_hat, p_hat, stats);
+    else
+      stage_call(i, q_hat, p_hat, stats);
     if (predictor_.adapt_due(i))
       predictor_.adapt(i, Space::co(k_.abar(i, i)), x_.guess_hat, x_.Q_hat_new, x_.g_first_hat);
   }
 }
 
 template <class Space, class Coef>
-void StageSolver<Space, Coef>::solve_stage(int i, Statistics& stats) {
+[[gnu::always_inline]] inline void StageSolver<Space, Coef>::solve_stage(int i, Statistics& stats) {
   if (record_[i].explicit_stage) {  // (Q = r exactly: its gradient is the stage's)
     stage_force(i, x_.Q_hat, G(i), stats);
     ++stats.stage_iterations;
@@ -268,7 +289,12 @@ void StageSolver<Space, Coef>::solve_stage(int i, Statistics& stats) {
   // (With a fixed D the fixed point inlined into the step: its call and frame, and the reloads
   // of what it reads through members, were part of its ~90 instructions per call beyond the
   // iterations, P2.)
-  if (Space::kFixed ? fixed_point(i, stats) : fixed_point_call(i, stats)) return;
+  if (!(Space::kFixed ? fixed_point(i, stats) : fixed_point_call(i, stats))) fall_back(i, stats);
+}
+
+// Newton where the fixed point failed.
+template <class Space, class Coef>
+void StageSolver<Space, Coef>::fall_back(int i, Statistics& stats) {
   ++stats.newton_fallbacks;
   const long before = stats.gradient_evaluations;
   if constexpr (Space::kDenseNewton) {
@@ -287,7 +313,8 @@ void StageSolver<Space, Coef>::solve_stage(int i, Statistics& stats) {
 // guess Q = r_i - h^2 abar_ii g_pred with g_pred extrapolated from the known stage gradients.
 template <class Space, class Coef>
 template <class State>
-void StageSolver<Space, Coef>::start_stage(int i, const State& q_hat, const State& p_hat) {
+[[gnu::always_inline]] inline void StageSolver<Space, Coef>::start_stage(int i, const State& q_hat,
+                                                                         const State& p_hat) {
   const auto co = [](const auto& value) { return Space::co(value); };
   compute_into(x_.r_hat, [&](auto& r) {
     r = co(k_.phi0c(i)) * q_hat + co(k_.hcphi1c(i)) * p_hat;
