@@ -364,8 +364,14 @@ class ExplicitStepper final : public StepperBase {
     stats.stage_iterations += counts.gradients;
     count(counts, stats);
   }
+  // (The modified kicks' and the processor's counts behind a branch: added with the gradients',
+  // the compiler loaded gradients and products as one vector spanning passes()' two scalar
+  // stores, which this machine does not store-forward.)
   void count(const Counts& counts, Statistics& stats) const {
     stats.gradient_evaluations += counts.gradients;
+    if (counts.products != 0 || counts.applications != 0) count_rare(counts, stats);
+  }
+  void count_rare(const Counts& counts, Statistics& stats) const {
     stats.hessian_vector_products += counts.products;
     if (!system_.hessian_vector_product) stats.hessian_evaluations += counts.products;
     stats.processor_applications += counts.applications;

@@ -223,6 +223,13 @@ inline bool Integrator::took(long steps) {
   return guard_->due_after(steps);
 }
 
+// (Inline, the monitor out of line: callgrind, Duffing Strang by step(): 31 -> ~10 instructions
+// per step.)
+inline void Integrator::checked_step(detail::StepperBase& stepper) {
+  if (options_.energy_tolerance > 0) return monitored_step(stepper);
+  stepper.step(statistics_.steps + 1, t(), statistics_);
+}
+
 // The batch's n steps; done: those completed (on error: the ones before the step that failed).
 inline void Integrator::take(long n, long& done) {
   // One step (step(), the energy monitor's batches): the stepper's step(), without the loop
@@ -366,12 +373,8 @@ Integrator::Timer::~Timer() {
   run_->timing_ = false;
 }
 
-void Integrator::checked_step(detail::StepperBase& stepper) {
-  // (The stepper counts nothing for a step that fails.)
-  if (options_.energy_tolerance <= 0) {
-    stepper.step(statistics_.steps + 1, t(), statistics_);
-    return;
-  }
+// (The stepper counts nothing for a step that fails.)
+void Integrator::monitored_step(detail::StepperBase& stepper) {
   monitor_.saved_q = q(), monitor_.saved_p = p();
   const Statistics before = statistics_;
   stepper.step(statistics_.steps + 1, t(), statistics_);

@@ -304,7 +304,8 @@ class Integrator {
     double H_0 = 0;
     Eigen::VectorXd saved_q, saved_p;
   } monitor_;
-  void checked_step(detail::StepperBase& stepper);  // rolls back statistics, energy monitor
+  void checked_step(detail::StepperBase& stepper);    // rolls back statistics, energy monitor
+  void monitored_step(detail::StepperBase& stepper);  // (checked_step with the energy monitor)
   double monitored_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& p) const;
   void check_energy(detail::StepperBase& stepper);
   // Blow-up guard (Options::blowup_guard).
