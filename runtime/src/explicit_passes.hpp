@@ -27,11 +27,13 @@
 
 namespace erkn::detail {
 
-/// The flow of (q, p) with coefficients cos, cos - 1, sin(w tau)/w, -w sin(w tau) (T: a double
-/// or a fixed-size array, C: a double or an array of T's size).
+/// The flow of (q, p) with coefficients c = cos (compensated: cos - 1), sin(w tau)/w,
+/// -w sin(w tau) (T: a double or a fixed-size array, C: a double or an array of T's size).
 template <bool kKahan, class T, class C>
-EIGEN_ALWAYS_INLINE void flow_update(const C& cos, const C& cm1, const C& sinc, const C& msinc,
-                                     T& q, T& p, T& eq, T& ep) {
+EIGEN_ALWAYS_INLINE void flow_update(const C& c, const C& sinc, const C& msinc, T& q, T& p, T& eq,
+                                     T& ep) {
+  C cos = c, cm1 = c;
+  if constexpr (kKahan) cos = cm1 + 1.0;  // (FlowCoefficients' plain cosine, bit for bit)
   const T q0 = q, p0 = p;
   const T sp = sinc * p0, mq = msinc * q0;
   p = mq + cos * p0;
@@ -91,10 +93,10 @@ struct PassArrays {
 };
 
 /// A flow's coefficients for a pass: C = double (scalar M: one value) or const double* (one per
-/// eigen coordinate, shared by its kLanes doubles).
+/// eigen coordinate, shared by its kLanes doubles); c is cos (compensated: cos - 1).
 template <class C>
 struct PassFlow {
-  C cos, cm1, sinc, msinc;
+  C c, sinc, msinc;
   static double at(double value, Eigen::Index) { return value; }
   static double at(const double* values, Eigen::Index e) { return values[e]; }
 };
@@ -180,7 +182,7 @@ EIGEN_ALWAYS_INLINE PassBits pass_body(Eigen::Index n, const double* __restrict 
                                        const double* __restrict ep_in, double* __restrict q,
                                        double* __restrict p, double* __restrict eq,
                                        double* __restrict ep, double hd, const double* __restrict g,
-                                       double* __restrict save, C cos, C cm1, C sinc, C msinc,
+                                       double* __restrict save, C c, C sinc, C msinc,
                                        double* __restrict Q, double Q_scale) {
   using L = Lane<kLanes>;
   using V = typename L::Value;
@@ -210,13 +212,12 @@ EIGEN_ALWAYS_INLINE PassBits pass_body(Eigen::Index n, const double* __restrict 
     if constexpr (kKind.flow) {
       if constexpr (kKahan) {
         const V qn = lane_load<V>(q_in + x), pn = lane_load<V>(p_in + x);
-        flow_increment<kHaveQ, kHaveP>(F::at(cm1, e), F::at(sinc, e), F::at(msinc, e), qn, pn, qx,
+        flow_increment<kHaveQ, kHaveP>(F::at(c, e), F::at(sinc, e), F::at(msinc, e), qn, pn, qx,
                                        px);
         Qx = qn + qx;
       } else {
         V unused{};
-        flow_update<false>(F::at(cos, e), F::at(cm1, e), F::at(sinc, e), F::at(msinc, e), qx, px,
-                           unused, unused);
+        flow_update<false>(F::at(c, e), F::at(sinc, e), F::at(msinc, e), qx, px, unused, unused);
         Qx = qx;
       }
     }
@@ -277,12 +278,11 @@ EIGEN_ALWAYS_INLINE PassBits pass(Eigen::Index n, const PassArrays& from, const 
 #ifdef ERKN_AVX_PASSES
   if (kAvxPasses)
     return pass_loop_avx<kKahan, kKind, kLanes, C>(n, in.q, in.p, in.eq, in.ep, to.q, to.p, to.eq,
-                                                   to.ep, hd, g, save, f.cos, f.cm1, f.sinc,
-                                                   f.msinc, Q, Q_scale);
+                                                   to.ep, hd, g, save, f.c, f.sinc, f.msinc, Q,
+                                                   Q_scale);
 #endif
   return pass_loop<kKahan, kKind, kLanes, C>(n, in.q, in.p, in.eq, in.ep, to.q, to.p, to.eq, to.ep,
-                                             hd, g, save, f.cos, f.cm1, f.sinc, f.msinc, Q,
-                                             Q_scale);
+                                             hd, g, save, f.c, f.sinc, f.msinc, Q, Q_scale);
 }
 
 }  // namespace erkn::detail

@@ -226,7 +226,7 @@ class ExplicitStepper final : public StepperBase {
         kahan_(options.compensated_summation),
         rkn_(method.kind() == Kind::rkn),
         kicks_(method, h),
-        flows_(method, h, lambda),
+        flows_(method, h, lambda, options.compensated_summation),
         transform_(std::move(transform)),
         M_(m_operator(system_.M, d)),
         arrays_(transform_.spectral_size(d)),
@@ -642,8 +642,8 @@ class ExplicitStepper final : public StepperBase {
     if constexpr (kind.kick && !kind.flow)
       for (int e = 0; e < D; ++e) bits.p |= nonfinite_bits(v.p[e]);
     if constexpr (kind.flow) {
-      flow_update<kKahan>(fixed(flows_.cos(k)), fixed(flows_.cm1(k)), fixed(flows_.sinc(k)),
-                          fixed(flows_.msinc(k)), v.q, v.p, v.eq, v.ep);
+      flow_update<kKahan>(fixed(flows_.cosine(k)), fixed(flows_.sinc(k)), fixed(flows_.msinc(k)),
+                          v.q, v.p, v.eq, v.ep);
       if (kind.stage)
         for (int e = 0; e < D; ++e) physical_.Q[e] = v.q[e];
     }
@@ -660,10 +660,10 @@ class ExplicitStepper final : public StepperBase {
   // Flow k's coefficients: the one value of each (scalar M) or pointers to the arrays.
   EIGEN_ALWAYS_INLINE auto flow_of(int k) const {
     if constexpr (std::is_same_v<Coef, double>)
-      return PassFlow<double>{flows_.cos(k), flows_.cm1(k), flows_.sinc(k), flows_.msinc(k)};
+      return PassFlow<double>{flows_.cosine(k), flows_.sinc(k), flows_.msinc(k)};
     else
-      return PassFlow<const double*>{flows_.cos(k).data(), flows_.cm1(k).data(),
-                                     flows_.sinc(k).data(), flows_.msinc(k).data()};
+      return PassFlow<const double*>{flows_.cosine(k).data(), flows_.sinc(k).data(),
+                                     flows_.msinc(k).data()};
   }
 
   // The force at the stage q (eigen coordinates; already in physical_.Q when have_Q, and known

@@ -2,8 +2,10 @@
 // c_s = 1): an explicit method (abar_ii = 0) is this flow alternated with kicks
 // p -= h d_k grad U(Q_k) (docs/design.md §1, the explicit family). Per eigenvalue lambda
 // (w = sqrt(lambda), x = w tau) the flow is [q; p] <- [cos x, sin(x)/w; -w sin x, cos x] [q; p];
-// cos x - 1 = -2 sin^2(x/2) is kept as well, without cancellation, for the increments of
-// compensated summation. One sincos of x/2 gives all of them (sin x = 2 sin(x/2) cos(x/2)), and a
+// compensated summation reads cos x - 1 = -2 sin^2(x/2) instead, without cancellation, and never
+// cos x (increment form, explicit_passes.hpp), so each flow keeps one of the two (plain passes
+// never read cos x - 1): three arrays per flow, not four (at 256^2 a flow's array is 65 fresh
+// pages per construction). One sincos of x/2 gives all of them (sin x = 2 sin(x/2) cos(x/2)), and a
 // tau_k equal to an earlier one (symmetric methods: every tau but the middle one) shares its
 // coefficients. Flow s + 1 is the merged one, over tau_s + tau_0: the last flow of a step and the
 // first of the next are one exact flow.
@@ -22,15 +24,16 @@ namespace erkn::detail {
 
 template <class Coef>
 class FlowCoefficients {
-  // (Allocated with a scalar M too: 4 (kMaxStages + 2) doubles inside would make the explicit
+  // (Allocated with a scalar M too: 3 (kMaxStages + 2) doubles inside would make the explicit
   // stepper at d <= 4 larger than the blocks glibc's per-thread cache serves, 1032 bytes.)
-  using Slots = CoefficientSlots<Coef, 4 * (kMaxStages + 2), false>;
+  using Slots = CoefficientSlots<Coef, 3 * (kMaxStages + 2), false>;
 
  public:
   using Value = typename Slots::Value;
 
-  FlowCoefficients(const Method& method, double h, const Eigen::VectorXd& lambda)
-      : slots_(4 * distinct_taus(method, h), lambda.size()) {
+  /// compensated: cosine() is cos(w tau) - 1 (compensated summation's), else cos(w tau).
+  FlowCoefficients(const Method& method, double h, const Eigen::VectorXd& lambda, bool compensated)
+      : slots_(3 * distinct_taus(method, h), lambda.size()) {
     for (Eigen::Index e = 0; e < lambda.size(); ++e) {
       const double w = std::sqrt(lambda[e]), inv_w = w == 0 ? 0 : 1 / w;
       for (int k = 0, next = 0; k <= method.stages() + 1; ++k) {
@@ -42,10 +45,9 @@ class FlowCoefficients {
         const bool still = half == 0;
         const double s = still ? half : std::sin(half), c = still ? 1.0 : std::cos(half);
         const double cm1 = -2 * s * s, sinc = w == 0 ? t : 2 * s * c * inv_w;
-        slots_.set(4 * slot_[k], e, 1 + cm1);
-        slots_.set(4 * slot_[k] + 1, e, cm1);
-        slots_.set(4 * slot_[k] + 2, e, sinc);
-        slots_.set(4 * slot_[k] + 3, e, -lambda[e] * sinc);
+        slots_.set(3 * slot_[k], e, compensated ? cm1 : 1 + cm1);
+        slots_.set(3 * slot_[k] + 1, e, sinc);
+        slots_.set(3 * slot_[k] + 2, e, -lambda[e] * sinc);
       }
     }
   }
@@ -53,10 +55,10 @@ class FlowCoefficients {
   bool moves(int k) const { return moves_[k]; }  ///< tau_k != 0
   /// The flow over tau_s + tau_0: the last of a step merged with the first of the next.
   static int merged(const Method& method) { return method.stages() + 1; }
-  Value cos(int k) const { return slots_.at(4 * slot_[k]); }        ///< cos(w tau_k)
-  Value cm1(int k) const { return slots_.at(4 * slot_[k] + 1); }    ///< cos(w tau_k) - 1
-  Value sinc(int k) const { return slots_.at(4 * slot_[k] + 2); }   ///< sin(w tau_k) / w
-  Value msinc(int k) const { return slots_.at(4 * slot_[k] + 3); }  ///< -w sin(w tau_k)
+  /// cos(w tau_k), or compensated cos(w tau_k) - 1 (1 + it is the plain one, bit for bit).
+  Value cosine(int k) const { return slots_.at(3 * slot_[k]); }
+  Value sinc(int k) const { return slots_.at(3 * slot_[k] + 1); }   ///< sin(w tau_k) / w
+  Value msinc(int k) const { return slots_.at(3 * slot_[k] + 2); }  ///< -w sin(w tau_k)
 
  private:
   static double tau(const Method& method, double h, int k) {

@@ -51,12 +51,13 @@ std::vector<unsigned char> outcome(bool avx, double nudge) {
     else
       return x.data();
   };
-  const C c = coefficient(b.cos), m1 = coefficient(b.cm1), s = coefficient(b.sinc),
+  // (the cosine a pass reads: cos, compensated cos - 1)
+  const C c = coefficient(kKahan ? b.cm1 : b.cos), s = coefficient(b.sinc),
           ms = coefficient(b.msinc);
   const auto run = [&](auto entry) {
     return entry(kCoordinates, b.q_in.data(), b.p_in.data(), b.eq_in.data(), b.ep_in.data(),
                  b.q.data(), b.p.data(), b.eq.data(), b.ep.data(), 0.37 * (1 + nudge), b.g.data(),
-                 b.save.data(), c, m1, s, ms, b.Q.data(), 0.25);
+                 b.save.data(), c, s, ms, b.Q.data(), 0.25);
   };
   const PassBits bits =
       avx ? run([](auto... a) { return pass_loop_avx<kKahan, kKind, kLanes, C>(a...); })
