@@ -47,14 +47,15 @@
 // state (q's in the step's last flow, p's in its last kick). Compensating every pass's sums, as
 // before, had every pass read and write eq and ep as well.
 //
-// Its cost (construction + integrate, erkn_integrate_benchmark --short: each method's defaults
-// ratio over its compensation-off ratio against the same peer, median over 3 rounds alternated
-// with a build before this change, load 2-6; the median over the 12 methods, their range, and
-// the build before in the same runs): sine-Gordon N = 512 1.038x (1.025-1.047; 1.056x),
-// N = 2048 1.033x (1.025-1.040; 1.052x), N = 8192 1.035x (1.025-1.042; 1.047x), 256^2 1.046x
-// (1.030-1.079; 1.058x). callgrind, N = 512, 40 steps: Strang 1.057x the instructions, SABA2
-// 1.039x, Yoshida4 1.032x, ABA864 1.025x, SRKN14a 1.022x (each 1.067x before); N = 32 Strang
-// 1.058x (1.063x). Duffing and stellar orbits (a fixed dimension, unchanged): 0.99-1.01x.
+// Its cost (construction + integrate; scripts/main.sh's two runs of erkn_integrate_benchmark
+// --short on main 19bad58, quiet machine, docs/benchmarks.md: each method's defaults ratio over
+// its compensation-off ratio against the same peer, median and range over the 14 explicit
+// methods and both runs, through System::gradient | the gradient compiled in): sine-Gordon
+// N = 512 1.036x (1.030-1.046) | 1.039x (1.014-1.047), N = 2048 1.034x | 1.034x, N = 8192
+// 1.036x | 1.040x, 256^2 1.046x (1.032-1.180) | 1.050x (1.036-1.100); N = 32 1.024x | 1.035x;
+// Duffing and stellar orbits (a fixed dimension) 0.99-1.02x. At N >= 512 it costs time through
+// memory more than instructions (callgrind, N = 512, SABA2: 1.014x the instructions since the
+// AVX entry of c55998a; its L1 misses: the passes' working set outgrows L1 with eq, ep).
 // What it leaves (against a long-double run of the same map with the runtime's coefficients;
 // harmonic oscillators d = 8: SABA2, Yoshida4, ABA864, SRKN14a; sine-Gordon N = 32: SABA2,
 // ABA864; N = 512: SABA2; 1e3 to 1e6 steps): errors of q and of the energy 1.5-5 orders below
@@ -62,10 +63,10 @@
 // increments themselves (~sqrt(n) eps h |w p|), in increment form 0.015-12x the previous one's
 // (e.g. 1e6 steps of the 14-stage SRKN14a, |q - q_ref| 2.2e-14 against 4.5e-15, plain 1.9e-10;
 // sine-Gordon N = 32 is chaotic: after 1e4 steps every run has left the reference).
-// That is still above the 5 % the runtime allows itself for a default in cells of the 256^2 grid
-// (ABA864 1.079x, SABA2 1.062x) and close to it elsewhere, and it stays the default all the
-// same: without it the round-off of q_n + dq grows with the number of steps (a random walk,
-// ~sqrt(n) eps |q|), which is what the energy and long-time charts show and what the paper's
+// That is within the 5 % the runtime allows itself for a default at N >= 512 by the median and
+// at its edge on the 256^2 grid (single cells up to 1.18x in one of the two runs), and it stays
+// the default: without it the round-off of q_n + dq grows with the number of steps (a random
+// walk, ~sqrt(n) eps |q|), which is what the energy and long-time charts show and what the paper's
 // claims rest on; Options::compensated_summation = false is the fast path.
 #pragma once
 
