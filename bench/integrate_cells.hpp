@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <erkn/compiled_gradient.hpp>
 #include <erkn/erkn.hpp>
@@ -48,11 +49,15 @@ inline std::vector<Scene> scenes(bool short_mode) {
           {"2-D sine-Gordon 256^2", pr::sine_gordon_2d(256), 1.0 / 40, steps(20, 10)}};
 }
 
-/// One explicit method on one scene: the contenders' median CPU ms per run and the ratios.
+/// One explicit method on one scene: the contenders' median CPU ms per run and the ratios; for
+/// erkn through System::gradient also the peer through the same std::function (callback_peer:
+/// its time over the inlined peer's) and erkn's plain and default runs over that peer's (NaN in
+/// the rows with the gradient compiled in).
 struct Cell {
   std::string scene, method;
   long steps = 0;
   double peer_ms = 0, plain = 0, deflt = 0, output = 0;
+  double callback_peer = NAN, plain_cb = NAN, deflt_cb = NAN;
 };
 /// One implicit method's CPU per grad U against the explicit path's on a scene.
 struct ImplicitCell {
@@ -85,16 +90,18 @@ inline Eigen::VectorXd output_times(const Scene& s) {
   return t;
 }
 
-/// make(options): erkn's Integrator for the run (constructed within the timed run).
+/// make(options): erkn's Integrator for the run (constructed within the timed run); callback:
+/// System::gradient for a sixth contender, the peer through it (none: nullptr).
 template <class Basis, class Gradient, class Make>
 Cell measure_cell(const Scene& s, const erkn::Method& m, const Basis& basis, Gradient g, Make make,
-                  const TimingPlan& plan, const std::string& label_suffix) {
+                  const TimingPlan& plan, const std::string& label_suffix,
+                  const erkn::System* callback) {
   erkn::Options plain_options;
   plain_options.compensated_summation = false;
   const Eigen::VectorXd times = output_times(s);
   volatile double sink = 0;  // what the observers read, so no output is optimised away
-  auto peer = [&](long segments) {
-    specialist::Peer run(m.table().c, m.table().d, m.stages(), s.h, basis, g, s.problem.q0,
+  auto peer = [&](auto gradient, long segments) {
+    specialist::Peer run(m.table().c, m.table().d, m.stages(), s.h, basis, gradient, s.problem.q0,
                          s.problem.p0);
     Eigen::VectorXd q, p;
     for (long k = 0; k < segments; ++k) {  // (one segment: the final state only)
@@ -110,21 +117,28 @@ Cell measure_cell(const Scene& s, const erkn::Method& m, const Basis& basis, Gra
                     sink = sink + q[0] + p[0];
                   });
   };
-  const std::vector<std::vector<double>> t =
-      time_rounds({[&] { peer(1); }, [&] { finish_run(make(plain_options), s, sink); },
-                   [&] { finish_run(make({}), s, sink); }, [&] { peer(s.outputs()); }, erkn_output},
-                  plan);
-  return {s.label + label_suffix,  std::string(m.name()),    s.steps,
-          1e3 * median(t[0]),      median_ratio(t[1], t[0]), median_ratio(t[2], t[0]),
-          median_ratio(t[4], t[3])};
+  std::vector<std::function<void()>> contenders = {
+      [&] { peer(g, 1); }, [&] { finish_run(make(plain_options), s, sink); },
+      [&] { finish_run(make({}), s, sink); }, [&] { peer(g, s.outputs()); }, erkn_output};
+  if (callback)
+    contenders.push_back([&] { peer(specialist::VectorCallback{callback->gradient}, 1); });
+  const std::vector<std::vector<double>> t = time_rounds(contenders, plan);
+  Cell c{s.label + label_suffix,  std::string(m.name()),    s.steps,
+         1e3 * median(t[0]),      median_ratio(t[1], t[0]), median_ratio(t[2], t[0]),
+         median_ratio(t[4], t[3])};
+  if (callback)
+    c.callback_peer = median_ratio(t[5], t[0]), c.plain_cb = median_ratio(t[1], t[5]),
+    c.deflt_cb = median_ratio(t[2], t[5]);
+  return c;
 }
 
 /// The rows of erkn with the peer's gradient compiled into its steps (erkn::make_integrator).
 inline const std::string kCompiledRows = " with templated gradient";  // (no comma: csv)
 
 /// Every explicit method with a peer: erkn with the problems library's System (System::gradient,
-/// a std::function, as users of the callback path call it), and also with the peer's gradient
-/// compiled in (erkn/compiled_gradient.hpp; rows kCompiledRows).
+/// a std::function, as users of the callback path call it; the peer through the same function
+/// too), and also with the peer's gradient compiled in (erkn/compiled_gradient.hpp; rows
+/// kCompiledRows).
 template <class Basis, class Gradient>
 void measure_scene(const Scene& s, const Basis& basis, Gradient g, const Config& cfg,
                    Results& out) {
@@ -147,8 +161,8 @@ void measure_scene(const Scene& s, const Basis& basis, Gradient g, const Config&
           return erkn::make_integrator(m, bare, compiled, s.h, s.problem.q0, s.problem.p0, o);
         return erkn::Integrator(m, sys, s.h, s.problem.q0, s.problem.p0, o);
       };
-      out.cells.push_back(
-          measure_cell(s, m, basis, g, make, cfg.plan(), templated ? kCompiledRows : ""));
+      out.cells.push_back(measure_cell(s, m, basis, g, make, cfg.plan(),
+                                       templated ? kCompiledRows : "", templated ? nullptr : &sys));
       std::fprintf(stderr, ".");
     }
   }

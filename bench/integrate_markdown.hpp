@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <string>
 
@@ -88,6 +89,41 @@ inline void markdown_cells(std::ofstream& f, const Results& r) {
       << verdict(c.ratio, kImplicitTarget) << " |\n";
 }
 
+/// What bounds a callback row's compensation-off cell: met (erkn <= the inlined peer), the
+/// opaque call (erkn <= the peer through the same std::function), or erkn.
+inline const char* callback_bound(const Cell& c) {
+  if (c.plain <= kPlainTarget) return "met";
+  return c.plain_cb <= kPlainTarget ? "the opaque call" : "erkn";
+}
+
+/// The rows through System::gradient against the peer through the same std::function.
+inline void markdown_callback(std::ofstream& f, const Results& r) {
+  int rows = 0, missed = 0, by_call = 0, plain = 0, deflt = 0;
+  for (const Cell& c : r.cells) {
+    if (std::isnan(c.callback_peer)) continue;
+    ++rows, plain += c.plain_cb <= kPlainTarget, deflt += c.deflt_cb <= kDefaultTarget;
+    missed += c.plain > kPlainTarget,
+        by_call += callback_bound(c) == std::string("the opaque call");
+  }
+  f << "\n## Through System::gradient: the opaque call and erkn\n\n"
+    << "The rows through System::gradient again, against the specialist's loop with its gradient "
+    << "through the same std::function (a copy of the System's, called on the peer's arrays kept "
+    << "as Eigen::VectorXd, so the call needs no copies; timed in the same rounds as the columns "
+    << "above): that peer's time over the inlined peer's (what the opaque call costs a loop that "
+    << "cannot inline the gradient), and erkn's runs over that peer's. Compensation off: erkn at "
+    << "or below the peer through the callback in " << plain << " / " << rows << "; of the "
+    << missed << " cells not met against the inlined peer, " << by_call
+    << " are bounded by the opaque call (a peer that must call it is as slow or slower), the "
+    << "others by erkn. Defaults (<= " << kDefaultTarget << "): " << deflt << " / " << rows
+    << ".\n\n| scene | method | peer through the callback / inlined | erkn compensation off / "
+    << "peer through the callback | defaults / peer through the callback | off's bound |\n"
+    << "|---|---|--:|--:|--:|---|\n";
+  for (const Cell& c : r.cells)
+    if (!std::isnan(c.callback_peer))
+      f << "| " << c.scene << " | " << c.method << " | " << fixed(c.callback_peer) << " | "
+        << fixed(c.plain_cb) << " | " << fixed(c.deflt_cb) << " | " << callback_bound(c) << " |\n";
+}
+
 /// Per cell |r - r_before| / r_before against the csv of an earlier run.
 inline void markdown_spread(std::ofstream& f, const Config& cfg, const std::string& now_csv) {
   const std::map<std::string, double> before = read_csv(cfg.compare), now = read_csv(now_csv);
@@ -127,6 +163,7 @@ inline void write_markdown(const Results& r, const StepsCheck* steps, const Conf
   std::ofstream f(cfg.markdown);
   markdown_header(f, r, cfg);
   markdown_cells(f, r);
+  markdown_callback(f, r);
   if (steps) markdown_steps(f, *steps);
   if (!cfg.compare.empty() && !cfg.csv.empty()) markdown_spread(f, cfg, cfg.csv);
 }

@@ -8,7 +8,10 @@
 //     the first of the next, h c_1, are one exact flow over h (1 - c_s + c_1);
 //   - when c_1 = 0 and c_s = 1, the last kick of a step and the first of the next merged into
 //     one kick with weight h (d_s + d_1) (one gradient per step fewer);
-//   - the gradient inlined: a template functor g(q, out) over Eigen arrays.
+//   - the gradient inlined: a template functor g(q, out) over Eigen arrays; or, wrapped in
+//     VectorCallback, called as a user's callback on Eigen::VectorXd (erkn::System::gradient, a
+//     std::function): the loop a specialist writes around a gradient it cannot inline, keeping the
+//     arrays the gradient reads and writes as Eigen::VectorXd so that the call needs no copies.
 // It shares no code with erkn's runtime: what it takes from a method is c and d as numbers.
 //
 //   bench::specialist::FourierBasis basis = bench::specialist::FourierBasis::circulant(col);
@@ -25,6 +28,7 @@
 #include <cstring>
 #include <numbers>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -55,6 +59,32 @@ class Buffer {
   Eigen::Index n_ = 0;
   double* data_ = nullptr;
 };
+
+/// An array of doubles as an Eigen::VectorXd, for a gradient called on Eigen::VectorXd (FFTW's
+/// plans here run on it: Eigen's 16 bytes are the alignment FFTW plans for, fftw_alignment_of).
+class VectorBuffer {
+ public:
+  VectorBuffer() = default;
+  explicit VectorBuffer(Eigen::Index n) : v_(Eigen::VectorXd::Zero(n)) {}
+  double* data() { return v_.data(); }
+  const double* data() const { return v_.data(); }
+  Eigen::Index size() const { return v_.size(); }
+  Eigen::VectorXd& vector() { return v_; }
+
+ private:
+  Eigen::VectorXd v_;
+};
+
+/// The gradient f(q, g) on Eigen::VectorXd (q const, g sized), called through whatever F is (an
+/// erkn::System::gradient: a std::function) rather than inlined.
+template <class F>
+struct VectorCallback {
+  F f;
+};
+template <class G>
+inline constexpr bool kIsVectorCallback = false;
+template <class F>
+inline constexpr bool kIsVectorCallback<VectorCallback<F>> = true;
 
 /// Scalar or diagonal M: the eigenbasis is the standard basis (D: the dimension when fixed).
 template <int D = Eigen::Dynamic>
@@ -152,6 +182,10 @@ class Peer {
  public:
   using PhysicalMap = Eigen::Map<Eigen::Array<double, Basis::kDim, 1>>;
   using ConstPhysicalMap = Eigen::Map<const Eigen::Array<double, Basis::kDim, 1>>;
+  // The arrays the gradient reads and writes (and, as well, the others): Eigen::VectorXd for a
+  // callback on Eigen::VectorXd.
+  static constexpr bool kCallback = kIsVectorCallback<Gradient>;
+  using Storage = std::conditional_t<kCallback, VectorBuffer, Buffer>;
 
   Peer(const double* c, const double* d, int s, double h, const Basis& basis, Gradient gradient,
        const Eigen::VectorXd& q0, const Eigen::VectorXd& p0)
@@ -166,8 +200,13 @@ class Peer {
     for (int k = 0; k + 1 < s; ++k) inner_.push_back(flow_index(h * (c[k + 1] - c[k])));
     wrap_ = flow_index(h * (1 - c[s - 1] + c[0]));
     post_ = flow_index(h * (1 - c[s - 1]));
-    q_ = Buffer(n_), p_ = Buffer(n_), g_ = Buffer(basis.dim());
-    if constexpr (!Basis::kIdentity) x_ = Buffer(n_), Q_ = Buffer(basis.dim()), G_ = Buffer(n_);
+    q_ = Storage(n_), p_ = Storage(n_), g_ = Storage(basis.dim());
+    if constexpr (!Basis::kIdentity) {
+      x_ = Storage(n_), Q_ = Storage(basis.dim()), G_ = Storage(n_);
+      for (const double* a : {q_.data(), p_.data(), g_.data(), x_.data(), Q_.data(), G_.data()})
+        if (kCallback && fftw_alignment_of(const_cast<double*>(a)) != 0)  // (Buffer: fftw_malloc)
+          throw std::runtime_error("specialist::Peer: an array not of FFTW's planned alignment");
+    }
     load(q0, q_), load(p0, p_);
   }
 
@@ -246,17 +285,15 @@ class Peer {
 
   // p -= w grad U(Q) with Q the current q (w = h d, divided by N in a Fourier basis).
   void kick(double w) {
-    const Eigen::Index dim = basis_.dim();
     ++evaluations_;
     if constexpr (Basis::kIdentity) {
-      PhysicalMap g(g_.data(), dim);
-      gradient_(ConstPhysicalMap(q_.data(), dim), g);
-      PhysicalMap(p_.data(), dim) -= w * g;
+      gradient(q_);
+      const Eigen::Index dim = basis_.dim();
+      PhysicalMap(p_.data(), dim) -= w * PhysicalMap(g_.data(), dim);
     } else {
       if (!fresh_) std::memcpy(x_.data(), q_.data(), sizeof(double) * size_t(n_));
       basis_.inverse(x_.data(), Q_.data());
-      PhysicalMap g(g_.data(), dim);
-      gradient_(ConstPhysicalMap(Q_.data(), dim), g);
+      gradient(Q_);
       basis_.forward(g_.data(), G_.data());
       double* __restrict p = p_.data();
       const double* __restrict G = G_.data();
@@ -265,7 +302,17 @@ class Peer {
     fresh_ = false;
   }
 
-  void load(const Eigen::VectorXd& v, Buffer& y) {
+  // g_ = grad U(Q), Q physical.
+  void gradient(Storage& Q) {
+    if constexpr (kCallback) {
+      gradient_.f(std::as_const(Q.vector()), g_.vector());
+    } else {
+      PhysicalMap g(g_.data(), basis_.dim());
+      gradient_(ConstPhysicalMap(Q.data(), basis_.dim()), g);
+    }
+  }
+
+  void load(const Eigen::VectorXd& v, Storage& y) {
     if constexpr (Basis::kIdentity) {
       std::memcpy(y.data(), v.data(), sizeof(double) * size_t(v.size()));
     } else {  // y = DFT(v) / N, so that inverse(y) = v
@@ -274,7 +321,7 @@ class Peer {
       Eigen::Map<Eigen::ArrayXd>(y.data(), n_) /= basis_.scale();
     }
   }
-  void unload(const Buffer& y, Eigen::VectorXd& v) {
+  void unload(const Storage& y, Eigen::VectorXd& v) {
     if constexpr (Basis::kIdentity) {
       std::memcpy(v.data(), y.data(), sizeof(double) * size_t(v.size()));
     } else {
@@ -294,7 +341,7 @@ class Peer {
   std::vector<int> inner_;
   std::vector<double> hd_;
   std::vector<Flow> flows_;
-  Buffer q_, p_, g_, x_, Q_, G_;
+  Storage q_, p_, g_, x_, Q_, G_;
   long evaluations_ = 0;
 };
 

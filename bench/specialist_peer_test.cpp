@@ -143,5 +143,40 @@ TEST(SpecialistPeer, AgreesWithTheIntegratorToRoundOff) {
   check_agreement(p, fourier_basis(p.M), SineGordonGradient{}, 1.0 / 40, 20, 1e-12);
 }
 
+// The peer through a callback on Eigen::VectorXd (VectorCallback: erkn_integrate_benchmark's
+// peer through System::gradient) is the same loop: with the problems library's sine-Gordon
+// gradient (sin, as SineGordonGradient) its final state has the inlined peer's bits in both
+// bases, and with a gradient scaled by 1 + 2^-40 it does not (negative control).
+template <class Basis, class Gradient>
+void check_callback_peer(const problems::Problem& p, const Basis& basis, Gradient g, double h,
+                         long n) {
+  const erkn::System sys = problems::system(p);
+  const auto scaled = [&](const Eigen::VectorXd& q, Eigen::VectorXd& out) {
+    sys.gradient(q, out);
+    out *= 1 + 0x1p-40;
+  };
+  for (const Method& m : explicit_methods()) {
+    Eigen::VectorXd q[3], v[3];
+    specialist::Peer inlined(m.table().c, m.table().d, m.stages(), h, basis, g, p.q0, p.p0);
+    specialist::Peer callback(m.table().c, m.table().d, m.stages(), h, basis,
+                              specialist::VectorCallback{sys.gradient}, p.q0, p.p0);
+    specialist::Peer nudged(m.table().c, m.table().d, m.stages(), h, basis,
+                            specialist::VectorCallback{scaled}, p.q0, p.p0);
+    inlined.run(n), callback.run(n), nudged.run(n);
+    inlined.state(q[0], v[0]), callback.state(q[1], v[1]), nudged.state(q[2], v[2]);
+    EXPECT_TRUE(q[1] == q[0] && v[1] == v[0]) << m.name() << " on " << p.title;
+    EXPECT_FALSE(q[2] == q[0] && v[2] == v[0]) << m.name() << " on " << p.title;
+    EXPECT_EQ(callback.evaluations(), inlined.evaluations()) << m.name();
+  }
+}
+
+TEST(SpecialistPeer, ThroughACallbackIsTheSameLoop) {
+  const problems::Problem p = problems::sine_gordon(32);
+  check_callback_peer(p, fourier_basis(p.M), SineGordonGradient{}, 1.0 / 40, 50);
+  // (the identity basis: sine-Gordon's gradient with M's eigenvalues as a diagonal M)
+  check_callback_peer(p, identity_basis<Eigen::Dynamic>(p.M, p.dim()), SineGordonGradient{},
+                      1.0 / 40, 50);
+}
+
 }  // namespace
 }  // namespace bench
