@@ -267,7 +267,8 @@ class GridStepper {
       x_.q_error.setZero(), x_.p_error.setZero();
       x_.spectral = true;
     }
-    st.solver.solve(x_.q_hat, x_.p_hat, {&method_, statistics_.steps + 1, grid_.t()}, counts);
+    st.solver.count(
+        st.solver.solve(x_.q_hat, x_.p_hat, {&method_, statistics_.steps + 1, grid_.t()}), counts);
     update(st);
     st.solver.advance();
     if (short_step) stages_->solver.reset();  // (its history is of the grid before)

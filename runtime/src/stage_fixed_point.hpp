@@ -14,7 +14,7 @@ namespace erkn::detail {
 // evaluated. (Tested on delta with a divide and a square root, that chain was 43-57 % of P2's
 // samples in this loop: perf, d = 1.)
 template <class Space, class Coef>
-[[gnu::always_inline]] inline bool StageSolver<Space, Coef>::fixed_point(int i, Statistics& stats) {
+[[gnu::always_inline]] inline bool StageSolver<Space, Coef>::fixed_point(int i, long& evaluations) {
   double delta_old = 0, norm2_Q = 0, first2 = 0;  // (first2: |dQ|^2 of the first iteration)
   Change c{};
   int extra = 0;  // iterations after convergence from a cold start (reset_tightening)
@@ -33,10 +33,9 @@ template <class Space, class Coef>
     set_theta(r, std::sqrt(r.due_num2 / r.due_den2)), r.due_den2 = 0;
   for (int it = 1; it <= max_iterations; ++it) {
     if (it > 1) space_.to_physical(Q_hat, x_.Q);  // (start_stage did it for the guess)
-    stage_force(i, Q_hat, G, stats);
-    if constexpr (Space::kFixed) G_i = G;  // (a view: G is G_i)
+    stage_force(i, Q_hat, G, evaluations);        // (and one stage iteration: count())
+    if constexpr (Space::kFixed) G_i = G;         // (a view: G is G_i)
     Q_hat_new = r_hat - abar_ii * G;
-    ++stats.stage_iterations;
     // |dQ| / max(|Q_new|, |Q_old|) in eigen coordinates, so a converged stage needs no inverse
     // transform. Both iterates: an iterate at 0 (a 2-cycle r -> 0 -> r) must not make delta
     // huge and the next theta ~ 0, which would pass the stopping test without converging.

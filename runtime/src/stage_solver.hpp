@@ -42,9 +42,20 @@ class StageSolver {
   StageSolver& operator=(const StageSolver&) = delete;
 
   /// Solves the stages of the step from (q_hat, p_hat) (eigen coordinates); G(i) then holds stage
-  /// i's gradient in eigen coordinates. Counts into stats; throws erkn::Error naming the stage.
+  /// i's gradient in eigen coordinates. Returns the fixed point's gradient evaluations, each one a
+  /// stage iteration (count() adds them, and Newton's counts, once the step has succeeded);
+  /// throws erkn::Error naming the stage.
   template <class State>
-  void solve(const State& q_hat, const State& p_hat, const StepPlace& at, Statistics& stats);
+  long solve(const State& q_hat, const State& p_hat, const StepPlace& at);
+  /// Adds a solved step's counts to stats: `evaluations` (solve's result) as gradient evaluations
+  /// and as stage iterations, and those of its Newton fallbacks. (One counter on the fixed point's
+  /// path, not five cleared and added per step: GCC added two adjacent ones with one 16-byte load
+  /// spanning two 8-byte stores, which this AMD EPYC does not store-forward.)
+  [[gnu::always_inline]] void count(long evaluations, Statistics& stats) {
+    stats.gradient_evaluations += evaluations;
+    stats.stage_iterations += evaluations;
+    if (newton_pending_) add_newton_counts(stats);
+  }
   Map G(int i) { return predictor_.G(i); }
   /// After a successful step (its gradients start the next step's guesses).
   void advance() { predictor_.advance(); }
@@ -100,24 +111,26 @@ class StageSolver {
 
   // Stage i: inlined into solve with a fixed D (as calls, their frames and the reloads of what
   // they read through members were ~80 instructions per stage, P2), one call otherwise.
+  // (evaluations: the fixed point's count, solve's result.)
   template <class State>
   [[gnu::always_inline]] void stage(int i, const State& q_hat, const State& p_hat,
-                                    Statistics& stats) {
+                                    long& evaluations) {
     start_stage(i, q_hat, p_hat);
-    solve_stage(i, stats);
+    solve_stage(i, evaluations);
   }
   template <class State>
   [[gnu::noinline]] void stage_call(int i, const State& q_hat, const State& p_hat,
-                                    Statistics& stats) {
-    stage(i, q_hat, p_hat, stats);
+                                    long& evaluations) {
+    stage(i, q_hat, p_hat, evaluations);
   }
-  void solve_stage(int i, Statistics& stats);
-  [[gnu::noinline, gnu::cold]] void fall_back(int i, Statistics& stats);
+  void solve_stage(int i, long& evaluations);
+  [[gnu::noinline, gnu::cold]] void fall_back(int i);
+  [[gnu::noinline, gnu::cold]] void add_newton_counts(Statistics& stats);
   template <class State>
   void start_stage(int i, const State& q_hat, const State& p_hat);
-  bool fixed_point(int i, Statistics& stats);
-  [[gnu::noinline]] bool fixed_point_call(int i, Statistics& stats) {
-    return fixed_point(i, stats);
+  bool fixed_point(int i, long& evaluations);
+  [[gnu::noinline]] bool fixed_point_call(int i, long& evaluations) {
+    return fixed_point(i, evaluations);
   }
   void keep_iterate(const Work& Q_hat);
   Verdict verdict(int i, int it, Change c, double& delta_old, int& extra) const;
@@ -152,8 +165,8 @@ class StageSolver {
 
   // G_i = the force at the iterate (Q, Q_hat) in eigen coordinates.
   template <class Y, class G>
-  void stage_force(int i, const Y& Q_hat, G&& G_i, Statistics& stats) {
-    gradient(x_.Q, x_.g, i, stats);
+  void stage_force(int i, const Y& Q_hat, G&& G_i, long& evaluations) {
+    space_.gradient(system_, x_.Q, x_.g, i, *at_, evaluations);
     space_.to_eigen_force(x_.Q, Q_hat, x_.g, G_i);
   }
   // g = grad U(Q) (+ M Q for RKN methods).
@@ -220,6 +233,10 @@ class StageSolver {
   const StepPlace* at_ = nullptr;
   std::optional<NewtonWork> newton_;
   std::optional<KrylovWork> krylov_;
+  // The counts of this step's Newton fallbacks (valid when newton_pending_; cleared by the
+  // step's first fallback: a failed step leaves its counts here, uncounted).
+  Statistics newton_counts_;
+  bool newton_pending_ = false;
 };
 
 // max_k |num_k| / |den_k| over the eigen coordinates (numbers or arrays; no allocation; 0 over
@@ -265,36 +282,40 @@ StageSolver<Space, Coef>::StageSolver(const Method& method, const System& system
 // Eq. (d)'s stages one by one.
 template <class Space, class Coef>
 template <class State>
-void StageSolver<Space, Coef>::solve(const State& q_hat, const State& p_hat, const StepPlace& at,
-                                     Statistics& stats) {
+long StageSolver<Space, Coef>::solve(const State& q_hat, const State& p_hat, const StepPlace& at) {
   at_ = &at;
+  newton_pending_ = false;
+  long evaluations = 0;
   for (int i = 0; i < s_; ++i) {
     if constexpr (Space::kFixed)
-      stage(i, q_hat, p_hat, stats);
+      stage(i, q_hat, p_hat, evaluations);
     else
-      stage_call(i, q_hat, p_hat, stats);
+      stage_call(i, q_hat, p_hat, evaluations);
     if (predictor_.adapt_due(i))
       predictor_.adapt(i, Space::co(k_.abar(i, i)), x_.guess_hat, x_.Q_hat_new, x_.g_first_hat);
   }
+  return evaluations;
 }
 
 template <class Space, class Coef>
-[[gnu::always_inline]] inline void StageSolver<Space, Coef>::solve_stage(int i, Statistics& stats) {
-  if (record_[i].explicit_stage) {  // (Q = r exactly: its gradient is the stage's)
-    stage_force(i, x_.Q_hat, G(i), stats);
-    ++stats.stage_iterations;
+[[gnu::always_inline]] inline void StageSolver<Space, Coef>::solve_stage(int i, long& evaluations) {
+  if (record_[i].explicit_stage) {  // (Q = r exactly: its gradient is the stage's; one iteration)
+    stage_force(i, x_.Q_hat, G(i), evaluations);
     space_.settle();
     return;
   }
   // (With a fixed D the fixed point inlined into the step: its call and frame, and the reloads
   // of what it reads through members, were part of its ~90 instructions per call beyond the
   // iterations, P2.)
-  if (!(Space::kFixed ? fixed_point(i, stats) : fixed_point_call(i, stats))) fall_back(i, stats);
+  if (!(Space::kFixed ? fixed_point(i, evaluations) : fixed_point_call(i, evaluations)))
+    fall_back(i);
 }
 
-// Newton where the fixed point failed.
+// Newton where the fixed point failed, counted into newton_counts_.
 template <class Space, class Coef>
-void StageSolver<Space, Coef>::fall_back(int i, Statistics& stats) {
+void StageSolver<Space, Coef>::fall_back(int i) {
+  if (!newton_pending_) newton_counts_ = Statistics{}, newton_pending_ = true;
+  Statistics& stats = newton_counts_;
   ++stats.newton_fallbacks;
   const long before = stats.gradient_evaluations;
   if constexpr (Space::kDenseNewton) {
@@ -307,6 +328,18 @@ void StageSolver<Space, Coef>::fall_back(int i, Statistics& stats) {
   }
   space_.settle();  // (the last evaluation's checks)
   record_[i].newton_cost = double(stats.gradient_evaluations - before);
+}
+
+// count()'s part for a step with Newton fallbacks.
+template <class Space, class Coef>
+void StageSolver<Space, Coef>::add_newton_counts(Statistics& stats) {
+  const Statistics& n = newton_counts_;
+  stats.gradient_evaluations += n.gradient_evaluations;
+  stats.hessian_evaluations += n.hessian_evaluations;
+  stats.stage_iterations += n.stage_iterations;
+  stats.newton_fallbacks += n.newton_fallbacks;
+  stats.newton_iterations += n.newton_iterations;
+  newton_pending_ = false;
 }
 
 // r_i = phi0(c_i^2 V) q + h c_i phi1(c_i^2 V) p - h^2 sum_{j<i} abar_ij g_j, and the starting
