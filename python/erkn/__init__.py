@@ -127,10 +127,6 @@ class potential:
         args = "".join(f", {k}={v!r}" for k, v in self.params.items())
         return f"erkn.potential({self.name!r}{args})"
 
-    def _key(self):
-        """The parameters as sorted (name, value) pairs (hashable)."""
-        return tuple(sorted(self.params.items()))
-
 
 @functools.cache
 def _builtin_names():
@@ -170,26 +166,16 @@ def system(M, grad, d, potential=None, hessian=None, hessian_vector_product=None
     return _system(M, grad, d, potential, hessian, hessian_vector_product)
 
 
-@functools.lru_cache(maxsize=32)
-def _builtin_system(M, name, params, d):
-    """A built-in potential's System with M (params: sorted (name, value) pairs). Cached for M
-    a float or an erkn.Stiffness (both immutable): the C++ System costs about a microsecond
-    (four callbacks and the compiled steppers), a third of a short solve's fixed cost; the
-    Integrators built from it copy it."""
-    return _erkn._builtin_system(_stiffness(M), name, dict(params), d)
-
-
 def _system(M, grad, d, potential_fn, hessian, hessian_vector_product=None):
     if isinstance(grad, (str, potential)):  # (a name: its defaults; C++ checks the name)
         if potential_fn is not None or hessian is not None or hessian_vector_product is not None:
             _stiffness(M)  # (a bad M is reported first, as with any grad)
             raise Error("a built-in potential brings its own potential and Hessian")
-        name, params = (grad, ()) if isinstance(grad, str) else (grad.name, grad._key())
-        # (Immutable keys: a float, except 0.0 and -0.0, equal keys of two Stiffnesses; a
-        # Stiffness, by identity.)
-        if (type(M) is float and M != 0) or isinstance(M, Stiffness):
-            return _builtin_system(M, name, params, d)
-        return _builtin_system.__wrapped__(M, name, params, d)
+        params = {} if isinstance(grad, str) else grad.params
+        name = grad if isinstance(grad, str) else grad.name
+        # (kept for M a float or an erkn.Stiffness, both immutable: see _builtin_system)
+        cached = type(M) is float or isinstance(M, Stiffness)
+        return _erkn._builtin_system(M if cached else _stiffness(M), name, params, d, cached)
     M = _stiffness(M)
     if isinstance(grad, System):  # (a problem's: its U in C++, with this M)
         if potential_fn is not None or hessian is not None:
@@ -425,33 +411,31 @@ def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None
     draws it only on a terminal and once the run has lasted 2 s; False never. Raises erkn.Error with erkn's message on any bad input
     or failed step; an error (or an exception from a callback) during the run carries the
     output up to the last completed step as its `solution` attribute."""
-    if len(t_span) != 2:
-        raise Error(f"t_span must be (t0, t1); got {t_span!r}")
-    t0, t1 = t_span
-    t0, t1 = _real(t0, "t_span"), _real(t1, "t_span")
-    choice = None
-    if tol is not None and (method in (None, "auto") or h is None):
-        q0, p0 = _state(q0, "q0"), _state(p0, "p0")
-        opts = Options._of(options, energy_tolerance=energy_tolerance,
-                           check_stability=check_stability)
-        choice = _erkn._choose(_system(M, grad, q0.size, potential, hessian,
-                                       hessian_vector_product), q0, p0, t0, t1,
-                               _real(tol, "tol"), method or "auto", float(h or 0.0),
-                               float(pilot_fraction), float(safety), opts)
-        method, h = choice["method"], choice["h"]
-    elif h is None or method == "auto":
-        raise Error("solve: give h (and a method), or tol= to let erkn choose them")
-    # (erkn.Integrator's construction and run in one call to C++, the integrator kept in
-    # `holder` for the statistics, energies and a failed run's output: see _construct_and_run)
-    if t_eval is not None:
-        t_eval = np.ascontiguousarray(t_eval, dtype=float)
-    holder = []
+    holder = []  # (the integrator, once built: a failed run's output is in its _partial)
+    choice = out = None
     try:
-        name, later, (t, q, p, energy, found, stopped) = _erkn._construct_and_run(
-            holder, *_integrator_arguments(M, grad, q0, p0, h, method or _DEFAULT_METHOD, t0,
-                                           potential, hessian, options, energy_tolerance,
-                                           check_stability, hessian_vector_product),
-            *_run_arguments(t0, t1, t_eval, every, True, events, progress))
+        # (the common call, its arguments as they are: _erkn._solve_builtin, None for other forms)
+        if (tol is t_eval is events is progress is options is potential is hessian is
+                energy_tolerance is check_stability is hessian_vector_product is None
+                and not _on_terminal()):
+            out = _erkn._solve_builtin(holder, M, grad, q0, p0, t_span, h,
+                                       method or _DEFAULT_METHOD, every)
+        if out is None:  # (any form: each argument checked and converted)
+            t0, t1 = _span(t_span)
+            if tol is not None and (method in (None, "auto") or h is None):
+                choice = _choice(M, grad, q0, p0, t0, t1, h, method, tol, potential, hessian,
+                                 options, energy_tolerance, check_stability, pilot_fraction,
+                                 safety, hessian_vector_product)
+                method, h = choice["method"], choice["h"]
+            elif h is None or method == "auto":
+                raise Error("solve: give h (and a method), or tol= to let erkn choose them")
+            if t_eval is not None:
+                t_eval = np.ascontiguousarray(t_eval, dtype=float)
+            out = _erkn._construct_and_run(
+                holder, *_integrator_arguments(M, grad, q0, p0, h, method or _DEFAULT_METHOD, t0,
+                                               potential, hessian, options, energy_tolerance,
+                                               check_stability, hessian_vector_product),
+                *_run_arguments(t0, t1, t_eval, every, True, events, progress))
     except BaseException as e:  # keep the output up to the last completed step (if one began)
         if holder and holder[0]._partial is not None:
             run = holder[0]
@@ -459,9 +443,29 @@ def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None
             e.solution = Solution(t, q, p, _energies(run, q, p) if energy is None else energy,
                                   run.statistics, run.method, choice, found)
         raise
+    name, later, (t, q, p, energy, found, stopped) = out
     run = holder[0]
     return Solution(t, q, p, _energies(run, q, p) if later else energy,
                     lambda: run.statistics, name, choice, found, stopped)
+
+
+def _span(t_span):
+    """(t0, t1) from solve's t_span, checked."""
+    if len(t_span) != 2:
+        raise Error(f"t_span must be (t0, t1); got {t_span!r}")
+    t0, t1 = t_span
+    return _real(t0, "t_span"), _real(t1, "t_span")
+
+
+def _choice(M, grad, q0, p0, t0, t1, h, method, tol, potential, hessian, options,
+            energy_tolerance, check_stability, pilot_fraction, safety, hessian_vector_product):
+    """solve's method and h chosen for tol (see solve): choose_method_and_step's dict."""
+    q0, p0 = _state(q0, "q0"), _state(p0, "p0")
+    opts = Options._of(options, energy_tolerance=energy_tolerance,
+                       check_stability=check_stability)
+    return _erkn._choose(_system(M, grad, q0.size, potential, hessian, hessian_vector_product),
+                         q0, p0, t0, t1, _real(tol, "tol"), method or "auto", float(h or 0.0),
+                         float(pilot_fraction), float(safety), opts)
 
 
 def _energies(run, q, p):

@@ -10,6 +10,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -71,9 +72,15 @@ py::tuple to_python(Output&& run_output) {
 
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-template <class Times>
-Eigen::Map<const Eigen::VectorXd> at_all(const Times& times) {
-  return Eigen::Map<const Eigen::VectorXd>(times.data(), times.size());
+// t_eval's times (converted to a C-order float64 array held in `keep` if need be); none for None
+// (without making an empty array: ~3k instructions, 6 % of a 1-step erkn.solve).
+Eigen::Map<const Eigen::VectorXd> output_times(const py::object& t_eval, py::object& keep) {
+  if (t_eval.is_none()) return {nullptr, 0};
+  using Times = py::array_t<double, py::array::c_style | py::array::forcecast>;
+  const Times times = Times::ensure(t_eval);
+  if (!times || times.ndim() != 1) throw Error("t_eval must be a 1-D array of times");
+  keep = times;
+  return {times.data(), times.size()};
 }
 
 class PyIntegrator {
@@ -81,6 +88,10 @@ class PyIntegrator {
   PyIntegrator(const std::string& method, const PySystem& system, double h, const VectorArg& q0,
                const VectorArg& p0, double t0, const Options& options)
       : PyIntegrator(Method::by_name(method), system, h, q0, p0, t0, options) {}
+  PyIntegrator(const Method& method, const PySystem& system, double h, const VectorArg& q0,
+               const VectorArg& p0, double t0, const Options& options)
+      : calls_python_(system.calls_python),
+        run_(method, System(system.system), h, q0, p0, options, t0, compiled_for(method, system)) {}
 
   void step(long n) {
     if (n < 0) throw Error("step(n): n must be >= 0; got " + std::to_string(n));
@@ -113,13 +124,10 @@ class PyIntegrator {
     const auto add = [&](double t, const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
       out.add(run_, t, q, p);
     };
-    using Times = py::array_t<double, py::array::c_style | py::array::forcecast>;
-    const Times times = t_eval.is_none() ? Times() : Times::ensure(t_eval);
-    if (!t_eval.is_none() && (!times || times.ndim() != 1))
-      throw Error("t_eval must be a 1-D array of times");
+    py::object keep;  // (t_eval converted, if it had to be)
+    const Eigen::Map<const Eigen::VectorXd> times = output_times(t_eval, keep);
     if (!t_eval.is_none())  // (all of them before any step: the chunks see only their own)
-      TimeGrid(run_.t(), run_.h()).require_output_times(t_end, at_all(times));
-    const auto at = [&] { return at_all(times); };
+      TimeGrid(run_.t(), run_.h()).require_output_times(t_end, times);
     std::optional<Events> found;
     if (!events.is_none()) found.emplace(run_, events_from_python(events));
     bool stopped = false;
@@ -129,8 +137,8 @@ class PyIntegrator {
       const auto chunk = [&](double t_c, long every_c) {
         if (t_eval.is_none()) return chunk_every(found, t_c, add, every_c);
         const Eigen::Index from = next;
-        while (next < times.size() && (t_c == t_end || times.at(next) <= t_c)) ++next;
-        return chunk_times(found, t_c, at().segment(from, next - from), add);
+        while (next < times.size() && (t_c == t_end || times[next] <= t_c)) ++next;
+        return chunk_times(found, t_c, times.segment(from, next - from), add);
       };
       stopped = LongRun(progress).to(run_, t_end, t_eval.is_none() ? every : 1, chunk);
     } catch (const py::error_already_set& e) {  // (Ctrl-C: the last state joins the output,
@@ -224,11 +232,6 @@ class PyIntegrator {
     f();
   }
 
-  PyIntegrator(const Method& method, const PySystem& system, double h, const VectorArg& q0,
-               const VectorArg& p0, double t0, const Options& options)
-      : calls_python_(system.calls_python),
-        run_(method, System(system.system), h, q0, p0, options, t0, compiled_for(method, system)) {}
-
   // A built-in's compiled gradient for methods with plain kicks only. With modified kicks the
   // compiled steps cost more than the callback's (callgrind, erkn.solve of Duffing, 200 steps,
   // instructions per call, callback -> compiled: OMF8(11F11G) 703k -> 775k, OMF4(3F3G) 266k ->
@@ -252,8 +255,8 @@ class PyIntegrator {
 // Strang). The integrator joins `holder` before it runs, so that a failed run's output stays
 // reachable (its _partial). With `energy`, the energies are computed now only if they cannot wait
 // (Python callbacks). Returns (the method's name, energies left for later, run()'s tuple).
-py::tuple construct_and_run(py::list holder, const std::string& method, const PySystem& system,
-                            double h, const VectorArg& q0, const VectorArg& p0, double t0,
+py::tuple construct_and_run(py::list holder, const Method& method, const PySystem& system, double h,
+                            const VectorArg& q0, const VectorArg& p0, double t0,
                             const Options& options, double t_end, const py::object& t_eval,
                             long every, bool energy, const py::object& events,
                             const py::object& progress) {
@@ -263,6 +266,72 @@ py::tuple construct_and_run(py::list holder, const std::string& method, const Py
   const bool later = energy && run.energy_can_wait();
   py::tuple out = run.run(t_end, t_eval, every, energy && !later, events, progress);
   return py::make_tuple(std::string(run.get().method().name()), later, std::move(out));
+}
+
+// x's value if it is a Python float or int (not a bool; not an int beyond a double's range).
+std::optional<double> plain_number(py::handle x) {
+  if (PyFloat_CheckExact(x.ptr())) return PyFloat_AS_DOUBLE(x.ptr());
+  if (!PyLong_CheckExact(x.ptr())) return std::nullopt;
+  const double value = PyLong_AsDouble(x.ptr());
+  if (value == -1.0 && PyErr_Occurred()) return PyErr_Clear(), std::nullopt;
+  return value;
+}
+
+// x's entries if it is a NumPy array of NumPy's own float64 dtype (native byte order), 1-D and
+// contiguous: what erkn.solve's _state passes on as it is.
+std::optional<Eigen::Map<const Eigen::VectorXd>> plain_vector(py::handle x) {
+  auto& api = py::detail::npy_api::get();
+  static PyObject* const float64 = api.PyArray_DescrFromType_(py::detail::npy_api::NPY_DOUBLE_);
+  if (Py_TYPE(x.ptr()) != api.PyArray_Type_) return std::nullopt;
+  const auto* a = py::detail::array_proxy(x.ptr());
+  if (a->nd != 1 || a->descr != float64 || (a->dimensions[0] > 1 && a->strides[0] != 8))
+    return std::nullopt;
+  return Eigen::Map<const Eigen::VectorXd>(reinterpret_cast<const double*>(a->data),
+                                           a->dimensions[0]);
+}
+
+// x's value if it is a Python int in [1, 2^53] (erkn.solve's `every`).
+std::optional<long> plain_interval(py::handle x) {
+  if (!PyLong_CheckExact(x.ptr())) return std::nullopt;
+  int overflow = 0;
+  const long long n = PyLong_AsLongLongAndOverflow(x.ptr(), &overflow);
+  if (overflow || n < 1 || n > (1LL << 53)) return std::nullopt;
+  return long(n);
+}
+
+// x as UTF-8 if it is a Python str.
+std::optional<std::string_view> plain_name(py::handle x) {
+  if (!PyUnicode_CheckExact(x.ptr())) return std::nullopt;
+  Py_ssize_t size = 0;
+  const char* text = PyUnicode_AsUTF8AndSize(x.ptr(), &size);
+  if (!text) return PyErr_Clear(), std::nullopt;
+  return std::string_view(text, size_t(size));
+}
+
+// erkn.solve's common call (python/erkn/__init__.py), its arguments as the caller gave them:
+// grad a built-in potential's name, M a float or an erkn.Stiffness, q0 and p0 float64 1-D
+// arrays, t_span a tuple or list of two numbers, h a number, method a name other than "auto",
+// every an int in [1, 2^53]; solve's defaults for the rest (solve sees to that). In these forms
+// solve's Python-level checks and conversions (_state, _real, _every, _system's) leave each
+// argument as it is, so none is repeated here; every value is checked where it is for any call
+// (the System, the method's name, the Integrator). Another form: None (solve's general path).
+py::object solve_builtin(py::list holder, py::handle M, py::handle grad, py::handle q0,
+                         py::handle p0, py::handle t_span, py::handle h, py::handle method,
+                         py::handle every) {
+  const bool span = (PyTuple_CheckExact(t_span.ptr()) || PyList_CheckExact(t_span.ptr())) &&
+                    PySequence_Fast_GET_SIZE(t_span.ptr()) == 2;
+  const auto t0 = span ? plain_number(PySequence_Fast_GET_ITEM(t_span.ptr(), 0)) : std::nullopt;
+  const auto t1 = span ? plain_number(PySequence_Fast_GET_ITEM(t_span.ptr(), 1)) : std::nullopt;
+  const auto step = plain_number(h);
+  const auto q = plain_vector(q0), p = plain_vector(p0);
+  const auto name = plain_name(grad), method_name = plain_name(method);
+  const auto interval = plain_interval(every);
+  if (!t0 || !t1 || !step || !q || !p || !name || !method_name || *method_name == "auto" ||
+      !interval || !(PyFloat_CheckExact(M.ptr()) || py::isinstance<Stiffness>(M)))
+    return py::none();
+  const auto system = builtin_system(M, std::string(*name), {}, q->size());
+  return construct_and_run(holder, Method::by_name(*method_name), *system, *step, *q, *p, *t0,
+                           Options(), *t1, py::none(), *interval, true, py::none(), py::none());
 }
 
 }  // namespace
@@ -310,10 +379,21 @@ void bind_integrator(py::module_& m) {
           "_options", [](PyIntegrator& r) { return r.get().options(); }, "a copy")
       .def_property_readonly("_partial", &PyIntegrator::partial)
       .def("_energies", &PyIntegrator::energies, py::arg("q"), py::arg("p"));
-  m.def("_construct_and_run", &construct_and_run, py::arg("holder"), py::arg("method"),
-        py::arg("system"), py::arg("h"), py::arg("q0"), py::arg("p0"), py::arg("t0"),
-        py::arg("options"), py::arg("t_end"), py::arg("t_eval"), py::arg("every"),
-        py::arg("energy"), py::arg("events"), py::arg("progress"));
+  m.def(
+      "_construct_and_run",
+      [](py::list holder, const std::string& method, const PySystem& system, double h,
+         const VectorArg& q0, const VectorArg& p0, double t0, const Options& options, double t_end,
+         const py::object& t_eval, long every, bool energy, const py::object& events,
+         const py::object& progress) {
+        return construct_and_run(std::move(holder), Method::by_name(method), system, h, q0, p0, t0,
+                                 options, t_end, t_eval, every, energy, events, progress);
+      },
+      py::arg("holder"), py::arg("method"), py::arg("system"), py::arg("h"), py::arg("q0"),
+      py::arg("p0"), py::arg("t0"), py::arg("options"), py::arg("t_end"), py::arg("t_eval"),
+      py::arg("every"), py::arg("energy"), py::arg("events"), py::arg("progress"));
+  m.def("_solve_builtin", &solve_builtin, py::arg("holder"), py::arg("M"), py::arg("grad"),
+        py::arg("q0"), py::arg("p0"), py::arg("t_span"), py::arg("h"), py::arg("method"),
+        py::arg("every"));
 }
 
 }  // namespace erkn::python

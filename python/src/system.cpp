@@ -7,8 +7,11 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <vector>
 
 #include "bindings.hpp"
 #include "erkn/error.hpp"
@@ -96,6 +99,54 @@ System python_callbacks(const py::object& grad, bool grad_writes, const py::obje
   return s;
 }
 
+// The built-in Systems last asked for (builtin_system), the most recent last.
+class BuiltinSystems {
+ public:
+  std::shared_ptr<PySystem> get(py::handle M, const std::string& name,
+                                const std::map<std::string, double>& params, Eigen::Index d) {
+    const auto hit = std::find_if(entries_.rbegin(), entries_.rend(), [&](const Entry& e) {
+      return e.d == d && same_stiffness(e.M, M) && e.name == name && e.params == params;
+    });
+    if (hit != entries_.rend()) {
+      std::rotate(hit.base() - 1, hit.base(), entries_.end());
+      return entries_.back().system;
+    }
+    auto system = build(M, name, params, d);
+    if (entries_.size() == kSize) entries_.erase(entries_.begin());
+    entries_.push_back({py::reinterpret_borrow<py::object>(M), name, params, d, system});
+    return system;
+  }
+
+  static std::shared_ptr<PySystem> build(py::handle M, const std::string& name,
+                                         const std::map<std::string, double>& params,
+                                         Eigen::Index d) {
+    const Stiffness stiffness = PyFloat_CheckExact(M.ptr())
+                                    ? Stiffness::scalar(PyFloat_AS_DOUBLE(M.ptr()))
+                                    : M.cast<const Stiffness&>();  // (M first, as any grad)
+    auto system = std::make_shared<PySystem>(builtin_potential(name, params, d));
+    system->system.M = stiffness;
+    return system;
+  }
+
+ private:
+  static constexpr size_t kSize = 32;
+  struct Entry {
+    py::object M;
+    std::string name;
+    std::map<std::string, double> params;
+    Eigen::Index d;
+    std::shared_ptr<PySystem> system;
+  };
+  // The same float bits (0.0 and -0.0 differ), or the same erkn.Stiffness object.
+  static bool same_stiffness(const py::object& a, py::handle b) {
+    if (a.ptr() == b.ptr()) return true;
+    if (!PyFloat_CheckExact(a.ptr()) || !PyFloat_CheckExact(b.ptr())) return false;
+    const double x = PyFloat_AS_DOUBLE(a.ptr()), y = PyFloat_AS_DOUBLE(b.ptr());
+    return std::memcmp(&x, &y, sizeof x) == 0;
+  }
+  std::vector<Entry> entries_;
+};
+
 std::string structure_name(Stiffness::Structure s) {
   switch (s) {
     case Stiffness::Structure::scalar:
@@ -151,7 +202,7 @@ void bind_stiffness(py::module_& m) {
 
 // System: its dimension, description and callbacks, callable from Python.
 void bind_system_class(py::module_& m) {
-  py::class_<PySystem>(m, "System")
+  py::class_<PySystem, std::shared_ptr<PySystem>>(m, "System")
       .def_readonly("dim", &PySystem::d)
       .def_readonly("description", &PySystem::description)
       .def_property_readonly("has_potential",
@@ -196,15 +247,8 @@ void bind_system_class(py::module_& m) {
 
 // The Systems erkn.solve builds: a built-in potential or Python callbacks.
 void bind_system_factories(py::module_& m) {
-  m.def(
-      "_builtin_system",
-      [](const Stiffness& M, const std::string& name, const std::map<std::string, double>& params,
-         Eigen::Index d) {
-        PySystem s = builtin_potential(name, params, d);
-        s.system.M = M;
-        return s;
-      },
-      py::arg("M"), py::arg("name"), py::arg("params"), py::arg("d"));
+  m.def("_builtin_system", &builtin_system, py::arg("M"), py::arg("name"), py::arg("params"),
+        py::arg("d"), py::arg("cached"));
   m.def(
       "_python_system",
       [](const Stiffness& M, const py::object& grad, bool grad_writes, const py::object& potential,
@@ -224,6 +268,15 @@ void bind_system_factories(py::module_& m) {
 }
 
 }  // namespace
+
+std::shared_ptr<PySystem> builtin_system(py::handle M, const std::string& name,
+                                         const std::map<std::string, double>& params,
+                                         Eigen::Index d, bool cached) {
+  // (Never destroyed: it holds Python objects, which must not be released after the interpreter
+  // has ended.)
+  static auto* const recent = new BuiltinSystems;
+  return cached ? recent->get(M, name, params, d) : BuiltinSystems::build(M, name, params, d);
+}
 
 void bind_system(py::module_& m) {
   bind_stiffness(m);

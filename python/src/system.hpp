@@ -4,6 +4,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include <map>
 #include <memory>
 #include <string>
 
@@ -22,5 +23,14 @@ struct PySystem {
   /// problems::Potential::compiled_grad_u), or nullptr.
   std::shared_ptr<const detail::CompiledSteppers> compiled = nullptr;
 };
+
+/// A built-in potential's System (potentials.hpp) with M: `M` a Python float (M = M I) or an
+/// erkn.Stiffness. With `cached`, one of the last 32 asked for when M (a float's bits, a
+/// Stiffness's identity: both immutable), name, params and d match: building one costs about a
+/// microsecond (four callbacks and the compiled steppers), a third of a short solve's fixed
+/// cost; the Integrators built from it copy it.
+std::shared_ptr<PySystem> builtin_system(pybind11::handle M, const std::string& name,
+                                         const std::map<std::string, double>& params,
+                                         Eigen::Index d, bool cached = true);
 
 }  // namespace erkn::python

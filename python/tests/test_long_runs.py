@@ -19,7 +19,7 @@ LONG_SOLVE = textwrap.dedent("""
     grad = {grad}
     print("started", flush=True)
     try:
-        erkn.solve(4.0, grad, q0=[0.5, -0.3], p0=[0.1, 0.2], t_span=(0, 1e9), h=0.01,
+        erkn.solve(4.0, grad, q0={q0}, p0=np.array([0.1, 0.2]), t_span=(0, 1e9), h=0.01,
                    {output}, method="{method}")
     except KeyboardInterrupt as e:
         sol = e.solution
@@ -53,13 +53,16 @@ def interrupted(proc, after):
 # With output times the last state joins those reached (t_eval's second time, 1e8, is far beyond
 # the interrupted run: without it the output would end at t = 0).
 BUILTIN, EVERY = 'erkn.potential("phi4")', "every=10**6"
+LIST, ARRAY = "[0.5, -0.3]", "np.array([0.5, -0.3])"
 
 
-@pytest.mark.parametrize("grad, output", [(BUILTIN, EVERY), ("lambda q: q**3", EVERY),
-                                          (BUILTIN, "t_eval=np.linspace(0, 1e9, 11)")],
-                         ids=["builtin", "python", "t_eval"])
-def test_sigint_stops_a_long_solve_and_keeps_the_output(grad, output):
-    code = LONG_SOLVE.format(grad=grad, method=method(), output=output)
+# (A name with float64 arrays: solve's common call, _erkn._solve_builtin.)
+@pytest.mark.parametrize("grad, q0, output", [
+    (BUILTIN, LIST, EVERY), ("lambda q: q**3", LIST, EVERY),
+    (BUILTIN, LIST, "t_eval=np.linspace(0, 1e9, 11)"), ('"phi4"', ARRAY, EVERY)],
+    ids=["builtin", "python", "t_eval", "common call"])
+def test_sigint_stops_a_long_solve_and_keeps_the_output(grad, q0, output):
+    code = LONG_SOLVE.format(grad=grad, q0=q0, method=method(), output=output)
     proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True,
                             env=dict(os.environ))
     out, latency = interrupted(proc, after=1.5)  # (well into the run, past several chunks)
@@ -71,7 +74,7 @@ def test_sigint_stops_a_long_solve_and_keeps_the_output(grad, output):
 
 
 def test_negative_control_without_sigint_the_long_solve_keeps_running():
-    code = LONG_SOLVE.format(grad=BUILTIN, method=method(), output=EVERY)
+    code = LONG_SOLVE.format(grad=BUILTIN, q0=LIST, method=method(), output=EVERY)
     proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
     try:
         assert proc.stdout.readline().strip() == "started"

@@ -192,7 +192,8 @@ def test_builtins_with_half_spectrum_bases_give_a_python_gradients_states_bit_fo
 def test_a_built_in_systems_cache_gives_the_uncached_solutions():
     # solve keeps a built-in's System for a float M or an erkn.Stiffness (erkn._builtin_system):
     # each key gives the System built for it, whatever was asked for before.
-    kw = dict(q0=[0.3, -0.2], p0=[1.0, 0.5], t_span=(0, 2), h=0.05, method="SABA2")
+    kw = dict(q0=np.array([0.3, -0.2]), p0=np.array([1.0, 0.5]), t_span=(0, 2), h=0.05,
+              method="SABA2")  # (with a name: solve's common call, _erkn._solve_builtin)
     M = erkn.diagonal(np.array([4.0, 9.0]))
     duffing = erkn.potential("duffing", k=0.5)
     runs = {}
@@ -211,6 +212,56 @@ def test_a_built_in_systems_cache_gives_the_uncached_solutions():
     # A potential's parameters changed after a solve are those of the next one.
     duffing.params["k"] = 0.25
     assert np.array_equal(erkn.solve(9.0, duffing, **kw).q, runs["other k"])
+
+
+def test_the_common_call_gives_what_its_arguments_in_other_forms_give(monkeypatch):
+    # solve's common call (a built-in's name, M a float or an erkn.Stiffness, float64 arrays,
+    # Python numbers) runs as _erkn._solve_builtin, without solve's Python-level checks; the
+    # same values in other forms take the checked path: the same bits, counts and errors.
+    taken = []
+
+    def spy(*args):
+        taken.append("raised")
+        out = original(*args)
+        taken[-1] = "declined" if out is None else "ran"
+        return out
+
+    original = erkn._erkn._solve_builtin
+    monkeypatch.setattr(erkn._erkn, "_solve_builtin", spy)
+    q0, p0 = np.array([0.3, -0.2]), np.array([1.0, 0.5])
+    common = dict(q0=q0, p0=p0, t_span=(0, 2.0), h=0.05, every=3)
+    other = dict(q0=list(q0), p0=p0.tolist(), t_span=np.array([0, 2.0]), h=np.float64(0.05),
+                 every=3.0)
+    for M in (9.0, erkn.diagonal(np.array([4.0, 9.0]))):
+        for method in [m["name"] for m in erkn.methods()]:
+            a = erkn.solve(M, "duffing", method=method, **common)
+            b = erkn.solve(M, "duffing", method=method, **other)
+            assert taken[-2:] == ["ran", "declined"], method
+            for x, y in ((a.t, b.t), (a.q, b.q), (a.p, b.p), (a.energy, b.energy)):
+                assert np.array_equal(x, y), (M, method)
+            assert a.stats["gradient_evaluations"] == b.stats["gradient_evaluations"]
+            assert a.method == b.method == method and a.status == b.status == 0
+    c = erkn.solve(9.0, "duffing", method=method, **dict(common, h=0.05 * (1 + 2.0**-40)))
+    assert not np.array_equal(a.q, c.q)  # (negative control: the comparison sees it)
+    for bad in (dict(h=-0.1), dict(method="nope"), dict(grad="cosh"), dict(M=float("nan")),
+                dict(p0=np.zeros(3)), dict(t_span=(0, 1e30)), dict(every=0)):
+        messages = []
+        for kw, form in ((common, lambda x: x), (other, _other_form)):
+            args = {**kw, "M": 9.0, "grad": "sine", **{k: form(v) for k, v in bad.items()}}
+            with pytest.raises(ValueError) as refused:
+                erkn.solve(args.pop("M"), args.pop("grad"), **args)
+            messages.append(str(refused.value))
+        assert messages[0] == messages[1], bad
+        assert taken[-2:] == ["declined" if "every" in bad else "raised", "declined"], bad
+
+
+def _other_form(x):
+    """x in a form solve's common call does not take (the same value)."""
+    if isinstance(x, float):
+        return np.float64(x)
+    if isinstance(x, (int, str)):
+        return x  # (the other arguments' forms decide; messages quote ints and names)
+    return x.tolist() if isinstance(x, np.ndarray) else np.array(x)
 
 
 @pytest.mark.parametrize("name,d,params", [("sine", 3, {}), ("duffing", 3, {"k": 0.3}),
