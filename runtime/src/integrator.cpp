@@ -352,9 +352,7 @@ Integrator::Timer::Timer(Integrator& run, long steps)
   run.timing_ = true;
 }
 
-void Integrator::Timer::before_observer() {
-  ++observer_calls_;
-  if (!run_ || read_cpu_ || (observer_calls_ & (observer_calls_ - 1)) != 0) return;
+void Integrator::Timer::read_clocks() {
   // (The coarse clock never leads: until it has ticked past the call's start, less than a tick
   // has passed. After a tick, the wall clock decides.)
   if (coarse_wall_seconds() <= wall_0_) return;
@@ -444,8 +442,6 @@ void Integrator::set_step_size(double h) {
   if (guard_->pending()) start_guard(guard_->checkpoint().q, guard_->checkpoint().p);
   save_checkpoint();  // (on the grid of h; the guard's reference measured before, at the start)
 }
-
-long Integrator::steps_until(double t_end) const { return grid_.plan_to(t_end).whole; }
 
 TimeGrid::Plan Integrator::prepare_end(double t_end, long every) {
   if (every < 1)

@@ -64,6 +64,9 @@ class TimeGrid {
   double t0_, h_;
   long n_ = 0;
 
+  // Grid point N counted from t0_ (ahead(N - n_)).
+  double at(long N) const { return t0_ + double(N) * h_; }
+
   // The constructor's error for (t0, h) (out of line: a valid grid costs its comparisons only).
   [[noreturn]] static void invalid(double t0, double h);
   // Round-off in forming a time a = t0 + n h near b: a few ulps of the largest magnitude
