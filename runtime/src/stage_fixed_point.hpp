@@ -4,9 +4,10 @@
 
 namespace erkn::detail {
 
-// Fixed point Q <- r_i - h^2 abar_ii(V) g(Q). True when converged, or when the updates stall
-// below Options::roundoff_level (a tolerance under the round-off noise); G(i) then holds the
-// gradient of the last iterate but one (no confirming evaluation).
+// Fixed point Q <- r_i - h^2 abar_ii(V) g(Q) from start_stage's r_i and Q_0. True when
+// converged, or when the updates stall below Options::roundoff_level (a tolerance under the
+// round-off noise); G(i) then holds the gradient of the last iterate but one (no confirming
+// evaluation).
 // The tests take the iteration's squared sums as they come (Change: X = |dQ|^2, N = the larger
 // |Q|^2 of the two iterates, delta^2 = X / N) and the previous iteration's delta, known since that
 // iteration ended: multiplied out, no test waits for a division or a square root (within,
@@ -14,17 +15,18 @@ namespace erkn::detail {
 // evaluated. (Tested on delta with a divide and a square root, that chain was 43-57 % of P2's
 // samples in this loop: perf, d = 1.)
 template <class Space, class Coef>
-[[gnu::always_inline]] inline bool StageSolver<Space, Coef>::fixed_point(int i, long& evaluations) {
+[[gnu::always_inline]] inline bool StageSolver<Space, Coef>::fixed_point(int i, const Start& start,
+                                                                         long& evaluations) {
   double delta_old = 0, norm2_Q = 0, first2 = 0;  // (first2: |dQ|^2 of the first iteration)
   Change c{};
   int extra = 0;  // iterations after convergence from a cold start (reset_tightening)
-  const auto abar_ii = Space::co(k_.abar(i, i));
+  const Abar abar_ii = start.abar_ii;
   // (G(i), the iteration limit and the arrays (Work) held in locals: after each call of the
   // user's gradient the compiler reloads what it reads through members.)
   Map G_i = G(i);
   const int max_iterations = options_.max_fixed_point_iterations;
-  const Work r_hat = work(x_.r_hat);
-  Work Q_hat = work(x_.Q_hat), Q_hat_new = scratch(x_.Q_hat_new), G = scratch(G_i),
+  const Work r_hat = start.r_hat;
+  Work Q_hat = start.Q_hat, Q_hat_new = scratch(x_.Q_hat_new), G = scratch(G_i),
        g_first_hat = scratch(x_.g_first_hat);
   // A new measurement's theta (record_contraction), formed before the first evaluation, whose
   // latency hides its division and root: formed at the measurement, at the end of a stage, they

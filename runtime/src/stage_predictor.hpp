@@ -89,6 +89,25 @@ class StagePredictor {
 
  private:
   void set_nodes(int i);
+  // |h^2 abar_ii (g_pred - g_i)|^2 (this process's part) of stage i's prediction through m nodes
+  // (m = 0: the one in `guess`), formed in `guess`, or with a fixed size in a value the compiler
+  // keeps in registers (guess then unchanged: through the maps, adapt stored and reloaded each
+  // guess, P3).
+  template <class Abar>
+  double guess_error(int i, int m, const Abar& abar_ii, Map& guess) {
+    const auto error = [&](auto& g) {
+      if (m > 0) predict(i, m, g);
+      g = abar_ii * (g - G(i));
+      return space_.squared_norm(g);
+    };
+    if constexpr (Map::RowsAtCompileTime == Eigen::Dynamic) {
+      return error(guess);
+    } else {
+      typename Map::PlainObject value;
+      if (m == 0) value = guess;
+      return error(value);
+    }
+  }
   // Nodes of stage i whose gradients are known (the steps since set_state).
   int available_nodes(int i) const {
     if (history_ == kHistory) return node_count_[i];  // (every node: the usual case)
@@ -164,8 +183,8 @@ void StagePredictor<Space>::set_nodes(int i) {
 // norms per stage cost P2/P3 15-20% of the CPU per grad U (erkn_implicit_benchmark) and saved
 // no evaluation there; with the interval, evaluations per stage (erkn_stage_evaluations) moved
 // by <= 0.05 on P1-P3, and P1's savings (SERKN3s4(1) at 1e-9: 1.13 against 1.42) stay.
-// prediction, below and above are overwritten (the guess errors of n, n - 1 and n + 1 nodes, in
-// one reduce).
+// prediction, below and above may be overwritten (guess_error; the errors of n, n - 1 and n + 1
+// nodes in one reduce).
 template <class Space>
 template <class Abar>
 void StagePredictor<Space>::adapt(int i, const Abar& abar_ii, Map& prediction, Map& below,
@@ -173,14 +192,11 @@ void StagePredictor<Space>::adapt(int i, const Abar& abar_ii, Map& prediction, M
   const int available = available_nodes(i), n = std::min(order_[i], available);
   if (available < 2) return;  // (adapt_wait_ <= 0: checked at the next step)
   const std::array<int, 3> orders{n, n - 1, n + 1};
-  std::array<Map*, 3> guesses{&prediction, &below, &above};  // (n nodes: the stage's prediction)
-  std::array<double, 3> errors{};  // |h^2 abar_ii (g_pred - g_i)|^2 (squared: only compared)
-  for (int k = 0; k < 3; ++k) {
-    if (orders[k] < 1 || orders[k] > available) continue;
-    if (k > 0) predict(i, orders[k], *guesses[k]);
-    *guesses[k] = abar_ii * (*guesses[k] - G(i));
-    errors[k] = space_.squared_norm(*guesses[k]);
-  }
+  std::array<Map*, 3> guesses{&prediction, &below, &above};
+  std::array<double, 3> errors{};  // (squared: only compared)
+  for (int k = 0; k < 3; ++k)
+    if (orders[k] >= 1 && orders[k] <= available)
+      errors[k] = guess_error(i, k == 0 ? 0 : orders[k], abar_ii, *guesses[k]);
   errors = space_.reduce(errors);
   double best = errors[0];
   int best_n = n;

@@ -115,22 +115,30 @@ class StageSolver {
   template <class State>
   [[gnu::always_inline]] void stage(int i, const State& q_hat, const State& p_hat,
                                     long& evaluations) {
-    start_stage(i, q_hat, p_hat);
-    solve_stage(i, evaluations);
+    solve_stage(i, start_stage(i, q_hat, p_hat), evaluations);
   }
   template <class State>
   [[gnu::noinline]] void stage_call(int i, const State& q_hat, const State& p_hat,
                                     long& evaluations) {
     stage(i, q_hat, p_hat, evaluations);
   }
-  void solve_stage(int i, long& evaluations);
+  // A stage's r_i and starting iterate Q_0 (start_stage): with a fixed D values, which the
+  // fixed point takes in registers (stored to x_ and loaded back, they and the arrays' addresses
+  // were ~20 instructions per stage, P3), else views of x_.r_hat and x_.Q_hat; and h^2 abar_ii(V)
+  // as the arrays see it (its slot's address formed once per stage).
+  using Abar = decltype(Space::co(std::declval<const StepCoefficients<Coef>&>().abar(0, 0)));
+  struct Start {
+    Work r_hat, Q_hat;
+    Abar abar_ii;
+  };
+  void solve_stage(int i, const Start& start, long& evaluations);
   [[gnu::noinline, gnu::cold]] void fall_back(int i);
   [[gnu::noinline, gnu::cold]] void add_newton_counts(Statistics& stats);
   template <class State>
-  void start_stage(int i, const State& q_hat, const State& p_hat);
-  bool fixed_point(int i, long& evaluations);
-  [[gnu::noinline]] bool fixed_point_call(int i, long& evaluations) {
-    return fixed_point(i, evaluations);
+  Start start_stage(int i, const State& q_hat, const State& p_hat);
+  bool fixed_point(int i, const Start& start, long& evaluations);
+  [[gnu::noinline]] bool fixed_point_call(int i, const Start& start, long& evaluations) {
+    return fixed_point(i, start, evaluations);
   }
   void keep_iterate(const Work& Q_hat);
   Verdict verdict(int i, int it, Change c, double& delta_old, int& extra) const;
@@ -186,8 +194,6 @@ class StageSolver {
     return sums;
   }
 
-  // x's values (fixed D) or a view of x.
-  static Work work(const Map& x) { return Work(x); }
   // Storage for an array the fixed point writes before it reads: x itself as a view, or a value.
   static Work scratch(const Map& x) {
     if constexpr (Space::kFixed)
@@ -298,16 +304,18 @@ long StageSolver<Space, Coef>::solve(const State& q_hat, const State& p_hat, con
 }
 
 template <class Space, class Coef>
-[[gnu::always_inline]] inline void StageSolver<Space, Coef>::solve_stage(int i, long& evaluations) {
+[[gnu::always_inline]] inline void StageSolver<Space, Coef>::solve_stage(int i, const Start& start,
+                                                                         long& evaluations) {
   if (record_[i].explicit_stage) {  // (Q = r exactly: its gradient is the stage's; one iteration)
-    stage_force(i, x_.Q_hat, G(i), evaluations);
+    stage_force(i, start.Q_hat, G(i), evaluations);
     space_.settle();
     return;
   }
   // (With a fixed D the fixed point inlined into the step: its call and frame, and the reloads
   // of what it reads through members, were part of its ~90 instructions per call beyond the
   // iterations, P2.)
-  if (!(Space::kFixed ? fixed_point(i, evaluations) : fixed_point_call(i, evaluations)))
+  if (!(Space::kFixed ? fixed_point(i, start, evaluations)
+                      : fixed_point_call(i, start, evaluations)))
     fall_back(i);
 }
 
@@ -343,19 +351,23 @@ void StageSolver<Space, Coef>::add_newton_counts(Statistics& stats) {
 }
 
 // r_i = phi0(c_i^2 V) q + h c_i phi1(c_i^2 V) p - h^2 sum_{j<i} abar_ij g_j, and the starting
-// guess Q = r_i - h^2 abar_ii g_pred with g_pred extrapolated from the known stage gradients.
+// guess Q = r_i - h^2 abar_ii g_pred with g_pred extrapolated from the known stage gradients
+// (x_.guess_hat); x_.r_hat and x_.Q (physical) set, x_.Q_hat too with a dynamic D (with a fixed D
+// keep_iterate stores the iterate Newton-Krylov starts from).
 template <class Space, class Coef>
 template <class State>
-[[gnu::always_inline]] inline void StageSolver<Space, Coef>::start_stage(int i, const State& q_hat,
-                                                                         const State& p_hat) {
+[[gnu::always_inline]] inline auto StageSolver<Space, Coef>::start_stage(int i, const State& q_hat,
+                                                                         const State& p_hat)
+    -> Start {
   const auto co = [](const auto& value) { return Space::co(value); };
-  compute_into(x_.r_hat, [&](auto& r) {
-    r = co(k_.phi0c(i)) * q_hat + co(k_.hcphi1c(i)) * p_hat;
-    for (int j = 0; j < i; ++j) r -= co(k_.abar(i, j)) * G(j);
-  });
+  Start s{scratch(x_.r_hat), scratch(x_.Q_hat), co(k_.abar(i, i))};
+  s.r_hat = co(k_.phi0c(i)) * q_hat + co(k_.hcphi1c(i)) * p_hat;
+  for (int j = 0; j < i; ++j) s.r_hat -= co(k_.abar(i, j)) * G(j);
+  if constexpr (Space::kFixed) x_.r_hat = s.r_hat;  // (Newton's)
   predictor_.predict(i, x_.guess_hat);
-  x_.Q_hat = x_.r_hat - co(k_.abar(i, i)) * x_.guess_hat;
-  space_.to_physical(x_.Q_hat, x_.Q);
+  s.Q_hat = s.r_hat - s.abar_ii * x_.guess_hat;
+  space_.to_physical(s.Q_hat, x_.Q);
+  return s;
 }
 
 }  // namespace erkn::detail

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <type_traits>
 #include <utility>
 
 #include "compensated_sum.hpp"
@@ -21,6 +22,10 @@ template <class Transform, class Coef, int D = Eigen::Dynamic>
 class Stepper final : public StepperBase {
   using Space = SerialSpace<Transform, D>;
   using Map = typename Space::Map;
+  // The coefficients' type: with a fixed D an array of D values (a diagonal M;
+  // step_coefficients.hpp keeps them inside the stepper, each slot D apart), else Coef.
+  using K = std::conditional_t<D != Eigen::Dynamic && !std::is_same_v<Coef, double>,
+                               Eigen::Array<double, D, 1>, Coef>;
 
  public:
   /// lambda: M's eigenvalues ({0} for RKN methods, whose force then includes -M q).
@@ -106,7 +111,7 @@ class Stepper final : public StepperBase {
   template <class Increment>
   [[gnu::always_inline]] void update(Increment& dq, Increment& dp, const StepPlace& at) {
     const auto co = [](const auto& value) { return Space::co(value); };
-    const StepCoefficients<Coef>& k = k_;
+    const StepCoefficients<K>& k = k_;
     dq = co(k.phi0m1()) * q_hat_ + co(k.hphi1()) * p_hat_;
     dp = co(k.mhMphi1()) * q_hat_ + co(k.phi0m1()) * p_hat_;
     for (int i = 0; i < s_; ++i) {
@@ -138,13 +143,13 @@ class Stepper final : public StepperBase {
   int s_;  // stages
   System system_;
   Options options_;
-  StepCoefficients<Coef> k_;
+  StepCoefficients<K> k_;
   StepPlace place_;  // the step being taken (for messages)
   Space space_;
   // The state (q, p) in eigen coordinates, its summation errors, the increments of a step.
   alignas(EIGEN_MAX_ALIGN_BYTES) typename Space::template Block<6> block_;
   Map q_hat_, p_hat_, eq_hat_, ep_hat_, dq_hat_, dp_hat_;
-  StageSolver<Space, Coef> solver_;
+  StageSolver<Space, K> solver_;
 };
 
 }  // namespace erkn::detail
