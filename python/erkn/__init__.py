@@ -291,22 +291,11 @@ class _ProgressBar:
         self.drawn = True
 
 
-_stderr_is_tty = (None, False)
-
-
-def _on_terminal():
-    """sys.stderr.isatty(), asked once per stderr object (a system call of ~5 us here)."""
-    global _stderr_is_tty
-    if sys.stderr is not _stderr_is_tty[0]:
-        _stderr_is_tty = (sys.stderr, sys.stderr.isatty())
-    return _stderr_is_tty[1]
-
-
 def _progress(progress, t0, t1):
     """The callable the run calls between chunks: progress itself, a bar (True; None: a bar on
     a terminal once the run has lasted 2 s), or None (False)."""
     if progress is None:
-        return _ProgressBar(t0, t1, 2.0) if _on_terminal() else None
+        return _ProgressBar(t0, t1, 2.0) if _erkn._on_terminal() else None
     if progress is True:
         return _ProgressBar(t0, t1, 0.0)
     if progress is False:
@@ -412,14 +401,13 @@ def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None
     or failed step; an error (or an exception from a callback) during the run carries the
     output up to the last completed step as its `solution` attribute."""
     holder = []  # (the integrator, once built: a failed run's output is in its _partial)
-    choice = out = None
+    choice = None
     try:
         # (the common call, its arguments as they are: _erkn._solve_builtin, None for other forms)
-        if (tol is t_eval is events is progress is options is potential is hessian is
-                energy_tolerance is check_stability is hessian_vector_product is None
-                and not _on_terminal()):
-            out = _erkn._solve_builtin(holder, M, grad, q0, p0, t_span, h,
-                                       method or _DEFAULT_METHOD, every)
+        out = _erkn._solve_builtin(holder, M, grad, q0, p0, t_span, h, method or _DEFAULT_METHOD,
+                                   every, tol, t_eval, events, progress, options, potential,
+                                   hessian, energy_tolerance, check_stability,
+                                   hessian_vector_product)
         if out is None:  # (any form: each argument checked and converted)
             t0, t1 = _span(t_span)
             if tol is not None and (method in (None, "auto") or h is None):

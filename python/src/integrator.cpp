@@ -7,6 +7,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -308,30 +309,77 @@ std::optional<std::string_view> plain_name(py::handle x) {
   return std::string_view(text, size_t(size));
 }
 
+// sys.stderr.isatty(), asked once per stderr object (a system call of ~5 us here).
+bool on_terminal() {
+  // (never destroyed: it holds a Python object, which must not be released after the
+  // interpreter has ended)
+  static auto* const last = new std::pair<py::object, bool>(py::none(), false);
+  const py::handle stderr_now = PySys_GetObject("stderr");
+  if (!stderr_now) throw py::attribute_error("module 'sys' has no attribute 'stderr'");
+  if (stderr_now.ptr() != last->first.ptr())
+    *last = {py::reinterpret_borrow<py::object>(stderr_now),
+             py::bool_(stderr_now.attr("isatty")()).cast<bool>()};
+  return last->second;
+}
+
+// erkn.solve's arguments as _solve_builtin takes them (solve_builtin_call).
+constexpr Py_ssize_t kSolveArguments = 19;
+
 // erkn.solve's common call (python/erkn/__init__.py), its arguments as the caller gave them:
 // grad a built-in potential's name, M a float or an erkn.Stiffness, q0 and p0 float64 1-D
 // arrays, t_span a tuple or list of two numbers, h a number, method a name other than "auto",
-// every an int in [1, 2^53]; solve's defaults for the rest (solve sees to that). In these forms
-// solve's Python-level checks and conversions (_state, _real, _every, _system's) leave each
-// argument as it is, so none is repeated here; every value is checked where it is for any call
-// (the System, the method's name, the Integrator). Another form: None (solve's general path).
-py::object solve_builtin(py::list holder, py::handle M, py::handle grad, py::handle q0,
-                         py::handle p0, py::handle t_span, py::handle h, py::handle method,
-                         py::handle every) {
+// every an int in [1, 2^53], `defaults` (solve's other arguments but pilot_fraction and safety,
+// which only tol reads) all None, and stderr not a terminal (progress None draws no bar). In
+// these forms solve's Python-level checks and conversions (_span, _state, _real, _every,
+// _system's, _progress) leave each argument as it is, so none is repeated here; every value is
+// checked where it is for any call (the System, the method's name, the Integrator). Another
+// form: None (solve's general path). args: holder, M, grad, q0, p0, t_span, h, method, every,
+// then the defaults.
+py::object solve_builtin(PyObject* const* args) {
+  const py::handle M = args[1], grad = args[2], t_span = args[5], h = args[6], method = args[7];
   const bool span = (PyTuple_CheckExact(t_span.ptr()) || PyList_CheckExact(t_span.ptr())) &&
                     PySequence_Fast_GET_SIZE(t_span.ptr()) == 2;
   const auto t0 = span ? plain_number(PySequence_Fast_GET_ITEM(t_span.ptr(), 0)) : std::nullopt;
   const auto t1 = span ? plain_number(PySequence_Fast_GET_ITEM(t_span.ptr(), 1)) : std::nullopt;
   const auto step = plain_number(h);
-  const auto q = plain_vector(q0), p = plain_vector(p0);
+  const auto q = plain_vector(args[3]), p = plain_vector(args[4]);
   const auto name = plain_name(grad), method_name = plain_name(method);
-  const auto interval = plain_interval(every);
+  const auto interval = plain_interval(args[8]);
+  const bool none =
+      std::all_of(args + 9, args + kSolveArguments, [](PyObject* x) { return x == Py_None; });
   if (!t0 || !t1 || !step || !q || !p || !name || !method_name || *method_name == "auto" ||
-      !interval || !(PyFloat_CheckExact(M.ptr()) || py::isinstance<Stiffness>(M)))
+      !interval || !none || !(PyFloat_CheckExact(M.ptr()) || py::isinstance<Stiffness>(M)) ||
+      on_terminal())
     return py::none();
   const auto system = builtin_system(M, std::string(*name), {}, q->size());
-  return construct_and_run(holder, Method::by_name(*method_name), *system, *step, *q, *p, *t0,
-                           Options(), *t1, py::none(), *interval, true, py::none(), py::none());
+  return construct_and_run(py::reinterpret_borrow<py::list>(args[0]), Method::by_name(*method_name),
+                           *system, *step, *q, *p, *t0, Options(), *t1, py::none(), *interval, true,
+                           py::none(), py::none());
+}
+
+// _erkn._solve_builtin(holder, M, grad, q0, p0, t_span, h, method, every, tol, t_eval, events,
+// progress, options, potential, hessian, energy_tolerance, check_stability,
+// hessian_vector_product): solve_builtin as CPython calls a METH_FASTCALL function, without
+// pybind11's dispatch (~1.3k instructions a call, 5 % of a 1-step solve: argument vectors, the
+// overload loop; with py::args a tuple more). C++ exceptions reach Python through pybind11's own
+// translators, tried as its dispatcher tries them (module-local ones first): erkn::Error as
+// erkn.Error.
+PyObject* solve_builtin_call(PyObject*, PyObject* const* args, Py_ssize_t n) {
+  try {
+    if (n != kSolveArguments || !PyList_CheckExact(args[0]))
+      throw py::type_error("_solve_builtin takes a list and solve's 18 arguments");
+    return solve_builtin(args).release().ptr();
+  } catch (py::error_already_set& e) {
+    e.restore();
+  } catch (...) {
+    namespace detail = py::detail;
+    if (!detail::apply_exception_translators(
+            detail::get_local_internals().registered_exception_translators) &&
+        !detail::apply_exception_translators(
+            detail::get_internals().registered_exception_translators))
+      PyErr_SetString(PyExc_SystemError, "_solve_builtin: an exception no translator took");
+  }
+  return nullptr;
 }
 
 }  // namespace
@@ -391,9 +439,13 @@ void bind_integrator(py::module_& m) {
       py::arg("holder"), py::arg("method"), py::arg("system"), py::arg("h"), py::arg("q0"),
       py::arg("p0"), py::arg("t0"), py::arg("options"), py::arg("t_end"), py::arg("t_eval"),
       py::arg("every"), py::arg("energy"), py::arg("events"), py::arg("progress"));
-  m.def("_solve_builtin", &solve_builtin, py::arg("holder"), py::arg("M"), py::arg("grad"),
-        py::arg("q0"), py::arg("p0"), py::arg("t_span"), py::arg("h"), py::arg("method"),
-        py::arg("every"));
+  static PyMethodDef solve_builtin_def{
+      "_solve_builtin",
+      reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&solve_builtin_call)),
+      METH_FASTCALL, "erkn.solve's common call (integrator.cpp: solve_builtin), or None"};
+  m.add_object("_solve_builtin", py::reinterpret_steal<py::object>(PyCFunction_NewEx(
+                                     &solve_builtin_def, nullptr, m.attr("__name__").ptr())));
+  m.def("_on_terminal", &on_terminal);
 }
 
 }  // namespace erkn::python
