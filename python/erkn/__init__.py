@@ -324,6 +324,9 @@ def _events(events):
     return out
 
 
+_LATER = object()  # (a Solution's energies: computed from its run when first asked for)
+
+
 class Solution:
     """t (n,), q and p (n, d): row k is the state at t[k]; energy (n,) or None without a
     potential; stats: the integrator's counters and wall time; method: the method's name;
@@ -333,13 +336,14 @@ class Solution:
     y_events[k] = [q, p] (n_k, 2d) at event k's zeros; stats["events"]: the work spent locating
     them; status 1 if a terminal event stopped the run, else 0."""
 
-    def __init__(self, t, q, p, energy, stats, method, choice=None, events=None, stopped=False):
+    t_events = q_events = p_events = y_events = None  # (without events)
+
+    def __init__(self, t, q, p, energy, run, method, choice=None, events=None, stopped=False):
         self.t, self.q, self.p, self.method = t, q, p, method
-        self._energy = energy  # (or a callable computing it on first access)
-        self._stats = stats  # (or a callable reading them on first access)
+        self._energy = energy  # (or _LATER: computed by run on first access)
+        self._run, self._stats = run, None  # (the integrator: statistics read on first access)
         self.choice = choice
         self.status = 1 if stopped else 0
-        self.t_events = self.q_events = self.p_events = self.y_events = None
         if events is not None:
             self.t_events, self.q_events, self.p_events, self.stats["events"] = events
             self.y_events = [np.hstack([q, p]) for q, p in zip(self.q_events, self.p_events)]
@@ -348,16 +352,16 @@ class Solution:
     def stats(self):
         """The run's counters and times (a dict; solve reads them from the run when first
         asked for, as building the dict costs about a microsecond)."""
-        if callable(self._stats):
-            self._stats = self._stats()
+        if self._stats is None:
+            self._stats = self._run.statistics
         return self._stats
 
     @property
     def energy(self):
         """H at each output time, or None without a potential (a built-in potential's is
         computed on first access: solve does not pay for it unless it is looked at)."""
-        if callable(self._energy):
-            self._energy = self._energy()
+        if self._energy is _LATER:
+            self._energy = self._run._energies(self.q, self.p)
         return self._energy
 
     def __repr__(self):
@@ -428,13 +432,11 @@ def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None
         if holder and holder[0]._partial is not None:
             run = holder[0]
             t, q, p, energy, found, _ = run._partial  # (energy None: left for later, or no U)
-            e.solution = Solution(t, q, p, _energies(run, q, p) if energy is None else energy,
-                                  run.statistics, run.method, choice, found)
+            e.solution = Solution(t, q, p, _LATER if energy is None else energy, run,
+                                  run.method, choice, found)
         raise
     name, later, (t, q, p, energy, found, stopped) = out
-    run = holder[0]
-    return Solution(t, q, p, _energies(run, q, p) if later else energy,
-                    lambda: run.statistics, name, choice, found, stopped)
+    return Solution(t, q, p, _LATER if later else energy, holder[0], name, choice, found, stopped)
 
 
 def _span(t_span):
@@ -454,11 +456,6 @@ def _choice(M, grad, q0, p0, t0, t1, h, method, tol, potential, hessian, options
     return _erkn._choose(_system(M, grad, q0.size, potential, hessian, hessian_vector_product),
                          q0, p0, t0, t1, _real(tol, "tol"), method or "auto", float(h or 0.0),
                          float(pilot_fraction), float(safety), opts)
-
-
-def _energies(run, q, p):
-    """H of each output row, computed when first asked for (a built-in U only)."""
-    return lambda: run._energies(q, p)
 
 
 def stability(name, V, z=0.0):
