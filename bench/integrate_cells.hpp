@@ -10,6 +10,7 @@
 #include <erkn/erkn.hpp>
 #include <erkn/problems.hpp>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,7 @@ struct ImplicitCell {
 struct Results {
   std::vector<Cell> cells;
   std::vector<ImplicitCell> implicit_cells;
+  bool pinned = false;  // the timing thread on one CPU
 };
 
 /// integrate(t_end) and read the final state of a run just constructed; returns the gradient
@@ -90,65 +92,96 @@ inline Eigen::VectorXd output_times(const Scene& s) {
   return t;
 }
 
-/// make(options): erkn's Integrator for the run (constructed within the timed run); callback:
-/// System::gradient for a sixth contender, the peer through it (none: nullptr).
-template <class Basis, class Gradient, class Make>
-Cell measure_cell(const Scene& s, const erkn::Method& m, const Basis& basis, Gradient g, Make make,
-                  const TimingPlan& plan, const std::string& label_suffix,
-                  const erkn::System* callback) {
-  erkn::Options plain_options;
-  plain_options.compensated_summation = false;
-  const Eigen::VectorXd times = output_times(s);
-  volatile double sink = 0;  // what the observers read, so no output is optimised away
-  auto peer = [&](auto gradient, long segments) {
+/// What a scene's contenders read while the Schedule runs (each holds it by shared_ptr).
+template <class Basis, class Gradient>
+struct SceneRuns {
+  Scene s;
+  Basis basis;
+  Gradient g;
+  erkn::System sys = erkn::problems::system(s.problem);
+  erkn::System bare = without_gradient(sys);  // make_integrator's: the functor is the gradient
+  Eigen::VectorXd times = output_times(s);
+  volatile double sink = 0;  // what the runs and observers read, so no output is optimised away
+
+  static erkn::System without_gradient(erkn::System sys) {
+    sys.gradient = nullptr;
+    return sys;
+  }
+  /// erkn's Integrator for a run (constructed within the timed run): through System::gradient,
+  /// or with the peer's functor compiled in (erkn::make_integrator).
+  erkn::Integrator make(const erkn::Method& m, bool templated, const erkn::Options& o) const {
+    if (!templated) return erkn::Integrator(m, sys, s.h, s.problem.q0, s.problem.p0, o);
+    const auto compiled = [g = g](const auto& q, auto& out) {  // (the peer's functor, on arrays)
+      auto a = out.array();
+      g(q.array(), a);
+    };
+    return erkn::make_integrator(m, bare, compiled, s.h, s.problem.q0, s.problem.p0, o);
+  }
+  /// The peer's run of m with `gradient` (g inlined, or VectorCallback on System::gradient),
+  /// transforming back after each of `segments` equal parts (one: the final state only).
+  template <class G>
+  void peer(const erkn::Method& m, G gradient, long segments) {
     specialist::Peer run(m.table().c, m.table().d, m.stages(), s.h, basis, gradient, s.problem.q0,
                          s.problem.p0);
     Eigen::VectorXd q, p;
-    for (long k = 0; k < segments; ++k) {  // (one segment: the final state only)
+    for (long k = 0; k < segments; ++k) {
       run.run(s.steps / segments);
       run.state(q, p);
       sink = sink + q[0] + p[0];
     }
-  };
-  auto erkn_output = [&] {
-    erkn::Integrator run = make(erkn::Options{});
-    run.integrate(times[times.size() - 1], times,
-                  [&](double, const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
-                    sink = sink + q[0] + p[0];
-                  });
-  };
-  std::vector<std::function<void()>> contenders = {
-      [&] { peer(g, 1); }, [&] { finish_run(make(plain_options), s, sink); },
-      [&] { finish_run(make({}), s, sink); }, [&] { peer(g, s.outputs()); }, erkn_output};
-  if (callback)
-    contenders.push_back([&] { peer(specialist::VectorCallback{callback->gradient}, 1); });
-  const std::vector<std::vector<double>> t = time_rounds(contenders, plan);
-  Cell c{s.label + label_suffix,  std::string(m.name()),    s.steps,
-         1e3 * median(t[0]),      median_ratio(t[1], t[0]), median_ratio(t[2], t[0]),
-         median_ratio(t[4], t[3])};
-  if (callback)
-    c.callback_peer = median_ratio(t[5], t[0]), c.plain_cb = median_ratio(t[1], t[5]),
-    c.deflt_cb = median_ratio(t[2], t[5]);
-  return c;
-}
+  }
+};
 
 /// The rows of erkn with the peer's gradient compiled into its steps (erkn::make_integrator).
 inline const std::string kCompiledRows = " with templated gradient";  // (no comma: csv)
+
+/// One cell's contenders in the schedule (peer, erkn plain, erkn defaults, the peer with output,
+/// erkn with output times, and in the rows through System::gradient the peer through it); the
+/// Cell at out.cells[index] gets their ratios.
+template <class Runs>
+void add_cell(std::shared_ptr<Runs> sc, const erkn::Method& m, bool templated, Schedule& schedule,
+              Results& out) {
+  const Scene& s = sc->s;
+  const size_t index = out.cells.size();
+  out.cells.push_back({s.label + (templated ? kCompiledRows : ""), std::string(m.name()), s.steps});
+  erkn::Options plain_options;
+  plain_options.compensated_summation = false;
+  auto erkn_output = [sc, m, templated] {
+    erkn::Integrator run = sc->make(m, templated, erkn::Options{});
+    run.integrate(sc->times[sc->times.size() - 1], sc->times,
+                  [&](double, const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
+                    sc->sink = sc->sink + q[0] + p[0];
+                  });
+  };
+  Schedule::Contenders contenders = {
+      [sc, m] { sc->peer(m, sc->g, 1); },
+      [sc, m, templated, plain_options] {
+        finish_run(sc->make(m, templated, plain_options), sc->s, sc->sink);
+      },
+      [sc, m, templated] { finish_run(sc->make(m, templated, {}), sc->s, sc->sink); },
+      [sc, m] { sc->peer(m, sc->g, sc->s.outputs()); }, erkn_output};
+  if (!templated)
+    contenders.push_back([sc, m] { sc->peer(m, specialist::VectorCallback{sc->sys.gradient}, 1); });
+  schedule.add(std::move(contenders), [&out, index](const Schedule::Seconds& t) {
+    Cell& c = out.cells[index];
+    c.peer_ms = 1e3 * median(t[0]);
+    c.plain = median_ratio(t[1], t[0]), c.deflt = median_ratio(t[2], t[0]);
+    c.output = median_ratio(t[4], t[3]);
+    if (t.size() > 5)
+      c.callback_peer = median_ratio(t[5], t[0]), c.plain_cb = median_ratio(t[1], t[5]),
+      c.deflt_cb = median_ratio(t[2], t[5]);
+  });
+}
 
 /// Every explicit method with a peer: erkn with the problems library's System (System::gradient,
 /// a std::function, as users of the callback path call it; the peer through the same function
 /// too), and also with the peer's gradient compiled in (erkn/compiled_gradient.hpp; rows
 /// kCompiledRows).
 template <class Basis, class Gradient>
-void measure_scene(const Scene& s, const Basis& basis, Gradient g, const Config& cfg,
-                   Results& out) {
-  const erkn::System sys = erkn::problems::system(s.problem);
-  erkn::System bare = sys;  // (make_integrator's: the compiled functor is the gradient)
-  bare.gradient = nullptr;
-  const auto compiled = [g](const auto& q, auto& out) {  // (the peer's functor, on arrays)
-    auto a = out.array();
-    g(q.array(), a);
-  };
+void add_scene(const Scene& s, Basis basis, Gradient g, const Config& cfg, Schedule& schedule,
+               Results& out) {
+  const auto sc = std::make_shared<SceneRuns<Basis, Gradient>>(
+      SceneRuns<Basis, Gradient>{s, std::move(basis), g});
   for (bool templated : {false, true}) {
     for (const erkn::Method& m : erkn::Method::all()) {
       // (The peer kicks with grad U only and has no processor: methods with modified kicks or a
@@ -156,32 +189,18 @@ void measure_scene(const Scene& s, const Basis& basis, Gradient g, const Config&
       if (!m.is_explicit() || m.has_modified_kicks() || m.is_processed() ||
           (!cfg.method.empty() && cfg.method != m.name()))
         continue;
-      auto make = [&](const erkn::Options& o) {
-        if (templated)
-          return erkn::make_integrator(m, bare, compiled, s.h, s.problem.q0, s.problem.p0, o);
-        return erkn::Integrator(m, sys, s.h, s.problem.q0, s.problem.p0, o);
-      };
-      out.cells.push_back(measure_cell(s, m, basis, g, make, cfg.plan(),
-                                       templated ? kCompiledRows : "", templated ? nullptr : &sys));
-      std::fprintf(stderr, ".");
+      add_cell(sc, m, templated, schedule, out);
     }
   }
 }
 
-/// CPU per grad U of every registry method with erkn's defaults (construct + integrate), and
-/// each implicit method's ratio to the median over the explicit methods, per round.
-inline void measure_implicit(const Scene& s, const TimingPlan& plan, Results& out) {
-  const erkn::System sys = erkn::problems::system(s.problem);
-  std::vector<erkn::Method> methods(erkn::Method::all().begin(), erkn::Method::all().end());
-  std::vector<std::function<void()>> runs;
-  std::vector<double> evaluations;
-  volatile double sink = 0;
-  for (const erkn::Method& m : methods) {
-    evaluations.push_back(double(erkn_run(m, sys, s, {}, sink)));
-    runs.push_back([&, m] { erkn_run(m, sys, s, {}, sink); });
-  }
-  std::vector<std::vector<double>> t = time_rounds(runs, plan);
-  std::vector<double> explicit_ref(size_t(plan.rounds));  // per round
+/// The implicit cells of a scene from every registry method's seconds per run (defaults,
+/// construct + integrate) and gradient evaluations per run: each implicit method's CPU per grad U
+/// against the median over the explicit methods in the same round.
+inline void implicit_ratios(const Scene& s, const std::vector<erkn::Method>& methods,
+                            const std::vector<double>& evaluations, Schedule::Seconds t,
+                            Results& out) {
+  std::vector<double> explicit_ref(t[0].size());  // per round
   for (size_t r = 0; r < explicit_ref.size(); ++r) {
     std::vector<double> per_grad;
     for (size_t i = 0; i < methods.size(); ++i)
@@ -196,25 +215,47 @@ inline void measure_implicit(const Scene& s, const TimingPlan& plan, Results& ou
   }
 }
 
-/// Every scene: the identity basis for scalar and diagonal M, FFTW r2c/c2r otherwise.
+/// CPU per grad U of every registry method with erkn's defaults (construct + integrate) on a
+/// scene, one group of the schedule; its implicit cells are appended when the schedule has run.
+inline void add_implicit(const Scene& s, Schedule& schedule, Results& out) {
+  struct Runs {
+    erkn::System sys;
+    volatile double sink = 0;
+  };
+  const auto sc = std::make_shared<Runs>(Runs{erkn::problems::system(s.problem)});
+  std::vector<erkn::Method> methods(erkn::Method::all().begin(), erkn::Method::all().end());
+  Schedule::Contenders runs;
+  std::vector<double> evaluations;
+  for (const erkn::Method& m : methods) {
+    evaluations.push_back(double(erkn_run(m, sc->sys, s, {}, sc->sink)));
+    runs.push_back([sc, m, s] { erkn_run(m, sc->sys, s, {}, sc->sink); });
+  }
+  schedule.add(std::move(runs), [s, methods, evaluations, &out](const Schedule::Seconds& t) {
+    implicit_ratios(s, methods, evaluations, t, out);
+  });
+}
+
+/// Every scene: the identity basis for scalar and diagonal M, FFTW r2c/c2r otherwise; all cells
+/// timed in one Schedule (a cell's rounds spread over the whole run), the thread on one CPU.
 inline Results measure_all(const Config& cfg) {
   using Kind = erkn::problems::LinearPart::Kind;
   Results out;
+  out.pinned = pin_to_one_cpu();
+  Schedule schedule;
   for (const Scene& s : scenes(cfg.short_mode)) {
     if (s.label.find(cfg.scene) == std::string::npos) continue;
-    std::fprintf(stderr, "%s ", s.label.c_str());
     const Kind kind = s.problem.M.kind;
     if (kind == Kind::scalar) {
-      measure_scene(s, identity_basis<1>(s.problem.M, 1), DuffingGradient{}, cfg, out);
+      add_scene(s, identity_basis<1>(s.problem.M, 1), DuffingGradient{}, cfg, schedule, out);
     } else if (kind == Kind::diagonal) {
-      measure_scene(s, identity_basis<2>(s.problem.M, 2), StellarGradient{}, cfg, out);
+      add_scene(s, identity_basis<2>(s.problem.M, 2), StellarGradient{}, cfg, schedule, out);
     } else {
-      const specialist::FourierBasis basis = fourier_basis(s.problem.M);
-      measure_scene(s, basis, SineGordonGradient{}, cfg, out);
+      add_scene(s, fourier_basis(s.problem.M), SineGordonGradient{}, cfg, schedule, out);
     }
-    if (s.problem.dim() <= 32 && cfg.method.empty()) measure_implicit(s, cfg.plan(), out);
-    std::fprintf(stderr, "\n");
+    if (s.problem.dim() <= 32 && cfg.method.empty()) add_implicit(s, schedule, out);
   }
+  std::fprintf(stderr, "%zu cells, %d rounds\n", out.cells.size(), cfg.plan().rounds);
+  schedule.run(cfg.plan());
   return out;
 }
 

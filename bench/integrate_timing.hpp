@@ -1,8 +1,17 @@
-// Timing for erkn_integrate_benchmark: contenders timed in interleaved rounds (the order rotated
-// every round), thread CPU time, each sample `reps` whole runs (setup included), and the ratio
-// of two contenders as the median over rounds of their per-round ratio (a load change on the
-// shared machine then hits both sides of a ratio alike).
+// Timing for erkn_integrate_benchmark: groups of contenders (a cell: erkn and its peer) timed in
+// interleaved rounds, thread CPU time, each sample `reps` whole runs (setup included), and the
+// ratio of two contenders as the median over rounds of their per-round ratio (a load change on
+// the shared machine then hits both sides of a ratio alike).
+//
+// Every round visits every group in turn (a Schedule), so one group's samples are spread over the
+// whole run rather than taken in one stretch: this machine has slow spells of about a second that
+// slow some code more than other code (erkn's runs more than the peer's tight loop), and a cell
+// timed in one 0.1 s stretch fell into such a spell whole (stellar orbits Strang, compiled, 0.75
+// in one run, 1.34 in the next, every round alike). The thread is pinned to one CPU (the two vCPUs
+// differ in speed from moment to moment), for every contender alike.
 #pragma once
+
+#include <sched.h>
 
 #include <algorithm>
 #include <cmath>
@@ -25,25 +34,77 @@ struct TimingPlan {
   double min_sample = 5e-3;  // seconds of CPU per sample (reps runs of the first contender)
 };
 
-/// seconds[c][r]: contender c's CPU seconds per run in round r. Every contender runs once
-/// untimed first (warm-up: FFTW plans, caches), then `reps` runs per sample, reps chosen so that
-/// contender 0's sample takes at least plan.min_sample.
+/// Pins the calling thread to the lowest CPU it may run on (Linux); false where it cannot.
+inline bool pin_to_one_cpu() {
+  cpu_set_t allowed;
+  if (sched_getaffinity(0, sizeof allowed, &allowed) != 0) return false;
+  for (int c = 0; c < CPU_SETSIZE; ++c)
+    if (CPU_ISSET(c, &allowed)) {
+      cpu_set_t one;
+      CPU_ZERO(&one);
+      CPU_SET(c, &one);
+      return sched_setaffinity(0, sizeof one, &one) == 0;
+    }
+  return false;
+}
+
+/// Groups of contenders timed together: add() every group, then run(). seconds[c][r] of a group
+/// is its contender c's CPU seconds per run in round r; round r samples every group in the order
+/// added, a group's contenders in the order rotated by r.
+class Schedule {
+ public:
+  using Contenders = std::vector<std::function<void()>>;
+  using Seconds = std::vector<std::vector<double>>;
+  /// `done` receives the group's seconds once every round has run.
+  void add(Contenders contenders, std::function<void(const Seconds&)> done) {
+    groups_.push_back({std::move(contenders), std::move(done), 0, {}});
+  }
+  /// Every contender runs once untimed first (warm-up: FFTW plans, caches), then `reps` runs per
+  /// sample, reps chosen per group so that its contender 0's sample takes at least
+  /// plan.min_sample.
+  void run(const TimingPlan& plan) {
+    for (Group& g : groups_) g.reps = warm_up(g.contenders, plan);
+    for (Group& g : groups_)
+      g.seconds.assign(g.contenders.size(), std::vector<double>(size_t(plan.rounds)));
+    for (int r = 0; r < plan.rounds; ++r)
+      for (Group& g : groups_) sample(g, size_t(r));
+    for (Group& g : groups_) g.done(g.seconds);
+    groups_.clear();
+  }
+
+ private:
+  struct Group {
+    Contenders contenders;
+    std::function<void(const Seconds&)> done;
+    int reps;
+    Seconds seconds;
+  };
+  static int warm_up(const Contenders& contenders, const TimingPlan& plan) {
+    for (const auto& run : contenders) run();
+    const double t0 = thread_seconds();
+    contenders[0]();
+    const double once = std::max(thread_seconds() - t0, 1e-9);
+    return std::max(1, int(std::ceil(plan.min_sample / once)));
+  }
+  static void sample(Group& g, size_t r) {
+    const size_t k = g.contenders.size();
+    for (size_t i = 0; i < k; ++i) {
+      const size_t c = (i + r) % k;
+      const double start = thread_seconds();
+      for (int j = 0; j < g.reps; ++j) g.contenders[c]();
+      g.seconds[c][r] = (thread_seconds() - start) / g.reps;
+    }
+  }
+  std::vector<Group> groups_;
+};
+
+/// One group's seconds[c][r] (Schedule).
 inline std::vector<std::vector<double>> time_rounds(
     const std::vector<std::function<void()>>& contenders, const TimingPlan& plan) {
-  const size_t k = contenders.size();
-  for (const auto& run : contenders) run();
-  const double t0 = thread_seconds();
-  contenders[0]();
-  const double once = std::max(thread_seconds() - t0, 1e-9);
-  const int reps = std::max(1, int(std::ceil(plan.min_sample / once)));
-  std::vector<std::vector<double>> seconds(k, std::vector<double>(size_t(plan.rounds)));
-  for (int r = 0; r < plan.rounds; ++r)
-    for (size_t i = 0; i < k; ++i) {
-      const size_t c = (i + size_t(r)) % k;
-      const double start = thread_seconds();
-      for (int j = 0; j < reps; ++j) contenders[c]();
-      seconds[c][size_t(r)] = (thread_seconds() - start) / reps;
-    }
+  std::vector<std::vector<double>> seconds;
+  Schedule schedule;
+  schedule.add(contenders, [&](const Schedule::Seconds& s) { seconds = s; });
+  schedule.run(plan);
   return seconds;
 }
 
