@@ -53,6 +53,11 @@ struct Output {
   Eigen::Index d;
   bool energy;
   std::vector<double> t, q, p, H;
+  // Room for `rows` rows: the vectors allocated once rather than grown from one row.
+  void reserve(long rows) {
+    t.reserve(size_t(rows)), q.reserve(size_t(rows * d)), p.reserve(size_t(rows * d));
+    if (energy) H.reserve(size_t(rows));
+  }
   void add(const Integrator& run, double tk, const Eigen::VectorXd& qk, const Eigen::VectorXd& pk) {
     t.push_back(tk);
     q.insert(q.end(), qk.data(), qk.data() + d);
@@ -61,14 +66,15 @@ struct Output {
   }
 };
 
-// (t, q, p, energies or None): arrays on the output's vectors, which one capsule owns.
-py::tuple to_python(Output&& run_output) {
+// (t, q, p, energies or None, hits, stopped): arrays on the output's vectors, which one capsule
+// owns.
+py::tuple to_python(Output&& run_output, const py::object& hits, bool stopped) {
   const auto n = py::ssize_t(run_output.t.size());
   const auto [out, base] = owned(std::move(run_output));
   const py::ssize_t d = out->d;
   const py::object E = out->energy ? array_on(out->H.data(), n, -1, base) : py::none();
   return py::make_tuple(array_on(out->t.data(), n, -1, base), array_on(out->q.data(), n, d, base),
-                        array_on(out->p.data(), n, d, base), E);
+                        array_on(out->p.data(), n, d, base), E, hits, stopped);
 }
 
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
@@ -127,6 +133,7 @@ class PyIntegrator {
     };
     py::object keep;  // (t_eval converted, if it had to be)
     const Eigen::Map<const Eigen::VectorXd> times = output_times(t_eval, keep);
+    out.reserve(expected_rows(t_end, t_eval.is_none() ? -1 : times.size(), every));
     if (!t_eval.is_none())  // (all of them before any step: the chunks see only their own)
       TimeGrid(run_.t(), run_.h()).require_output_times(t_end, times);
     std::optional<Events> found;
@@ -207,12 +214,20 @@ class PyIntegrator {
     return false;
   }
 
+  // About the output's rows: `times` (>= 0: output times), or the start, every `every`-th step
+  // and t_end (from (t_end - t) / h, which cannot fail, unlike the plan); at most a first chunk's
+  // steps (long_run.hpp): a run that will be interrupted does not reserve them all.
+  long expected_rows(double t_end, Eigen::Index times, long every) const {
+    const double rows =
+        times >= 0 ? double(times) : 2 + (t_end - run_.t()) / run_.h() / double(every);
+    return rows >= 0 ? long(std::min(rows, double(LongRun::kFirstChunk))) : 2;  // (NaN: 2)
+  }
+
   py::tuple result(Output& out, const std::optional<Events>& found, const py::object& events,
                    bool stopped) {
     py::object hits = py::none();
     if (found) hits = hits_to_python(*found, py::len(events), run_.q().size());
-    const py::tuple o = to_python(std::move(out));
-    return py::make_tuple(o[0], o[1], o[2], o[3], hits, stopped);
+    return to_python(std::move(out), hits, stopped);
   }
 
   // To t_end without output, in chunks (Ctrl-C between them).
@@ -314,11 +329,11 @@ bool on_terminal() {
   // (never destroyed: it holds a Python object, which must not be released after the
   // interpreter has ended)
   static auto* const last = new std::pair<py::object, bool>(py::none(), false);
-  const py::handle stderr_now = PySys_GetObject("stderr");
-  if (!stderr_now) throw py::attribute_error("module 'sys' has no attribute 'stderr'");
-  if (stderr_now.ptr() != last->first.ptr())
-    *last = {py::reinterpret_borrow<py::object>(stderr_now),
-             py::bool_(stderr_now.attr("isatty")()).cast<bool>()};
+  static auto* const sys = new py::module_(py::module_::import("sys"));
+  static auto* const name = new py::str("stderr");  // (PySys_GetObject makes it every call)
+  const py::object stderr_now = sys->attr(*name);
+  if (!stderr_now.is(last->first))
+    *last = {stderr_now, py::bool_(stderr_now.attr("isatty")()).cast<bool>()};
   return last->second;
 }
 
