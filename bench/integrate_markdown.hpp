@@ -56,9 +56,9 @@ inline void markdown_header(std::ofstream& f, const Results& r, const Config& cf
     << "process, the peer's) made before timing. Thread CPU time; each ratio is the median over "
     << cfg.plan().rounds << " interleaved rounds (order rotated) of erkn / peer in that round, "
     << "each sample at least " << fixed(1e3 * cfg.plan().min_sample, 0)
-    << " ms of the peer's runs. Every round visits every cell in turn (a cell's samples are "
-    << "spread over the whole run, not taken in one stretch: this shared machine has slow spells "
-    << "of about a second that slow erkn's runs more than the peer's loop), "
+    << " ms of the peer's runs. Every round visits every cell in turn, so a cell's samples are "
+    << "spread over the whole run rather than taken in one stretch that a slow spell of the "
+    << "shared machine could cover whole; "
     << (r.pinned ? "the timing thread pinned to one CPU" : "the timing thread not pinned")
     << ". The machine is shared: see the spread below. erkn calls the "
     << "problems library's System::gradient (a std::function); the rows \"<scene>" << kCompiledRows

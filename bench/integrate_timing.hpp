@@ -4,11 +4,14 @@
 // the shared machine then hits both sides of a ratio alike).
 //
 // Every round visits every group in turn (a Schedule), so one group's samples are spread over the
-// whole run rather than taken in one stretch: this machine has slow spells of about a second that
-// slow some code more than other code (erkn's runs more than the peer's tight loop), and a cell
-// timed in one 0.1 s stretch fell into such a spell whole (stellar orbits Strang, compiled, 0.75
-// in one run, 1.34 in the next, every round alike). The thread is pinned to one CPU (the two vCPUs
-// differ in speed from moment to moment), for every contender alike.
+// whole run rather than taken in one ~0.15 s stretch, which a slow spell of this shared machine
+// could cover whole (stellar orbits Strang, compiled: erkn 0.75 of the peer in one run, 1.34 in
+// the next, every round alike; N = 8192 and 256^2 cells moved 5-20 %). The caller pins the thread
+// to one CPU (the two vCPUs differ in speed from moment to moment), for every contender alike.
+// Not removed by this: in microsecond runs (Duffing, stellar orbits) one contender's sample can
+// run 4-5x slower in all its reps, at the same (round, contender) in two runs of one binary: a
+// state left by what ran before (running a group's contenders once untimed before its samples
+// removed those patterns in one run and gave another cell one); 0-3 such cells of 948 per pair.
 #pragma once
 
 #include <sched.h>
