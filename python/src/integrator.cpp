@@ -397,9 +397,8 @@ PyObject* solve_builtin_call(PyObject*, PyObject* const* args, Py_ssize_t n) {
   return nullptr;
 }
 
-}  // namespace
-
-void bind_integrator(py::module_& m) {
+// erkn.Integrator's C++ side.
+void bind_integrator_class(py::module_& m) {
   py::class_<PyIntegrator>(m, "_Integrator")
       .def(py::init<const std::string&, const PySystem&, double, const VectorArg&, const VectorArg&,
                     double, const Options&>(),
@@ -442,6 +441,11 @@ void bind_integrator(py::module_& m) {
           "_options", [](PyIntegrator& r) { return r.get().options(); }, "a copy")
       .def_property_readonly("_partial", &PyIntegrator::partial)
       .def("_energies", &PyIntegrator::energies, py::arg("q"), py::arg("p"));
+}
+
+// erkn.solve's calls into C++: construction and run in one (_construct_and_run), its common call
+// (_solve_builtin), and whether stderr is a terminal (_on_terminal).
+void bind_solve_calls(py::module_& m) {
   m.def(
       "_construct_and_run",
       [](py::list holder, const std::string& method, const PySystem& system, double h,
@@ -461,6 +465,13 @@ void bind_integrator(py::module_& m) {
   m.add_object("_solve_builtin", py::reinterpret_steal<py::object>(PyCFunction_NewEx(
                                      &solve_builtin_def, nullptr, m.attr("__name__").ptr())));
   m.def("_on_terminal", &on_terminal);
+}
+
+}  // namespace
+
+void bind_integrator(py::module_& m) {
+  bind_integrator_class(m);
+  bind_solve_calls(m);
 }
 
 }  // namespace erkn::python
