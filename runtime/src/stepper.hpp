@@ -5,11 +5,12 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 
-#include "compensated_sum.hpp"
 #include "erkn/integrator.hpp"
+#include "implicit_passes.hpp"
 #include "serial_space.hpp"
 #include "stage_checks.hpp"
 #include "stage_solver.hpp"
@@ -96,31 +97,59 @@ class Stepper final : public StepperBase {
     ++stats.steps;
   }
 
-  // Eq. (d)'s update from the solved stages, added to the state only at the end. The increments
-  // live in registers with a fixed D (compute_into, stage_predictor.hpp), else in dq_hat_, dp_hat_.
+  // Eq. (d)'s update from the solved stages (implicit_passes.hpp), added to the state only at the
+  // end: with a fixed D on whole arrays the compiler keeps in registers (compute_into,
+  // stage_predictor.hpp), else in passes over the arrays of eigen coordinates.
   [[gnu::always_inline]] void update(const StepPlace& at) {
     if constexpr (Map::RowsAtCompileTime == Eigen::Dynamic) {
-      update(dq_hat_, dp_hat_, at);
+      update_arrays(at);
     } else {
       typename Map::PlainObject dq, dp;
-      update(dq, dp, at);
+      update_values(dq, dp, at);
     }
   }
   // (Both updates and the add always inlined into step: in a call of their own the increments
   // went through memory, P3: 4-5 % more instructions per grad U.)
   template <class Increment>
-  [[gnu::always_inline]] void update(Increment& dq, Increment& dp, const StepPlace& at) {
+  [[gnu::always_inline]] void update_values(Increment& dq, Increment& dp, const StepPlace& at) {
     const auto co = [](const auto& value) { return Space::co(value); };
     const StepCoefficients<K>& k = k_;
-    dq = co(k.phi0m1()) * q_hat_ + co(k.hphi1()) * p_hat_;
-    dp = co(k.mhMphi1()) * q_hat_ + co(k.phi0m1()) * p_hat_;
-    for (int i = 0; i < s_; ++i) {
-      dq -= co(k.h2bbar(i)) * solver_.G(i);
-      dp -= co(k.hb(i)) * solver_.G(i);
-    }
+    update_start(co(k.phi0m1()), co(k.hphi1()), co(k.mhMphi1()), q_hat_, p_hat_, dq, dp);
+    for (int i = 0; i < s_; ++i) update_stage(co(k.h2bbar(i)), co(k.hb(i)), solver_.G(i), dq, dp);
     require_finite_result(q_hat_ + dq, p_hat_ + dp, at);
     add(q_hat_, eq_hat_, dq);
     add(p_hat_, ep_hat_, dp);
+  }
+  // The passes: dq_hat_, dp_hat_ with the non-finite bits of the result, then the adds.
+  void update_arrays(const StepPlace& at) {
+    constexpr int kLanes = int(sizeof(typename Space::Scalar) / sizeof(double));
+    const StepCoefficients<K>& k = k_;
+    const UpdateCoefficients<C> c{coefficient(k.phi0m1()), coefficient(k.hphi1()),
+                                  coefficient(k.mhMphi1())};
+    const UpdateBits bits = update_passes<kLanes>(
+        s_, space_.size(), lanes(q_hat_), lanes(p_hat_), lanes(dq_hat_), lanes(dp_hat_), c,
+        [&](int i) {
+          return std::tuple{lanes(solver_.G(i)), coefficient(k.h2bbar(i)), coefficient(k.hb(i))};
+        });
+    if (bits.q || bits.p) non_finite_result(bits.q == 0, at);
+    const auto add_pass_of = [&](Map& x, Map& error, Map& dx) {
+      if (options_.compensated_summation)
+        add_pass<kLanes, true>(space_.size(), lanes(x), lanes(error), lanes(dx));
+      else
+        add_pass<kLanes, false>(space_.size(), lanes(x), lanes(error), lanes(dx));
+    };
+    add_pass_of(q_hat_, eq_hat_, dq_hat_);
+    add_pass_of(p_hat_, ep_hat_, dp_hat_);
+  }
+  // The passes' view of an array (as doubles) and of a coefficient (a number, or its values).
+  using C = std::conditional_t<std::is_same_v<K, double>, double, const double*>;
+  static double* lanes(Map x) { return reinterpret_cast<double*>(x.data()); }
+  template <class V>
+  static C coefficient(const V& value) {
+    if constexpr (std::is_same_v<C, double>)
+      return value;
+    else
+      return value.data();
   }
 
   // x += dx in eigen coordinates, Kahan-compensated when enabled (compensated_sum.hpp; with a
@@ -130,8 +159,6 @@ class Stepper final : public StepperBase {
   [[gnu::always_inline]] void add(Map& x, Map& error, Increment& dx) {
     if (!options_.compensated_summation) {
       x += dx;
-    } else if constexpr (Map::RowsAtCompileTime == Eigen::Dynamic) {
-      compensated_add(x, error, dx);
     } else {
       typename Map::PlainObject x_value = x, error_value = error;
       compensated_add(x_value, error_value, dx);

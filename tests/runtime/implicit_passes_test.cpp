@@ -1,0 +1,145 @@
+// The implicit step's passes (implicit_passes.hpp) compute the bits of Eigen's expressions of the
+// same arithmetic, which the stepper evaluated before them: eq. (d)'s update on real and complex
+// eigen coordinates (one coefficient, or one per coordinate), for 1 to 5 stages, plain and
+// compensated, with the non-finite bits of q + dq and p + dp. Negative control: one coefficient
+// times 1 + 2^-40 changes the bits.
+#include "implicit_passes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <complex>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <tuple>
+#include <type_traits>
+#include <vector>
+
+namespace erkn::detail {
+namespace {
+
+constexpr Eigen::Index kCoordinates = 37;
+
+// Random eigen coordinates (Scalar double or complex) and real coefficients, one seed.
+template <class Scalar>
+struct UpdateData {
+  using Array = Eigen::Array<Scalar, Eigen::Dynamic, 1>;
+  UpdateData(int s, unsigned seed) : rng(seed) {
+    q = random(), p = random(), eq = random() * 1e-17, ep = random() * 1e-17;
+    for (int i = 0; i < s; ++i)
+      g.push_back(random()), h2bbar.push_back(real()), hb.push_back(real());
+    phi0m1 = real(), hphi1 = real(), mhMphi1 = real();
+  }
+  Eigen::ArrayXd real() {
+    return Eigen::ArrayXd::NullaryExpr(kCoordinates, [&] { return u(rng); });
+  }
+  Array random() {
+    if constexpr (std::is_same_v<Scalar, double>)
+      return real();
+    else
+      return real().template cast<Scalar>() + Scalar(0, 1) * real().template cast<Scalar>();
+  }
+  std::mt19937_64 rng;
+  std::uniform_real_distribution<double> u{-2, 2};
+  Array q, p, eq, ep;
+  std::vector<Array> g;
+  std::vector<Eigen::ArrayXd> h2bbar, hb;
+  Eigen::ArrayXd phi0m1, hphi1, mhMphi1;
+};
+
+template <class A>
+std::vector<unsigned char> bytes(const A& a) {
+  std::vector<unsigned char> b(sizeof(typename A::Scalar) * size_t(a.size()));
+  std::memcpy(b.data(), a.data(), b.size());
+  return b;
+}
+template <class Scalar>
+double* lanes(Eigen::Array<Scalar, Eigen::Dynamic, 1>& a) {
+  return reinterpret_cast<double*>(a.data());
+}
+
+// The bytes of q, p, eq, ep.
+template <class Scalar>
+std::vector<unsigned char> state_bytes(const UpdateData<Scalar>& d) {
+  std::vector<unsigned char> out;
+  for (const auto* a : {&d.q, &d.p, &d.eq, &d.ep}) {
+    const std::vector<unsigned char> b = bytes(*a);
+    out.insert(out.end(), b.begin(), b.end());
+  }
+  return out;
+}
+
+// The state after the update, by Eigen's expressions (the stepper's before the passes), or by
+// the passes (bits: the passes' non-finite bits).
+template <class Scalar>
+std::vector<unsigned char> by_expressions(UpdateData<Scalar> d, bool kahan) {
+  typename UpdateData<Scalar>::Array dq = d.phi0m1 * d.q + d.hphi1 * d.p,
+                                     dp = d.mhMphi1 * d.q + d.phi0m1 * d.p;
+  for (size_t i = 0; i < d.g.size(); ++i) dq -= d.h2bbar[i] * d.g[i], dp -= d.hb[i] * d.g[i];
+  const auto add = [&](auto& x, auto& e, auto& dx) {
+    if (kahan)
+      compensated_add(x, e, dx);
+    else
+      x += dx;
+  };
+  add(d.q, d.eq, dq), add(d.p, d.ep, dp);
+  return state_bytes(d);
+}
+template <class Scalar>
+std::vector<unsigned char> by_passes(UpdateData<Scalar> d, bool kahan, UpdateBits& bits) {
+  constexpr int kLanes = int(sizeof(Scalar) / sizeof(double));
+  typename UpdateData<Scalar>::Array dq(kCoordinates), dp(kCoordinates);
+  const UpdateCoefficients<const double*> k{d.phi0m1.data(), d.hphi1.data(), d.mhMphi1.data()};
+  bits = update_passes<kLanes>(
+      int(d.g.size()), kCoordinates, lanes(d.q), lanes(d.p), lanes(dq), lanes(dp), k, [&](int i) {
+        return std::tuple{lanes(d.g[size_t(i)]), d.h2bbar[size_t(i)].data(),
+                          d.hb[size_t(i)].data()};
+      });
+  if (kahan)
+    add_pass<kLanes, true>(kCoordinates, lanes(d.q), lanes(d.eq), lanes(dq)),
+        add_pass<kLanes, true>(kCoordinates, lanes(d.p), lanes(d.ep), lanes(dp));
+  else
+    add_pass<kLanes, false>(kCoordinates, lanes(d.q), lanes(d.eq), lanes(dq)),
+        add_pass<kLanes, false>(kCoordinates, lanes(d.p), lanes(d.ep), lanes(dp));
+  return state_bytes(d);
+}
+
+template <class Scalar>
+void check_update() {
+  for (int s = 1; s <= 5; ++s)
+    for (bool kahan : {false, true}) {
+      SCOPED_TRACE("stages " + std::to_string(s) + (kahan ? ", compensated" : ", plain"));
+      UpdateData<Scalar> d(s, 20261127u + unsigned(s));
+      UpdateBits bits;
+      EXPECT_EQ(by_passes(d, kahan, bits), by_expressions(d, kahan));
+      EXPECT_EQ(bits.q, 0u);
+      EXPECT_EQ(bits.p, 0u);
+      UpdateData<Scalar> nudged = d;
+      nudged.hb[size_t(s - 1)][11] *= 1 + 0x1p-40;  // (negative control)
+      EXPECT_NE(by_passes(nudged, kahan, bits), by_expressions(d, kahan));
+    }
+}
+
+TEST(ImplicitPasses, UpdateGivesTheBitsOfEigensExpressions) {
+  check_update<double>();
+  check_update<std::complex<double>>();
+}
+
+// A non-finite gradient entry makes q + dq non-finite (bits.q), an infinite h b_i only p + dp.
+TEST(ImplicitPasses, UpdateTakesTheNonFiniteBitsOfTheResult) {
+  for (int s : {1, 3}) {
+    UpdateData<std::complex<double>> d(s, 7u);
+    d.g[0][5] = std::numeric_limits<double>::quiet_NaN();
+    UpdateBits bits;
+    by_passes(d, false, bits);
+    EXPECT_NE(bits.q, 0u);
+    UpdateData<std::complex<double>> e(s, 7u);
+    e.hb[size_t(s - 1)][3] = std::numeric_limits<double>::infinity();
+    by_passes(e, true, bits);
+    EXPECT_EQ(bits.q, 0u);
+    EXPECT_NE(bits.p, 0u);
+  }
+}
+
+}  // namespace
+}  // namespace erkn::detail
