@@ -143,11 +143,12 @@ class SerialSpace {
 
   /// g = grad U(Q) with the checks of stage_checks.hpp (errors thrown here, at once). (Always
   /// inlined: with the stage inlined into the step GCC left it out of line at D = 2, ~40 more
-  /// instructions per grad U, P3.)
+  /// instructions per grad U, P3. g's size checked against D itself when it is fixed: d_ was
+  /// reloaded after every call.)
   [[gnu::always_inline]] void gradient(const System& system, const Eigen::VectorXd& Q,
                                        Eigen::VectorXd& g, int i, const StepPlace& at,
                                        long& evaluations) const {
-    checked_gradient<D>(system.gradient, Q, g, d_, i, at, evaluations);
+    checked_gradient<D>(system.gradient, Q, g, kFixed ? D : d_, i, at, evaluations);
   }
   void settle() const {}  // (nothing deferred)
   void add_MQ(const Eigen::VectorXd& Q, Eigen::VectorXd& g);

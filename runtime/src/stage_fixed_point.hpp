@@ -17,60 +17,74 @@ namespace erkn::detail {
 template <class Space, class Coef>
 [[gnu::always_inline]] inline bool StageSolver<Space, Coef>::fixed_point(int i, const Start& start,
                                                                          long& evaluations) {
-  double delta_old = 0, norm2_Q = 0, first2 = 0;  // (first2: |dQ|^2 of the first iteration)
-  Change c{};
-  int extra = 0;  // iterations after convergence from a cold start (reset_tightening)
-  const Abar abar_ii = start.abar_ii;
-  // (G(i), the iteration limit and the arrays (Work) held in locals: after each call of the
-  // user's gradient the compiler reloads what it reads through members.)
-  Map G_i = G(i);
-  const int max_iterations = options_.max_fixed_point_iterations;
-  const Work r_hat = start.r_hat;
-  Work Q_hat = start.Q_hat, Q_hat_new = scratch(x_.Q_hat_new), G = scratch(G_i),
-       g_first_hat = scratch(x_.g_first_hat);
+  Iterates x{
+      start.r_hat, start.Q_hat,  scratch(x_.Q_hat_new), scratch(G(i)), scratch(x_.g_first_hat),
+      G(i),        start.abar_ii};
   // A new measurement's theta (record_contraction), formed before the first evaluation, whose
   // latency hides its division and root: formed at the measurement, at the end of a stage, they
   // were ~19 % of this loop's samples (perf, P2, SERKN1s2(1)).
   if (StageRecord& r = record_[i]; r.due_den2 > 0)
     set_theta(r, std::sqrt(r.due_num2 / r.due_den2)), r.due_den2 = 0;
-  for (int it = 1; it <= max_iterations; ++it) {
-    if (it > 1) space_.to_physical(Q_hat, x_.Q);  // (start_stage did it for the guess)
-    stage_force(i, Q_hat, G, evaluations);        // (and one stage iteration: count())
-    if constexpr (Space::kFixed) G_i = G;         // (a view: G is G_i)
-    Q_hat_new = r_hat - abar_ii * G;
-    // |dQ| / max(|Q_new|, |Q_old|) in eigen coordinates, so a converged stage needs no inverse
-    // transform. Both iterates: an iterate at 0 (a 2-cycle r -> 0 -> r) must not make delta
-    // huge and the next theta ~ 0, which would pass the stopping test without converging.
-    // One reduce: |dQ|^2, |Q_new|^2, at the first iteration |Q|^2 (later the previous iterate's
-    // |Q_new|^2), at the second the contraction's (record_contraction).
+  // The first iteration on its own (the common stage ends there, contraction_proves): one reduce
+  // of |dQ|^2, |Q_new|^2 and |Q|^2. (Inside the loop its tests of `it` and its spills were ~25
+  // of P2's instructions per stage.)
+  iterate(i, 1, x, evaluations);
+  const auto sums = space_.reduce(std::array{space_.squared_norm(x.Q_hat_new - x.Q_hat),
+                                             space_.squared_norm(x.Q_hat_new),
+                                             space_.squared_norm(x.Q_hat), 0.0});
+  const Change c = in_range(sums[0], std::max(sums[1], sums[2]));
+  swap_views(x.Q_hat, x.Q_hat_new);
+  if (c.X > 0 && contraction_proves(i, c)) return true;
+  x.g_first_hat = x.G;
+  return iterate_on(i, x, c, sums[0], sums[1], evaluations);
+}
+
+// One iteration at x.Q_hat: x.G = its force, x.Q_hat_new = r_i - h^2 abar_ii x.G (start_stage
+// formed the physical Q of the first iterate).
+template <class Space, class Coef>
+[[gnu::always_inline]] inline void StageSolver<Space, Coef>::iterate(int i, int it, Iterates& x,
+                                                                     long& evaluations) {
+  if (it > 1) space_.to_physical(x.Q_hat, x_.Q);
+  stage_force(i, x.Q_hat, x.G, evaluations);  // (and one stage iteration: count())
+  if constexpr (Space::kFixed) x.G_i = x.G;   // (a view: G is G_i)
+  x.Q_hat_new = x.r_hat - x.abar_ii * x.G;
+}
+
+// The iterations after the first (c: its change, first2 its |dQ|^2, norm2_Q its |Q_new|^2).
+// |dQ| / max(|Q_new|, |Q_old|) in eigen coordinates, so a converged stage needs no inverse
+// transform. Both iterates: an iterate at 0 (a 2-cycle r -> 0 -> r) must not make delta huge and
+// the next theta ~ 0, which would pass the stopping test without converging. One reduce: |dQ|^2,
+// |Q_new|^2 and at the second iteration the contraction's (record_contraction).
+template <class Space, class Coef>
+[[gnu::always_inline]] inline bool StageSolver<Space, Coef>::iterate_on(int i, Iterates& x,
+                                                                        Change c, double first2,
+                                                                        double norm2_Q,
+                                                                        long& evaluations) {
+  double delta_old = std::sqrt(c.X / c.N);
+  int extra = 0;  // iterations after convergence from a cold start (reset_tightening)
+  const int max_iterations = options_.max_fixed_point_iterations;
+  for (int it = 2; it <= max_iterations; ++it) {
+    iterate(i, it, x, evaluations);
     const bool measure = it == 2 && first2 > 0 && measures_contraction(delta_old);
-    if (measure) g_first_hat = abar_ii * (G - g_first_hat);
-    const auto sums = space_.reduce(std::array{space_.squared_norm(Q_hat_new - Q_hat),
-                                               space_.squared_norm(Q_hat_new),
-                                               it == 1 ? space_.squared_norm(Q_hat) : 0.0,
-                                               measure ? space_.squared_norm(g_first_hat) : 0.0});
-    if (it == 1) norm2_Q = sums[2];
+    if (measure) x.g_first_hat = x.abar_ii * (x.G - x.g_first_hat);
+    const auto sums = space_.reduce(std::array{space_.squared_norm(x.Q_hat_new - x.Q_hat),
+                                               space_.squared_norm(x.Q_hat_new), 0.0,
+                                               measure ? space_.squared_norm(x.g_first_hat) : 0.0});
     c = in_range(sums[0], std::max(sums[1], norm2_Q));
     norm2_Q = sums[1];
-    swap_views(Q_hat, Q_hat_new);
-    if (it == 1) {
-      if (c.X > 0 && contraction_proves(i, c)) return true;
-      first2 = sums[0], g_first_hat = G;
-      delta_old = std::sqrt(c.X / c.N);
-    } else {
-      if (it == 2 && first2 > 0) record_contraction(i, first2, c, delta_old, sums[3]);
-      // A first update below round-off (X = 0) proves nothing: the guess then holds the
-      // extrapolation's error below round-off, and stopping there let RKN3s4(2) drift in energy
-      // over 1e6 steps of P3 (h = 1e-3).
-      if (c.X == 0) return true;
-      const Verdict v = verdict(i, it, c, delta_old, extra);
-      if (v == Verdict::converged) return true;
-      if (v == Verdict::failed) return keep_iterate(Q_hat), false;
-    }
+    swap_views(x.Q_hat, x.Q_hat_new);
+    if (it == 2 && first2 > 0) record_contraction(i, first2, c, delta_old, sums[3]);
+    // A first update below round-off (X = 0) proves nothing: the guess then holds the
+    // extrapolation's error below round-off, and stopping there let RKN3s4(2) drift in energy
+    // over 1e6 steps of P3 (h = 1e-3).
+    if (c.X == 0) return true;
+    const Verdict v = verdict(i, it, c, delta_old, extra);
+    if (v == Verdict::converged) return true;
+    if (v == Verdict::failed) return keep_iterate(x.Q_hat), false;
   }
   // Out of iterations: accept only round-off noise, or a converged stage's extra iterations.
   if (extra > 0 || c.X <= square(options_.roundoff_level) * c.N) return true;
-  return keep_iterate(Q_hat), false;
+  return keep_iterate(x.Q_hat), false;
 }
 
 // x_.Q_hat = the last iterate Q_hat of a failed fixed point (Newton-Krylov may start from it):
@@ -180,11 +194,15 @@ bool StageSolver<Space, Coef>::too_slow(int i, int it, double theta, double delt
 // theta_s/(1-theta_s) delta weight_i <= kFirstShare * tolerance with theta_s = kThetaSafety theta
 // < 1/2 (else never), delta^2 = X / N: multiplied out, X (theta_s weight_i)^2 <= (kFirstShare
 // tolerance (1 - theta_s))^2 N (theta_s = 0 passes), the factors formed with theta (set_theta).
+// Without theta, or with theta_s >= 1/2, proof_N = -1 fails the test (X > 0, N > 0: in_range);
+// the solves are counted there too, harmlessly: theta is set only after a measurement, which
+// restarts the count. (Tested apart, theta < 0 and the flag were ~5 of ~16 instructions per
+// stage, P2.) The count stops at kThetaRefresh (an int counting every solve would overflow).
 template <class Space, class Coef>
 bool StageSolver<Space, Coef>::contraction_proves(int i, Change c) {
   StageRecord& r = record_[i];
-  if (r.theta < 0 || ++r.theta_age >= kThetaRefresh) return false;
-  return r.first_stop && c.X * r.proof_X <= r.proof_N * c.N;
+  r.theta_age += r.theta_age < kThetaRefresh;
+  return r.theta_age < kThetaRefresh && c.X * r.proof_X <= r.proof_N * c.N;
 }
 
 // r.theta = theta and contraction_proves' factors from it. Formed at the stage's next solve,
@@ -195,9 +213,8 @@ template <class Space, class Coef>
 void StageSolver<Space, Coef>::set_theta(StageRecord& r, double theta) const {
   r.theta = theta;
   const double theta_s = kThetaSafety * theta;
-  r.first_stop = theta_s < 0.5;
   const double lhs = theta_s * r.weight, rhs = kFirstShare * options_.tolerance * (1 - theta_s);
-  r.proof_X = lhs * lhs, r.proof_N = rhs * rhs;
+  r.proof_X = lhs * lhs, r.proof_N = theta_s < 0.5 ? rhs * rhs : -1;
 }
 
 // theta along the first update, |h^2 abar_ii (g(Q_1) - g(Q_0))| / |Q_1 - Q_0|, with g(Q_0) in

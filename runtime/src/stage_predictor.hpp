@@ -50,33 +50,47 @@ class StagePredictor {
         block_(space.template block<kMaxNodes>(n_)) {
     for (int age = 0; age <= kHistory; ++age) steps_[age] = space.map(block_, age * s_).data();
     for (int i = 0; i < s_; ++i) set_nodes(i);
+    set_uses();
   }
   StagePredictor(const StagePredictor&) = delete;  // (steps_ points into block_)
   StagePredictor& operator=(const StagePredictor&) = delete;
 
   /// Stage i's gradient of this step.
-  Map G(int i) { return gradient_at(0, i); }
+  Map G(int i) {
+    if constexpr (kInPlace)
+      return space_.map(block_.data(), i);
+    else
+      return gradient_at(0, i);
+  }
   /// Forgets the steps before (set_state, a new start).
   void reset() {
     history_ = 0;
     adapt_wait_.fill(1);
     adapt_interval_.fill(1);
+    set_uses();
   }
-  /// After a step: this step's gradients become the previous step's.
+  /// After a step: this step's gradients become the previous step's: with a fixed size moved
+  /// back by one step in place (s D values), so that every node keeps its address (predict's
+  /// offsets); else the steps' pointers rotated.
   void advance() {
-    Scalar* const oldest = steps_[kHistory];  // (rotated by hand: std::rotate was a call)
-    for (int age = kHistory; age > 0; --age) steps_[age] = steps_[age - 1];
-    steps_[0] = oldest;
-    history_ = std::min(history_ + 1, kHistory);
+    if constexpr (kInPlace) {  // (array by array: std::copy_n of s D values was a memmove call)
+      for (int age = kHistory; age > 0; --age)
+        for (int j = 0; j < s_; ++j)
+          space_.map(block_.data(), age * s_ + j) = space_.map(block_.data(), (age - 1) * s_ + j);
+    } else {
+      Scalar* const oldest = steps_[kHistory];  // (rotated by hand: std::rotate was a call)
+      for (int age = kHistory; age > 0; --age) steps_[age] = steps_[age - 1];
+      steps_[0] = oldest;
+    }
+    if (history_ < kHistory) ++history_, set_uses();
   }
   /// Whether the steps before are known (after a reset the first guesses are poor).
   bool has_history() const { return history_ > 0; }
 
   /// out = stage i's predicted gradient (0 when no node is known yet).
   void predict(int i, Map& out) {
-    const int n = std::min(order_[i], available_nodes(i));
-    if (n > 0)
-      compute_into(out, [&](auto& value) { predict(i, n, value); });
+    if (use_[i] > 0)
+      compute_into(out, [&](auto& value) { predict(i, use_[i], use_weights_[i], value); });
     else
       out.setZero();
   }
@@ -96,7 +110,7 @@ class StagePredictor {
   template <class Abar>
   double guess_error(int i, int m, const Abar& abar_ii, Map& guess) {
     const auto error = [&](auto& g) {
-      if (m > 0) predict(i, m, g);
+      if (m > 0) predict(i, m, &weight(i, m - 1, 0), g);
       g = abar_ii * (g - G(i));
       return space_.squared_norm(g);
     };
@@ -115,17 +129,33 @@ class StagePredictor {
     while (n < node_count_[i] && nodes_[i][n].age <= history_) ++n;
     return n;
   }
-  // out = the polynomial through the first n nodes of stage i, at c_i.
+  // out = the polynomial through the first n nodes of stage i, at c_i (w: their weights).
   template <class Out>
-  void predict(int i, int n, Out& out) {
-    const auto at = [&](const Node& node) { return gradient_at(node.age, node.stage); };
-    const double* w = &weight(i, n - 1, 0);
-    const std::array<Node, kMaxNodes>& nodes = nodes_[i];
-    out = w[0] * at(nodes[0]);
-    for (int l = 1; l < n; ++l) out += w[l] * at(nodes[l]);
+  void predict(int i, int n, const double* w, Out& out) {
+    out = w[0] * node(i, 0);
+    for (int l = 1; l < n; ++l) out += w[l] * node(i, l);
+  }
+  // Node l of stage i: with a fixed size at its offset in block_ (a constant address: the
+  // lookup of its step's pointer and its index were ~5 of ~9 instructions per node of the
+  // prediction, P2), else through its step's pointer.
+  Map node(int i, int l) {
+    if constexpr (kInPlace)
+      return space_.map(block_.data(), offset_[i][l]);
+    else
+      return gradient_at(nodes_[i][l].age, nodes_[i][l].stage);
   }
   Map gradient_at(int age, int stage) {
     return space_.map(steps_[age], stage);  // (steps_[age]: the first of s arrays)
+  }
+  // use_[i] = the nodes predict(i) uses, min(order_[i], available_nodes(i)), and their weights,
+  // renewed whenever either changes (reset, advance's first steps, adapt): found at every
+  // prediction they were ~20 of its ~35 instructions (P2, SERKN2s3).
+  void set_use(int i) {
+    use_[i] = std::min(order_[i], available_nodes(i));
+    use_weights_[i] = use_[i] > 0 ? &weight(i, use_[i] - 1, 0) : nullptr;
+  }
+  void set_uses() {
+    for (int i = 0; i < s_; ++i) set_use(i);
   }
   // weight(i, m - 1, l): node l's Lagrange weight at c_i on the first m nodes; sized by s, not
   // by kMaxStages (that would be kMaxStages (2 kMaxStages)^2 doubles to clear at every setup).
@@ -135,12 +165,16 @@ class StagePredictor {
     int age, stage;  // age 0: this step
   };
   static constexpr int kMaxAdaptInterval = 8;
+  // Whether the gradients of the steps before stay in block_ at fixed places (advance).
+  static constexpr bool kInPlace = Space::kFixed;
   const Space& space_;
   int s_;
   const double* c_;
   int n_;  // nodes at most: (kHistory + 1) s
   std::array<std::array<Node, kMaxNodes>, kMaxStages> nodes_{};
-  std::array<int, kMaxStages> node_count_{}, order_{};
+  std::array<std::array<int, kMaxNodes>, kMaxStages> offset_{};  // node's array in block_
+  std::array<int, kMaxStages> node_count_{}, order_{}, use_{};
+  std::array<const double*, kMaxStages> use_weights_{};
   std::vector<double> weights_;
   int history_ = 0;  // steps before this one with stage gradients (since set_state)
   std::array<int, kMaxStages> adapt_wait_{}, adapt_interval_{};  // steps to adapt's check
@@ -159,7 +193,7 @@ void StagePredictor<Space>::set_nodes(int i) {
       const Node node{age, j};
       bool repeated = false;
       for (int l = 0; l < n; ++l) repeated |= time(nodes_[i][l]) == time(node);
-      if (!repeated && n < kMaxNodes) nodes_[i][n++] = node;
+      if (!repeated && n < kMaxNodes) offset_[i][n] = age * s_ + j, nodes_[i][n++] = node;
     }
   // Lagrange weights at c_i on the first m nodes, for every m.
   for (int m = 1; m <= n; ++m)
@@ -207,6 +241,7 @@ void StagePredictor<Space>::adapt(int i, const Abar& abar_ii, Map& prediction, M
       best_n == order_[i] ? std::min(2 * adapt_interval_[i], kMaxAdaptInterval) : 1;
   adapt_wait_[i] = adapt_interval_[i];
   order_[i] = best_n;
+  set_use(i);
 }
 
 }  // namespace erkn::detail

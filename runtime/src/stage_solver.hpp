@@ -46,7 +46,14 @@ class StageSolver {
   /// stage iteration (count() adds them, and Newton's counts, once the step has succeeded);
   /// throws erkn::Error naming the stage.
   template <class State>
-  long solve(const State& q_hat, const State& p_hat, const StepPlace& at);
+  long solve(const State& q_hat, const State& p_hat, const StepPlace& at) {
+    return solve_inline(q_hat, p_hat, at);
+  }
+  /// solve, inlined into the caller (the fixed-D step: as a call, its frame and its loop's
+  /// set-up were ~45 instructions per step, P2).
+  template <class State>
+  [[gnu::always_inline]] long solve_inline(const State& q_hat, const State& p_hat,
+                                           const StepPlace& at);
   /// Adds a solved step's counts to stats: `evaluations` (solve's result) as gradient evaluations
   /// and as stage iterations, and those of its Newton fallbacks. (One counter on the fixed point's
   /// path, not five cleared and added per step: GCC added two adjacent ones with one 16-byte load
@@ -79,14 +86,14 @@ class StageSolver {
   struct StageRecord {
     double theta = -1;                  // the contraction measured; < 0: none
     double due_num2 = 0, due_den2 = 0;  // a new measurement, theta^2 as a fraction; 0: none
-    int theta_age = 0;                  // stage solves since the measurement
+    int theta_age = 0;                  // stage solves since the measurement, at most kThetaRefresh
     double weight = 0;                  // max(1, |bbar_i| / |abar_ii|, |b_i| / (h |abar_ii|))
     double newton_cost = 0;             // evaluations of its last Newton solve; 0: none
     bool explicit_stage = false;        // abar_ii = 0: Q_i = r_i, one evaluation
-    // contraction_proves' factors, formed with theta (set_theta): whether theta allows a
-    // first-iteration stop, (theta_s weight)^2 and (kFirstShare tolerance (1 - theta_s))^2.
-    bool first_stop = false;
-    double proof_X = 0, proof_N = 0;
+    // contraction_proves' factors, formed with theta (set_theta): (theta_s weight)^2 and
+    // (kFirstShare tolerance (1 - theta_s))^2, or -1 where no first-iteration stop is allowed
+    // (no theta, theta_s >= 1/2).
+    double proof_X = 0, proof_N = -1;
   };
   // Newton's workspace (allocated at the first fallback): dense (d <= kDenseNewtonMaxD) or
   // Newton-Krylov.
@@ -132,11 +139,21 @@ class StageSolver {
     Abar abar_ii;
   };
   void solve_stage(int i, const Start& start, long& evaluations);
-  [[gnu::noinline, gnu::cold]] void fall_back(int i);
+  [[gnu::noinline, gnu::cold]] void fall_back(int i, const Start& start);
   [[gnu::noinline, gnu::cold]] void add_newton_counts(Statistics& stats);
   template <class State>
   Start start_stage(int i, const State& q_hat, const State& p_hat);
+  // The fixed point's arrays: with a fixed D values (Work), else views of x_'s (the iterates,
+  // the next, the force, g(Q_0) of the first iteration), G(i) and h^2 abar_ii, held in locals:
+  // after each call of the user's gradient the compiler reloads what it reads through members.
+  struct Iterates {
+    Work r_hat, Q_hat, Q_hat_new, G, g_first_hat;
+    Map G_i;
+    Abar abar_ii;
+  };
   bool fixed_point(int i, const Start& start, long& evaluations);
+  void iterate(int i, int it, Iterates& x, long& evaluations);
+  bool iterate_on(int i, Iterates& x, Change c, double first2, double norm2_Q, long& evaluations);
   [[gnu::noinline]] bool fixed_point_call(int i, const Start& start, long& evaluations) {
     return fixed_point(i, start, evaluations);
   }
@@ -171,9 +188,10 @@ class StageSolver {
   void set_preconditioner(int i, double sigma);
   void jacobian(int i, Statistics& stats);
 
-  // G_i = the force at the iterate (Q, Q_hat) in eigen coordinates.
+  // G_i = the force at the iterate (Q, Q_hat) in eigen coordinates. (Always inlined: with
+  // solve inlined into the step GCC left it out of line at D = 2, P3: +10 % instructions.)
   template <class Y, class G>
-  void stage_force(int i, const Y& Q_hat, G&& G_i, long& evaluations) {
+  [[gnu::always_inline]] void stage_force(int i, const Y& Q_hat, G&& G_i, long& evaluations) {
     space_.gradient(system_, x_.Q, x_.g, i, *at_, evaluations);
     space_.to_eigen_force(x_.Q, Q_hat, x_.g, G_i);
   }
@@ -288,7 +306,9 @@ StageSolver<Space, Coef>::StageSolver(const Method& method, const System& system
 // Eq. (d)'s stages one by one.
 template <class Space, class Coef>
 template <class State>
-long StageSolver<Space, Coef>::solve(const State& q_hat, const State& p_hat, const StepPlace& at) {
+[[gnu::always_inline]] inline long StageSolver<Space, Coef>::solve_inline(const State& q_hat,
+                                                                          const State& p_hat,
+                                                                          const StepPlace& at) {
   at_ = &at;
   newton_pending_ = false;
   long evaluations = 0;
@@ -316,12 +336,13 @@ template <class Space, class Coef>
   // iterations, P2.)
   if (!(Space::kFixed ? fixed_point(i, start, evaluations)
                       : fixed_point_call(i, start, evaluations)))
-    fall_back(i);
+    fall_back(i, start);
 }
 
-// Newton where the fixed point failed, counted into newton_counts_.
+// Newton where the fixed point failed (from start's r_i), counted into newton_counts_.
 template <class Space, class Coef>
-void StageSolver<Space, Coef>::fall_back(int i) {
+void StageSolver<Space, Coef>::fall_back(int i, const Start& start) {
+  if constexpr (Space::kFixed) x_.r_hat = start.r_hat;  // (else start.r_hat views it)
   if (!newton_pending_) newton_counts_ = Statistics{}, newton_pending_ = true;
   Statistics& stats = newton_counts_;
   ++stats.newton_fallbacks;
@@ -352,8 +373,8 @@ void StageSolver<Space, Coef>::add_newton_counts(Statistics& stats) {
 
 // r_i = phi0(c_i^2 V) q + h c_i phi1(c_i^2 V) p - h^2 sum_{j<i} abar_ij g_j, and the starting
 // guess Q = r_i - h^2 abar_ii g_pred with g_pred extrapolated from the known stage gradients
-// (x_.guess_hat); x_.r_hat and x_.Q (physical) set, x_.Q_hat too with a dynamic D (with a fixed D
-// keep_iterate stores the iterate Newton-Krylov starts from).
+// (x_.guess_hat); x_.Q (physical) set, x_.r_hat and x_.Q_hat too with a dynamic D (with a fixed
+// D fall_back stores r_i and keep_iterate the iterate Newton-Krylov starts from).
 template <class Space, class Coef>
 template <class State>
 [[gnu::always_inline]] inline auto StageSolver<Space, Coef>::start_stage(int i, const State& q_hat,
@@ -363,7 +384,6 @@ template <class State>
   Start s{scratch(x_.r_hat), scratch(x_.Q_hat), co(k_.abar(i, i))};
   s.r_hat = co(k_.phi0c(i)) * q_hat + co(k_.hcphi1c(i)) * p_hat;
   for (int j = 0; j < i; ++j) s.r_hat -= co(k_.abar(i, j)) * G(j);
-  if constexpr (Space::kFixed) x_.r_hat = s.r_hat;  // (Newton's)
   predictor_.predict(i, x_.guess_hat);
   s.Q_hat = s.r_hat - s.abar_ii * x_.guess_hat;
   space_.to_physical(s.Q_hat, x_.Q);

@@ -90,7 +90,11 @@ class Stepper final : public StepperBase {
   [[gnu::always_inline]] void advance(long step_number, double t, Statistics& stats) {
     place_.step = step_number;
     place_.t = t;
-    const long evaluations = solver_.solve(q_hat_, p_hat_, place_);
+    long evaluations;
+    if constexpr (Space::kFixed)
+      evaluations = solver_.solve_inline(q_hat_, p_hat_, place_);
+    else
+      evaluations = solver_.solve(q_hat_, p_hat_, place_);
     update(place_);
     solver_.count(evaluations, stats);
     solver_.advance();
