@@ -28,9 +28,10 @@
 // is spilled: on x86-64 the vector registers are caller-saved); in a half-spectrum basis on the
 // stepper's vectors, its loop inlined where the specialist's is (through System::gradient,
 // sine-Gordon N = 32 costs 5-10 % more, and so does the specialist's loop through it). The
-// arithmetic is the same on both: the same step, the same checks and messages; System's other
-// callbacks (the Hessians of modified kicks) and M Q (RKN methods) take exact copies of the
-// fixed-size Q and g as Eigen::VectorXd.
+// arithmetic is the same on both: the same step, the same checks and messages. A functor with a
+// Hessian-vector product as well (CompiledGradient::kProduct) has modified kicks call it on the
+// same vectors; otherwise System's other callbacks (the Hessians of modified kicks) and M Q (RKN
+// methods) take exact copies of the fixed-size Q and g as Eigen::VectorXd.
 //
 // The transform may also be a space of several processes (mpi/src/slab_space.hpp: a grid or
 // circulant M distributed over MPI ranks, whose transforms are collective). Such a space defers
@@ -92,23 +93,43 @@
 
 namespace erkn::detail {
 
-/// The gradient through System::gradient (on Eigen::VectorXd).
+/// The gradient through System::gradient (on Eigen::VectorXd); modified kicks call System's
+/// Hessian (-vector product) too.
 struct SystemGradient {
   using Vector = Eigen::VectorXd;
+  static constexpr bool kProduct = false;
   void operator()(const System& system, const Vector& q, Vector& g) const { system.gradient(q, g); }
 };
 /// The gradient G compiled into the step: g(q, out) on fixed-size vectors of dimension D, or
 /// (D = Eigen::Dynamic) on maps of the stepper's Eigen::VectorXd (g sized, not to be resized).
+/// When G also has hessian_vector(q, v, out) (out = Hess U(q) v, on the same vectors: kProduct),
+/// modified kicks call that in place of System's Hessian-vector product.
 template <class G, int D>
 struct CompiledGradient {
   using Vector = std::conditional_t<D == Eigen::Dynamic, Eigen::VectorXd,
                                     Eigen::Matrix<double, D, 1, Eigen::DontAlign>>;  // (Physical)
+  // What G is called on: the vectors themselves, or maps of them.
+  using In = std::conditional_t<D == Eigen::Dynamic, Eigen::Map<const Eigen::VectorXd>, Vector>;
+  using Out = std::conditional_t<D == Eigen::Dynamic, Eigen::Map<Eigen::VectorXd>, Vector>;
+  static constexpr bool kProduct = requires(const G& f, const In& x, Out& y) {
+    f.hessian_vector(x, x, y);
+  };
+
   void operator()(const System&, const Vector& q, Vector& g) const {
     if constexpr (D == Eigen::Dynamic) {
-      Eigen::Map<Eigen::VectorXd> out(g.data(), g.size());
-      gradient(Eigen::Map<const Eigen::VectorXd>(q.data(), q.size()), out);
+      Out out(g.data(), g.size());
+      gradient(In(q.data(), q.size()), out);
     } else {
       gradient(q, g);
+    }
+  }
+  /// hv = Hess U(q) v through G (kProduct only).
+  void product(const Vector& q, const Vector& v, Vector& hv) const {
+    if constexpr (D == Eigen::Dynamic) {
+      Out out(hv.data(), hv.size());
+      gradient.hessian_vector(In(q.data(), q.size()), In(v.data(), v.size()), out);
+    } else {
+      gradient.hessian_vector(q, v, hv);
     }
   }
   G gradient;
@@ -176,10 +197,10 @@ class ExplicitStepper final : public StepperBase {
     State work;          // the state's second copy (dynamic dimension only)
   };
   // Physical coordinates: the stage Q and its gradient g (the gradient's arguments), M Q for RKN
-  // methods, and (fixed-size Q and g, callbacks besides the gradient: RKN, modified kicks) their
-  // copies as Eigen::VectorXd, in a block of their own. (With the copies inside and Q, g aligned
-  // to 16 bytes the stepper of d = 4 with an 8-byte functor took 1056 bytes, beyond the 1032
-  // glibc's per-thread cache serves, allocation_test.cpp; now 1032.)
+  // methods, and (fixed-size Q and g, callbacks besides the gradient: RKN, modified kicks without
+  // a compiled product) their copies as Eigen::VectorXd, in a block of their own. (With the copies
+  // inside and Q, g aligned to 16 bytes the stepper of d = 4 with an 8-byte functor took 1056
+  // bytes, beyond the 1032 glibc's per-thread cache serves, allocation_test.cpp; now 1032.)
   using Vector = typename Gradient::Vector;
   static constexpr bool kDynamicVector = std::is_same_v<Vector, Eigen::VectorXd>;
   struct Copies {
@@ -231,9 +252,14 @@ class ExplicitStepper final : public StepperBase {
         transform_(std::move(transform)),
         M_(m_operator(system_.M, d)),
         arrays_(transform_.spectral_size(d)),
-        physical_(d, rkn_, rkn_ || method.has_modified_kicks() || method.is_processed()),
+        physical_(d, rkn_,
+                  rkn_ || (!Gradient::kProduct &&
+                           (method.has_modified_kicks() || method.is_processed()))),
         gradient_(std::move(gradient)),
-        modified_(method.has_modified_kicks() || method.is_processed() ? d : 0),
+        modified_((method.has_modified_kicks() || method.is_processed()) &&
+                          !(kFixed && Gradient::kProduct)
+                      ? d
+                      : 0),  // (a fixed D's compiled product has its Hv on the stack)
         processing_(method.is_processed()
                         ? std::make_unique<Processing>(method, h, lambda, arrays_.m, d)
                         : nullptr) {}
@@ -707,10 +733,15 @@ class ExplicitStepper final : public StepperBase {
         M_->apply(Q, physical_.Mq);
         g += physical_.Mq;
       });
-    if (h2e != 0)
+    if constexpr (Gradient::kProduct) {
+      if (h2e != 0)
+        modified_.apply_compiled<D>(gradient_, physical_.Q, d_i, h2e, physical_.g, i, place_,
+                                    evaluations.products);
+    } else if (h2e != 0) {
       on_vectors([&](const Eigen::VectorXd& Q, Eigen::VectorXd& g) {
         modified_.apply<D>(system_, Q, d_i, h2e, g, i, place_, evaluations.products);
       });
+    }
     if constexpr (kIdentity) {
       return physical_.g.data();
     } else {

@@ -45,8 +45,9 @@ class KickWeights {
 };
 
 /// Adds h2e G(Q) to d_i g in g (g = grad U(Q) on entry), through the System's Hessian-vector
-/// product (or else its dense Hessian), counted in `products`; the result is checked as the
-/// gradient is (size, finiteness), the errors naming the callback.
+/// product (or else its dense Hessian), or through one compiled into the step, counted in
+/// `products`; the result is checked as the gradient is (size, finiteness), the errors naming the
+/// callback.
 class ModifiedForce {
  public:
   explicit ModifiedForce(Eigen::Index d) : Hv_(Eigen::VectorXd::Zero(d)) {}
@@ -63,11 +64,34 @@ class ModifiedForce {
     }
     ++products;
     if (Hv_.size() != d) gradient_of_wrong_size(Hv_, d, i, at, kCallback);
-    if (!all_finite<D>(Hv_.data(), d)) non_finite_gradient(i, at, kCallback);
-    g = d_i * g + (2 * h2e) * Hv_;
+    add<D>(Hv_, d_i, h2e, g, i, at);
+  }
+  /// The same through gradient.product(Q, v, hv) (explicit_stepper.hpp, CompiledGradient) on
+  /// the stepper's vectors: a fixed-size Hv on the stack, or this one's (sized).
+  template <int D, class Gradient, class Vector>
+  EIGEN_ALWAYS_INLINE void apply_compiled(const Gradient& gradient, const Vector& Q, double d_i,
+                                          double h2e, Vector& g, int i, const StepPlace& at,
+                                          long& products) {
+    ++products;
+    if constexpr (D == Eigen::Dynamic) {
+      gradient.product(Q, g, Hv_);
+      add<D>(Hv_, d_i, h2e, g, i, at);
+    } else {
+      Vector Hv;
+      gradient.product(Q, g, Hv);
+      add<D>(Hv, d_i, h2e, g, i, at);
+    }
   }
 
  private:
+  // g = d_i g + 2 h2e Hv (G = 2 Hess U grad U), Hv checked finite first.
+  template <int D, class W, class Vector>
+  EIGEN_ALWAYS_INLINE static void add(const W& Hv, double d_i, double h2e, Vector& g, int i,
+                                      const StepPlace& at) {
+    if (!all_finite<D>(Hv.data(), g.size())) non_finite_gradient(i, at, kCallback);
+    g = d_i * g + (2 * h2e) * Hv;
+  }
+
   static constexpr const char* kCallback = "hessian_vector_product";
   Eigen::VectorXd Hv_;
   Eigen::MatrixXd H_;  // (only without hessian_vector_product)

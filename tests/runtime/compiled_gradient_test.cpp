@@ -42,6 +42,21 @@ void hessian_vector(const Eigen::VectorXd& q, const Eigen::VectorXd& v, Eigen::V
   }
 }
 
+/// Gradient with hessian_vector as its Hessian-vector product (the same arithmetic; scale
+/// multiplies it: a negative control), counting its calls from the compiled steps in
+/// *product_calls.
+struct WithProduct : Gradient {
+  long* product_calls;
+  double product_scale = 1;
+  template <class Q, class V, class H>
+  void hessian_vector(const Q& q, const V& v, H& hv) const {
+    if constexpr (!std::is_same_v<Q, Eigen::VectorXd>) ++*product_calls;
+    Eigen::VectorXd out(q.size());
+    ::erkn::test::hessian_vector(q, v, out);
+    hv = product_scale * out;
+  }
+};
+
 System system_without_gradient(Eigen::Index d, bool diagonal) {
   System s;
   s.M = diagonal ? Stiffness::diagonal(Eigen::VectorXd::LinSpaced(d, 4, 9)) : Stiffness::scalar(25);
@@ -201,6 +216,44 @@ TEST(CompiledGradient, HalfSpectrumBasesGiveTheCallbackPathsStatesBitForBit) {
   EXPECT_GE(cases, 4 * 10);
 }
 
+/// A functor with hessian_vector: modified kicks call it on the compiled steps' vectors (d <= 4,
+/// and circulant M, d = 96) with the callback path's results bit for bit; a product moved by
+/// 2^-20 differs.
+TEST(CompiledGradient, AFunctorsHessianVectorProductIsWhatModifiedKicksCall) {
+  Eigen::VectorXd column = Eigen::VectorXd::Zero(96);
+  column[0] = 2.5, column[1] = column[95] = -1;
+  std::vector<std::pair<Eigen::Index, Stiffness>> scenes{{96, Stiffness::circulant(column)}};
+  for (Eigen::Index d = 1; d <= detail::kFixedMaxD; ++d)
+    for (bool diagonal : {false, true})
+      scenes.emplace_back(d, system_without_gradient(d, diagonal).M);
+  int cases = 0;
+  for (const Method& m : Method::all()) {
+    if (!m.is_explicit() || !m.has_modified_kicks()) continue;
+    for (const auto& [d, M] : scenes) {
+      SCOPED_TRACE(std::string(m.name()) + " d = " + std::to_string(d));
+      System s;  // (neither gradient nor product: the functor's)
+      s.M = M;
+      const Eigen::VectorXd q0 = Eigen::VectorXd::LinSpaced(d, 0.3, 0.9), p0 = 0.5 - q0.array();
+      long calls = 0, products = 0;
+      const auto compiled_with = [&](double scale) {
+        return run(make_integrator(m, s, WithProduct{{&calls}, &products, scale}, 0.05, q0, p0));
+      };
+      const Outcome compiled = compiled_with(1);
+      EXPECT_EQ(products, compiled.stats.hessian_vector_products);
+      EXPECT_GT(products, 0);
+      System callback = system_without_gradient(d, false);
+      callback.M = M;
+      const Gradient g{&calls};
+      callback.gradient = [g](const Eigen::VectorXd& q, Eigen::VectorXd& out) { g(q, out); };
+      EXPECT_TRUE(identical(compiled, run(Integrator(m, callback, 0.05, q0, p0))));
+      // (2^-20: the modified force is h^2 e_i G, and a 2^-40 change of it can round away)
+      EXPECT_FALSE(identical(compiled, compiled_with(1 + 0x1p-20)));
+      ++cases;
+    }
+  }
+  EXPECT_GE(cases, 8 * 9);
+}
+
 std::string error_of(const std::function<void()>& f) {
   try {
     f();
@@ -236,6 +289,12 @@ TEST(CompiledGradient, RefusesWithTheRuntimesMessages) {
   EXPECT_NE(error_of([&] {
               make_integrator(m, with_callback, nan_after(1), 0.05, q0, p0);
             }).find("System::gradient is set as well as the compiled gradient"),
+            std::string::npos);
+  // Both Hessian-vector products given (s has one).
+  long calls = 0, products = 0;
+  EXPECT_NE(error_of([&] {
+              make_integrator(m, s, WithProduct{{&calls}, &products}, 0.05, q0, p0);
+            }).find("System::hessian_vector_product is set as well as the compiled gradient's"),
             std::string::npos);
 }
 

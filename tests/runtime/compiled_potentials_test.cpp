@@ -1,6 +1,7 @@
-// The problems library's potentials with a compiled gradient (problems::Potential::
-// compiled_grad_u, the Python module's built-ins): an Integrator given it steps every explicit
-// method with that functor inlined at d <= 4 and gives grad_u's states bit for bit.
+// The problems library's potentials with a compiled gradient and Hessian-vector product
+// (problems::Potential::compiled_grad_u, the Python module's built-ins): an Integrator given it
+// steps every explicit method with that functor inlined at d <= 4 and in a half-spectrum basis
+// (circulant M) and gives grad_u's and hessian_vector_u's states bit for bit.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -64,27 +65,71 @@ std::vector<Named> potentials() {
           {"quartic", problems::quartic_potential(2), problems::quartic_potential(2 * moved)}};
 }
 
+/// The compiled steppers' scenes: d = 1..4 with scalar and diagonal M (a fixed dimension), and
+/// circulant M at d = 16 (the half-spectrum basis).
+std::vector<std::pair<Eigen::Index, Stiffness>> scenes() {
+  std::vector<std::pair<Eigen::Index, Stiffness>> out;
+  for (Eigen::Index d = 1; d <= detail::kFixedMaxD; ++d) {
+    out.emplace_back(d, Stiffness::scalar(9));
+    out.emplace_back(d, Stiffness::diagonal(Eigen::VectorXd::LinSpaced(d, 4, 16)));
+  }
+  Eigen::VectorXd column = Eigen::VectorXd::Zero(16);
+  column[0] = 41, column[1] = column[15] = -16;  // (a mass term of 9)
+  out.emplace_back(16, Stiffness::circulant(column));
+  return out;
+}
+
+std::string label(const Named& p, const Method& m, Eigen::Index d, const Stiffness& M) {
+  return p.name + ", " + std::string(m.name()) + ", d = " + std::to_string(d) + ", structure " +
+         std::to_string(int(M.structure()));
+}
+
 TEST(CompiledPotentials, EveryExplicitMethodGivesTheCallbackStatesAndUsesTheCompiledGradient) {
   int cases = 0;
   for (const Named& p : potentials()) {
     ASSERT_TRUE(p.u.compiled_grad_u) << p.name;
     for (const Method& m : Method::all()) {
       if (!m.is_explicit()) continue;
-      for (Eigen::Index d = 1; d <= detail::kFixedMaxD; ++d)
-        for (const Stiffness& M :
-             {Stiffness::scalar(9), Stiffness::diagonal(Eigen::VectorXd::LinSpaced(d, 4, 16))}) {
-          SCOPED_TRACE(p.name + ", " + std::string(m.name()) + ", d = " + std::to_string(d) +
-                       (M.structure() == Stiffness::Structure::scalar ? " scalar" : " diagonal"));
-          const Outcome callback = run_of(m, p.u, M, d, nullptr);
-          EXPECT_TRUE(identical(run_of(m, p.u, M, d, p.u.compiled_grad_u), callback));
-          // Negative control: the steps call the compiled functor (System::gradient is u's, the
-          // compiled one another parameter's) and the comparison sees a 2^-40 change.
-          EXPECT_FALSE(identical(run_of(m, p.u, M, d, p.perturbed.compiled_grad_u), callback));
-          ++cases;
-        }
+      for (const auto& [d, M] : scenes()) {
+        SCOPED_TRACE(label(p, m, d, M));
+        const Outcome callback = run_of(m, p.u, M, d, nullptr);
+        EXPECT_TRUE(identical(run_of(m, p.u, M, d, p.u.compiled_grad_u), callback));
+        // Negative control: the steps call the compiled functor (System::gradient is u's, the
+        // compiled one another parameter's) and the comparison sees a 2^-40 change.
+        EXPECT_FALSE(identical(run_of(m, p.u, M, d, p.perturbed.compiled_grad_u), callback));
+        ++cases;
+      }
     }
   }
-  EXPECT_GE(cases, 4 * 20 * 4 * 2);
+  EXPECT_GE(cases, 4 * 20 * 9);
+}
+
+TEST(CompiledPotentials, ModifiedKicksCallTheCompiledHessianVectorProduct) {
+  int cases = 0;
+  for (const Named& p : potentials())
+    for (const Method& m : Method::all()) {
+      if (!m.is_explicit() || !m.has_modified_kicks()) continue;
+      for (const auto& [d, M] : scenes()) {
+        SCOPED_TRACE(label(p, m, d, M));
+        // System's product is moved by 2^-20 (the modified force is h^2 e_i G: a 2^-40 change
+        // of it can round away); the compiled steps do not call it.
+        problems::Potential mixed = p.u;
+        mixed.hessian_vector_u = [hv = p.u.hessian_vector_u](const Eigen::VectorXd& q,
+                                                             const Eigen::VectorXd& v,
+                                                             Eigen::VectorXd& out) {
+          hv(q, v, out);
+          out *= 1 + 0x1p-20;
+        };
+        const Outcome callback = run_of(m, p.u, M, d, nullptr);
+        const Outcome compiled = run_of(m, mixed, M, d, p.u.compiled_grad_u);
+        EXPECT_TRUE(identical(compiled, callback));
+        EXPECT_GT(compiled.stats.hessian_vector_products, 0);
+        // Negative control: through System's callbacks the other product is seen.
+        EXPECT_FALSE(identical(run_of(m, mixed, M, d, nullptr), callback));
+        ++cases;
+      }
+    }
+  EXPECT_GE(cases, 4 * 8 * 9);
 }
 
 }  // namespace

@@ -40,8 +40,9 @@ struct Potential {
   /// hv = Hess U(q) v in closed form (modified kicks form grad(|grad U|^2) = 2 Hess U grad U).
   std::function<void(const Vec& q, const Vec& v, Vec& hv)> hessian_vector_u;
   /// grad_u's functor compiled into the explicit steppers of d <= 4 with M's identity eigenbasis
-  /// (erkn/compiled_gradient.hpp), for Integrator's constructor that takes them: the same
-  /// arithmetic as grad_u without a std::function call per stage; nullptr where there is none.
+  /// and of a half-spectrum basis (erkn/compiled_gradient.hpp), for Integrator's constructor that
+  /// takes them: the same arithmetic as grad_u, and in modified kicks as hessian_vector_u,
+  /// without a std::function call per stage; nullptr where there is none.
   std::shared_ptr<const detail::CompiledSteppers> compiled_grad_u;
 };
 

@@ -47,6 +47,12 @@
 // so it must compile for each. A functor of up to 8 bytes keeps the stepper of d = 4 within a block
 // glibc's per-thread cache serves (1032 bytes; larger ones work, their constructions cost more).
 //
+// A functor (class) with a member hessian_vector(q, v, hv) as well, hv = Hess U(q) v on the same
+// vectors (hv arrives sized), gives the Hessian-vector product of modified kicks (force-gradient
+// methods: G = 2 Hess U grad U) too: the compiled steps call it inlined, and make_integrator sets
+// System::hessian_vector_product to call it (which must then be empty), as it does the gradient.
+// (problems/src/potentials.cpp's potentials are written so.)
+//
 // The installed package has the runtime's stepper headers under erkn/detail/.
 #pragma once
 
@@ -116,17 +122,31 @@ class CompiledStepperSet final : public CompiledSteppers {
 
 /// An Integrator as Integrator(method, system, h, q0, p0, options, t0) with `gradient` as
 /// grad U (see above): System::gradient must be empty (erkn::Error otherwise) and becomes a call
-/// of `gradient`; explicit methods at d <= 4 with M's identity eigenbasis, and with circulant M or
-/// a periodic grid in FFTW's half spectrum, step with it inlined.
+/// of `gradient`, and so does System::hessian_vector_product of its hessian_vector when it has
+/// one; explicit methods at d <= 4 with M's identity eigenbasis, and with circulant M or a
+/// periodic grid in FFTW's half spectrum, step with it inlined.
 template <class G>
 Integrator make_integrator(const Method& method, System system, G gradient, double h,
                            const Eigen::VectorXd& q0, const Eigen::VectorXd& p0,
                            const Options& options = {}, double t0 = 0) {
+  using Vector = Eigen::VectorXd;
+  constexpr bool kProduct = requires(const G& f, const Vector& x, Vector& y) {
+    f.hessian_vector(x, x, y);
+  };
   if (system.gradient)
     throw Error(
         "make_integrator: System::gradient is set as well as the compiled gradient; "
         "give one of them");
-  system.gradient = [gradient](const Eigen::VectorXd& q, Eigen::VectorXd& g) { gradient(q, g); };
+  if (kProduct && system.hessian_vector_product)
+    throw Error(
+        "make_integrator: System::hessian_vector_product is set as well as the compiled "
+        "gradient's hessian_vector; give one of them");
+  system.gradient = [gradient](const Vector& q, Vector& g) { gradient(q, g); };
+  if constexpr (kProduct)
+    system.hessian_vector_product = [gradient](const Vector& q, const Vector& v, Vector& hv) {
+      hv.resize(q.size());
+      gradient.hessian_vector(q, v, hv);
+    };
   return Integrator(method, std::move(system), h, q0, p0, options, t0,
                     std::make_shared<const detail::CompiledStepperSet<G>>(std::move(gradient)));
 }
