@@ -98,7 +98,7 @@ class PyIntegrator {
   PyIntegrator(const Method& method, const PySystem& system, double h, const VectorArg& q0,
                const VectorArg& p0, double t0, const Options& options)
       : calls_python_(system.calls_python),
-        run_(method, System(system.system), h, q0, p0, options, t0, compiled_for(method, system)) {}
+        run_(method, System(system.system), h, q0, p0, options, t0, system.compiled) {}
 
   void step(long n) {
     if (n < 0) throw Error("step(n): n must be >= 0; got " + std::to_string(n));
@@ -246,18 +246,6 @@ class PyIntegrator {
     if (calls_python_) return f();
     py::gil_scoped_release release;
     f();
-  }
-
-  // A built-in's compiled gradient for methods with plain kicks only. With modified kicks the
-  // compiled steps cost more than the callback's (callgrind, erkn.solve of Duffing, 200 steps,
-  // instructions per call, callback -> compiled: OMF8(11F11G) 703k -> 775k, OMF4(3F3G) 266k ->
-  // 285k, PMLF4 163k -> 168k, OMF6(5F3G) 331k -> 327k, SABAC4 292k -> 253k; plain kicks: Strang
-  // 133k -> 120k, SRKN14a 553k -> 396k): the force G(Q, g) takes Eigen::VectorXd copies of the
-  // fixed-size Q and g, and ModifiedForce::apply<1> is called out of line there (80 instructions
-  // a call), inlined in the callback's steps.
-  static std::shared_ptr<const detail::CompiledSteppers> compiled_for(const Method& method,
-                                                                      const PySystem& system) {
-    return method.has_modified_kicks() ? nullptr : system.compiled;
   }
 
   bool calls_python_;

@@ -19,8 +19,9 @@ struct PySystem {
   /// Some callback is Python code: the integrator must hold the GIL while it steps.
   bool calls_python = false;
   std::string description;
-  /// The gradient compiled into the explicit steppers of d <= 4 (a built-in potential's,
-  /// problems::Potential::compiled_grad_u), or nullptr.
+  /// The gradient and Hessian-vector product compiled into the explicit steppers of d <= 4 and
+  /// of a half-spectrum basis (a built-in potential's, problems::Potential::compiled_grad_u), for
+  /// every explicit method; or nullptr.
   std::shared_ptr<const detail::CompiledSteppers> compiled = nullptr;
 };
 
