@@ -136,7 +136,8 @@ TEST(CompiledGradient, EveryExplicitMethodGivesTheCallbackPathsStatesBitForBit) 
 
 TEST(CompiledGradient, RknMethodsAddMQThroughCopiesOnEveryStructure) {
   // The registry's explicit methods as RKN methods (force M Q + grad U, the identity basis for
-  // every M): the compiled steps take M Q through Eigen::VectorXd copies of Q and g.
+  // every M): the compiled steps take M Q through Eigen::VectorXd copies of Q and g; modified
+  // kicks then call the System's product or (WithProduct) the functor's on the compiled vectors.
   const Eigen::MatrixXd dense = (Eigen::MatrixXd(3, 3) << 5, 1, 0, 1, 4, 1, 0, 1, 6).finished();
   const Stiffness structures[] = {Stiffness::scalar(25), Stiffness::dense(dense),
                                   Stiffness::circulant(Eigen::Vector3d(4, -1, -1))};
@@ -148,15 +149,21 @@ TEST(CompiledGradient, RknMethodsAddMQThroughCopiesOnEveryStructure) {
     for (const Stiffness& M : structures) {
       SCOPED_TRACE(std::string(m.name()) + " as RKN, structure " +
                    std::to_string(int(M.structure())));
-      long calls = 0, unused = 0;
-      System s = system_without_gradient(3, false);
-      s.M = M;
+      long calls = 0, unused = 0, products = 0;
+      System s = system_without_gradient(3, false), bare = s;
+      s.M = bare.M = M;
+      bare.hessian_vector_product = nullptr;
       const Eigen::VectorXd q0 = Eigen::VectorXd::LinSpaced(3, 0.3, 0.9), p0 = -q0;
       const Outcome compiled = run(make_integrator(rkn, s, Gradient{&calls}, 0.02, q0, p0));
+      const Outcome with_product =
+          run(make_integrator(rkn, bare, WithProduct{{&unused}, &products}, 0.02, q0, p0));
       const Gradient g{&unused};
       s.gradient = [g](const Eigen::VectorXd& q, Eigen::VectorXd& out) { g(q, out); };
-      EXPECT_TRUE(identical(compiled, run(Integrator(rkn, s, 0.02, q0, p0))));
+      const Outcome callback = run(Integrator(rkn, s, 0.02, q0, p0));
+      EXPECT_TRUE(identical(compiled, callback));
+      EXPECT_TRUE(identical(with_product, callback));
       EXPECT_EQ(calls, compiled.stats.gradient_evaluations);
+      EXPECT_EQ(products, with_product.stats.hessian_vector_products);
     }
   }
 }
