@@ -1,5 +1,6 @@
-// The implicit step's passes over arrays of eigen coordinates (stepper.hpp, a dynamic dimension).
-// Eq. (d)'s update from the solved stages' gradients g_i,
+// The implicit step's passes over arrays of eigen coordinates (stepper.hpp, a dynamic dimension):
+// the fixed point's iterate on the half spectrum (iterate_pass, below) and eq. (d)'s update from
+// the solved stages' gradients g_i,
 //   dq = (phi0(V) - 1) q + h phi1(V) p - h^2 sum_i bbar_i(V) g_i
 //   dp = -h M phi1(V) q + (phi0(V) - 1) p - h sum_i b_i(V) g_i,
 // then q += dq, p += dp (compensated_sum.hpp): the arithmetic written once (update_start,
@@ -14,6 +15,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <type_traits>
 
@@ -36,13 +38,15 @@ EIGEN_ALWAYS_INLINE void update_stage(const C& h2bbar, const C& hb, const G& g, 
   dp -= hb * g;
 }
 
+/// A coefficient of a pass at eigen coordinate e: one number, or one per coordinate.
+inline double coefficient_at(double value, Eigen::Index) { return value; }
+inline double coefficient_at(const double* values, Eigen::Index e) { return values[e]; }
+
 /// The update's coefficients for a pass: C = double (one eigenvalue) or const double* (one per
 /// eigen coordinate, shared by its kLanes doubles).
 template <class C>
 struct UpdateCoefficients {
   C phi0m1, hphi1, mhMphi1;
-  static double at(double value, Eigen::Index) { return value; }
-  static double at(const double* values, Eigen::Index e) { return values[e]; }
 };
 
 /// The non-finite bits of q + dq and of p + dp (0: finite), taken by the last stage's pass.
@@ -60,17 +64,16 @@ template <int kLanes, bool kFirst, bool kLast, class C>
                                          UpdateCoefficients<C> k, C h2bbar, C hb) {
   using L = Lane<kLanes>;
   using V = typename L::Value;
-  using K = UpdateCoefficients<C>;
   typename L::Bits q_bits{}, p_bits{};
   for (Eigen::Index e = 0; e < n; ++e) {
     const Eigen::Index x = kLanes * e;
     V a, b;
     if constexpr (kFirst)
-      update_start(K::at(k.phi0m1, e), K::at(k.hphi1, e), K::at(k.mhMphi1, e), lane_load<V>(q + x),
-                   lane_load<V>(p + x), a, b);
+      update_start(coefficient_at(k.phi0m1, e), coefficient_at(k.hphi1, e),
+                   coefficient_at(k.mhMphi1, e), lane_load<V>(q + x), lane_load<V>(p + x), a, b);
     else
       a = lane_load<V>(dq + x), b = lane_load<V>(dp + x);
-    update_stage(K::at(h2bbar, e), K::at(hb, e), lane_load<V>(g + x), a, b);
+    update_stage(coefficient_at(h2bbar, e), coefficient_at(hb, e), lane_load<V>(g + x), a, b);
     if constexpr (kLast) {
       q_bits |= L::nonfinite(lane_load<V>(q + x) + a);
       p_bits |= L::nonfinite(lane_load<V>(p + x) + b);
@@ -116,6 +119,34 @@ UpdateBits update_passes(int s, Eigen::Index n, const double* q, const double* p
   run(T{}, F{}, 0);
   for (int i = 1; i + 1 < s; ++i) run(F{}, F{}, i);
   return run(F{}, T{}, s - 1);
+}
+
+/// A fixed-point iteration's pass over n complex eigen coordinates (stage_fixed_point.hpp, a
+/// transform with a staging buffer): Q_new = r - abar g, staged = scale Q_new (the inverse
+/// transform's input, staging_scale()), and {sum_e w_e |Q_new - Q|_e^2, sum_e w_e |Q_new|_e^2}
+/// summed one coordinate after the other from the first, as squared_norm's Eigen expression sums
+/// them (the same bits). In Eigen's expressions they were three passes and the inverse
+/// transform's scaled copy a fourth.
+template <class C>
+[[gnu::noinline]] Lane<2>::Value iterate_pass(Eigen::Index n, const double* __restrict r, C abar,
+                                              const double* __restrict g,
+                                              const double* __restrict Q, double* __restrict Q_new,
+                                              double* __restrict staged, double scale,
+                                              const double* __restrict w) {
+  using V = Lane<2>::Value;
+  using I = std::int64_t __attribute__((vector_size(16)));
+  V sums{};  // {X, N} (one register, returned as it is: GCC kept two doubles on the stack)
+  for (Eigen::Index e = 0; e < n; ++e) {
+    const Eigen::Index x = 2 * e;
+    const V next = lane_load<V>(r + x) - coefficient_at(abar, e) * lane_load<V>(g + x);
+    const V change = next - lane_load<V>(Q + x);
+    const V c2 = change * change, n2 = next * next;
+    // {re^2 of the change, of next} + {im^2 of the change, of next}: abs2 = re^2 + im^2
+    sums += w[e] * (__builtin_shuffle(c2, n2, I{0, 2}) + __builtin_shuffle(c2, n2, I{1, 3}));
+    lane_store(Q_new + x, next);
+    lane_store(staged + x, V(scale * next));
+  }
+  return sums;
 }
 
 }  // namespace erkn::detail

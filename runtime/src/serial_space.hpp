@@ -20,6 +20,7 @@
 #include <type_traits>
 
 #include "erkn/system.hpp"
+#include "implicit_passes.hpp"
 #include "m_operator.hpp"
 #include "stage_checks.hpp"
 #include "step_coefficients.hpp"
@@ -77,6 +78,13 @@ class SerialSpace {
       return Map(first + k * stride_, m_);
   }
 
+  // A coefficient as a pass reads it (implicit_passes.hpp): a number, or its values.
+  static double coefficient_of(double value) { return value; }
+  template <class V>
+  static const double* coefficient_of(const V& value) {
+    return value.data();
+  }
+
   // A coefficient as the arrays see it: a number, or an array map (of fixed size when D is, so
   // that expressions mixing it with the stage arrays keep the fixed size).
   template <class V>
@@ -105,6 +113,21 @@ class SerialSpace {
   }
   template <class Y>
   void to_eigen(const Eigen::VectorXd& x, Y&& y);
+
+  /// A transform with a staging buffer (HalfSpectrumTransform) takes the fixed point's iterate
+  /// in one pass (iterate: implicit_passes.hpp's iterate_pass): Q_new = r - abar g, this
+  /// process's {squared_norm(Q_new - Q), squared_norm(Q_new)}, and Q_new staged, which
+  /// to_physical_staged then transforms.
+  static constexpr bool kStagedIterate = requires(Transform & t) { t.staging(); };
+  template <class R, class A, class G, class Q, class Out>
+  std::array<double, 2> iterate(const R& r, const A& abar, const G& g, const Q& Q_hat, Out& Q_new) {
+    const auto lanes = [](const auto& x) { return reinterpret_cast<const double*>(x.data()); };
+    const auto sums = iterate_pass(m_, lanes(r), coefficient_of(abar), lanes(g), lanes(Q_hat),
+                                   reinterpret_cast<double*>(Q_new.data()), transform_.staging(),
+                                   transform_.staging_scale(), transform_.weight.data());
+    return {sums[0], sums[1]};
+  }
+  void to_physical_staged(Eigen::VectorXd& x) { transform_.inverse_staged(x); }
   /// G = forward(g + M Q) of the stage path (g += M Q for RKN methods: in physical coordinates,
   /// where it is a stencil or an inline product; with a fixed D and M scalar or diagonal, g's
   /// entries plus m_k Q_k in registers, g left as the callback wrote it).
@@ -141,14 +164,16 @@ class SerialSpace {
   }
   static double reduce_max(double x) { return x; }
 
-  /// g = grad U(Q) with the checks of stage_checks.hpp (errors thrown here, at once). (Always
-  /// inlined: with the stage inlined into the step GCC left it out of line at D = 2, ~40 more
-  /// instructions per grad U, P3. g's size checked against D itself when it is fixed: d_ was
-  /// reloaded after every call.)
+  /// g = grad U(Q) with the checks of stage_checks.hpp (errors thrown here, at once; the
+  /// finiteness of g only when check_g, of Q only when check_Q). (Always inlined: with the stage
+  /// inlined into the step GCC left it out of line at D = 2, ~40 more instructions per grad U, P3.
+  /// g's size checked against D itself when it is fixed: d_ was reloaded after every call.)
   [[gnu::always_inline]] void gradient(const System& system, const Eigen::VectorXd& Q,
                                        Eigen::VectorXd& g, int i, const StepPlace& at,
-                                       long& evaluations) const {
-    checked_gradient<D>(system.gradient, Q, g, kFixed ? D : d_, i, at, evaluations);
+                                       long& evaluations, bool check_g = true,
+                                       bool check_Q = true) const {
+    checked_gradient<D>(system.gradient, Q, g, kFixed ? D : d_, i, at, evaluations, check_g,
+                        check_Q);
   }
   void settle() const {}  // (nothing deferred)
   void add_MQ(const Eigen::VectorXd& Q, Eigen::VectorXd& g);

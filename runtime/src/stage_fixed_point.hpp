@@ -28,10 +28,9 @@ template <class Space, class Coef>
   // The first iteration on its own (the common stage ends there, contraction_proves): one reduce
   // of |dQ|^2, |Q_new|^2 and |Q|^2. (Inside the loop its tests of `it` and its spills were ~25
   // of P2's instructions per stage.)
-  iterate(i, 1, x, evaluations);
-  const auto sums = space_.reduce(std::array{space_.squared_norm(x.Q_hat_new - x.Q_hat),
-                                             space_.squared_norm(x.Q_hat_new),
-                                             space_.squared_norm(x.Q_hat), 0.0});
+  const std::array<double, 2> change = iterate(i, 1, x, evaluations);
+  const auto sums =
+      space_.reduce(std::array{change[0], change[1], space_.squared_norm(x.Q_hat), 0.0});
   const Change c = in_range(sums[0], std::max(sums[1], sums[2]));
   swap_views(x.Q_hat, x.Q_hat_new);
   if (c.X > 0 && contraction_proves(i, c)) return true;
@@ -39,15 +38,52 @@ template <class Space, class Coef>
   return iterate_on(i, x, c, sums[0], sums[1], evaluations);
 }
 
-// One iteration at x.Q_hat: x.G = its force, x.Q_hat_new = r_i - h^2 abar_ii x.G (start_stage
-// formed the physical Q of the first iterate).
+// One iteration at x.Q_hat: x.G = its force, x.Q_hat_new = r_i - h^2 abar_ii x.G; returns this
+// process's |Q_new - Q|^2 and |Q_new|^2. (start_stage formed the physical Q of the first iterate;
+// with kStagedIterate the last iteration staged the next one's.)
 template <class Space, class Coef>
-[[gnu::always_inline]] inline void StageSolver<Space, Coef>::iterate(int i, int it, Iterates& x,
-                                                                     long& evaluations) {
-  if (it > 1) space_.to_physical(x.Q_hat, x_.Q);
-  stage_force(i, x.Q_hat, x.G, evaluations);  // (and one stage iteration: count())
-  if constexpr (Space::kFixed) x.G_i = x.G;   // (a view: G is G_i)
-  x.Q_hat_new = x.r_hat - x.abar_ii * x.G;
+[[gnu::always_inline]] inline std::array<double, 2> StageSolver<Space, Coef>::iterate(
+    int i, int it, Iterates& x, long& evaluations) {
+  if (it > 1) {
+    if constexpr (kStagedIterate)
+      space_.to_physical_staged(x_.Q);
+    else
+      space_.to_physical(x.Q_hat, x_.Q);
+  }
+  stage_force(i, x.Q_hat, x.G, evaluations, true, x.finite_Q);  // (and one stage iteration)
+  if constexpr (Space::kFixed) x.G_i = x.G;                     // (a view: G is G_i)
+  const std::array<double, 2> change = next_iterate(x);
+  if constexpr (kStagedIterate) x.finite_Q = checked_iterate(i, change[1]);
+  return change;
+}
+
+// x.Q_hat_new = r_i - h^2 abar_ii x.G and this process's {|Q_new - Q|^2, |Q_new|^2}: in one pass
+// that also stages Q_new for the inverse transform (kStagedIterate), else as expressions.
+template <class Space, class Coef>
+[[gnu::always_inline]] inline std::array<double, 2> StageSolver<Space, Coef>::next_iterate(
+    Iterates& x) {
+  if constexpr (kStagedIterate) {
+    return space_.iterate(x.r_hat, x.abar_ii, x.G, x.Q_hat, x.Q_hat_new);
+  } else {
+    x.Q_hat_new = x.r_hat - x.abar_ii * x.G;
+    return {space_.squared_norm(x.Q_hat_new - x.Q_hat), space_.squared_norm(x.Q_hat_new)};
+  }
+}
+
+// kStagedIterate: the checks of g and of the next iterate Q on |Q_new|^2 (norm2_Q_new), which the
+// iteration sums anyway. A non-finite g makes it non-finite: the forward transform spreads a
+// non-finite entry over its outputs, and Q_new = r - abar G keeps it (abar G is NaN where abar =
+// 0), as does the weighted sum of non-negative terms. So g is scanned, and the error thrown as
+// the scan after the call threw it, only when the sum is not finite. A finite sum bounds each
+// |Q_new| by 2^512 sqrt(d), so the physical Q the inverse transform makes of it is finite
+// (explicit_passes.hpp, kStageBound): true when the next gradient needs no scan of Q. (The two
+// scans per gradient were ~235 of SERKN2s3's ~7,650 instructions per grad U at sine-Gordon N = 32,
+// callgrind.)
+template <class Space, class Coef>
+bool StageSolver<Space, Coef>::checked_iterate(int i, double norm2_Q_new) const {
+  if (std::isfinite(norm2_Q_new)) return true;
+  if (!all_finite(x_.g.data(), x_.g.size())) non_finite_gradient(i, *at_);
+  return false;
 }
 
 // The iterations after the first (c: its change, first2 its |dQ|^2, norm2_Q its |Q_new|^2).
@@ -64,12 +100,11 @@ template <class Space, class Coef>
   int extra = 0;  // iterations after convergence from a cold start (reset_tightening)
   const int max_iterations = options_.max_fixed_point_iterations;
   for (int it = 2; it <= max_iterations; ++it) {
-    iterate(i, it, x, evaluations);
+    const std::array<double, 2> change = iterate(i, it, x, evaluations);
     const bool measure = it == 2 && first2 > 0 && measures_contraction(delta_old);
     if (measure) x.g_first_hat = x.abar_ii * (x.G - x.g_first_hat);
-    const auto sums = space_.reduce(std::array{space_.squared_norm(x.Q_hat_new - x.Q_hat),
-                                               space_.squared_norm(x.Q_hat_new), 0.0,
-                                               measure ? space_.squared_norm(x.g_first_hat) : 0.0});
+    const auto sums = space_.reduce(
+        std::array{change[0], change[1], 0.0, measure ? space_.squared_norm(x.g_first_hat) : 0.0});
     c = in_range(sums[0], std::max(sums[1], norm2_Q));
     norm2_Q = sums[1];
     swap_views(x.Q_hat, x.Q_hat_new);

@@ -146,13 +146,24 @@ class StageSolver {
   // The fixed point's arrays: with a fixed D values (Work), else views of x_'s (the iterates,
   // the next, the force, g(Q_0) of the first iteration), G(i) and h^2 abar_ii, held in locals:
   // after each call of the user's gradient the compiler reloads what it reads through members.
+  // (finite_Q: with kStagedIterate, the staged iterate is known finite; checked_iterate.)
   struct Iterates {
     Work r_hat, Q_hat, Q_hat_new, G, g_first_hat;
     Map G_i;
     Abar abar_ii;
+    bool finite_Q = false;
   };
   bool fixed_point(int i, const Start& start, long& evaluations);
-  void iterate(int i, int it, Iterates& x, long& evaluations);
+  std::array<double, 2> iterate(int i, int it, Iterates& x, long& evaluations);
+  std::array<double, 2> next_iterate(Iterates& x);
+  bool checked_iterate(int i, double norm2_Q_new) const;
+  // Whether the space takes the iterate in one pass that stages it (SerialSpace::iterate).
+  static constexpr bool kStagedIterate = [] {
+    if constexpr (requires { Space::kStagedIterate; })
+      return Space::kStagedIterate;
+    else
+      return false;
+  }();
   bool iterate_on(int i, Iterates& x, Change c, double first2, double norm2_Q, long& evaluations);
   [[gnu::noinline]] bool fixed_point_call(int i, const Start& start, long& evaluations) {
     return fixed_point(i, start, evaluations);
@@ -188,11 +199,17 @@ class StageSolver {
   void set_preconditioner(int i, double sigma);
   void jacobian(int i, Statistics& stats);
 
-  // G_i = the force at the iterate (Q, Q_hat) in eigen coordinates. (Always inlined: with
-  // solve inlined into the step GCC left it out of line at D = 2, P3: +10 % instructions.)
+  // G_i = the force at the iterate (Q, Q_hat) in eigen coordinates. With kStagedIterate the
+  // fixed point checks g and Q on its sums instead (finite_Q: Q known finite; checked_iterate).
+  // (Always inlined: with solve inlined into the step GCC left it out of line at D = 2, P3: +10 %
+  // instructions.)
   template <class Y, class G>
-  [[gnu::always_inline]] void stage_force(int i, const Y& Q_hat, G&& G_i, long& evaluations) {
-    space_.gradient(system_, x_.Q, x_.g, i, *at_, evaluations);
+  [[gnu::always_inline]] void stage_force(int i, const Y& Q_hat, G&& G_i, long& evaluations,
+                                          bool iterate = false, bool finite_Q = false) {
+    if constexpr (kStagedIterate)
+      space_.gradient(system_, x_.Q, x_.g, i, *at_, evaluations, !iterate, !finite_Q);
+    else
+      space_.gradient(system_, x_.Q, x_.g, i, *at_, evaluations);
     space_.to_eigen_force(x_.Q, Q_hat, x_.g, G_i);
   }
   // g = grad U(Q) (+ M Q for RKN methods).

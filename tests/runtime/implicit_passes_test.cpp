@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <complex>
 #include <cstring>
 #include <limits>
@@ -138,6 +139,31 @@ TEST(ImplicitPasses, UpdateTakesTheNonFiniteBitsOfTheResult) {
     by_passes(e, true, bits);
     EXPECT_EQ(bits.q, 0u);
     EXPECT_NE(bits.p, 0u);
+  }
+}
+
+// The fixed point's pass (iterate_pass) gives the bits of the expressions the stage solver
+// evaluates without it: Q_new = r - abar g, the half spectrum's squared norms of Q_new - Q and
+// Q_new, and the inverse transform's scaled copy of Q_new.
+TEST(ImplicitPasses, IterateGivesTheBitsOfEigensExpressions) {
+  for (double nudge : {0.0, 0x1p-40}) {
+    UpdateData<std::complex<double>> d(1, 99u);
+    const Eigen::ArrayXcd& r = d.q;
+    const Eigen::ArrayXcd &Q = d.p, &g = d.g[0];
+    const Eigen::ArrayXd abar = d.hphi1, w = d.phi0m1.abs();
+    const double scale = 1.0 / 64;
+    const Eigen::ArrayXcd expected = r - abar * g;
+    const std::array<double, 2> sums{(w * (expected - Q).abs2()).sum(),
+                                     (w * expected.abs2()).sum()};
+    Eigen::ArrayXcd next(kCoordinates), staged(kCoordinates);
+    Eigen::ArrayXd nudged = abar;
+    nudged[20] *= 1 + nudge;  // (negative control)
+    const auto got = iterate_pass(kCoordinates, lanes(d.q), nudged.data(), lanes(d.g[0]),
+                                  lanes(d.p), lanes(next), lanes(staged), scale, w.data());
+    const bool same = bytes(next) == bytes(expected) &&
+                      bytes(staged) == bytes(Eigen::ArrayXcd(scale * expected)) &&
+                      got[0] == sums[0] && got[1] == sums[1];
+    EXPECT_EQ(same, nudge == 0) << "nudge " << nudge;
   }
 }
 

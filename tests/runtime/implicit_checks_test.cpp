@@ -1,0 +1,98 @@
+// The implicit stepper's fixed point on a half-spectrum basis checks the gradient and the next
+// iterate on the sums it forms anyway (stage_fixed_point.hpp, checked_iterate) instead of scanning
+// g and Q at every call. It must refuse what the scans refused, with the same message: a NaN or
+// an infinity from the gradient at any call of a step, every fixed-point iteration included,
+// names the step and a stage (stage 1 at the first call, never decreasing from call to call), and
+// leaves the state, t and the counts as they were; the same run without the fault steps on
+// (negative control). For every implicit registry method, circulant M and a periodic grid.
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "refusals.hpp"
+
+namespace erkn::test {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// sin q, whose `fault` replaces entry 3 of the gradient at call number `at` (1-based, counted
+// from `counting` on).
+struct Faulty {
+  double fault = 0;
+  long at = 0, calls = 0;
+  bool counting = false;
+  System system(const Stiffness& M) {
+    System s;
+    s.M = M;
+    s.gradient = [this](const Eigen::VectorXd& q, Eigen::VectorXd& g) {
+      g = q.array().sin().matrix();
+      if (counting && ++calls == at) g[3] = fault;
+    };
+    return s;
+  }
+};
+
+Eigen::VectorXd start(Eigen::Index d, double phase) {
+  return (Eigen::VectorXd::LinSpaced(d, 0, 1).array() + phase).sin().matrix();
+}
+
+// The stage a refusal names ("stage k;"), 0 if none.
+int named_stage(const std::string& message) {
+  const size_t at = message.rfind("stage ");
+  return at == std::string::npos ? 0 : std::stoi(message.substr(at + 6));
+}
+
+void check_every_call(const Method& m, const Stiffness& M, double fault) {
+  const Eigen::Index d = M.dim();
+  Faulty probe;
+  Integrator counted(m, probe.system(M), 0.05, start(d, 0.1), start(d, 0.7));
+  counted.step();
+  const long before_step = counted.statistics().gradient_evaluations;
+  counted.step();
+  const long calls = counted.statistics().gradient_evaluations - before_step;
+  int last_stage = 1;
+  for (long k = 1; k <= calls; ++k) {
+    SCOPED_TRACE("call " + std::to_string(k) + " of " + std::to_string(calls));
+    Faulty f;
+    f.fault = fault, f.at = k;
+    Integrator run(m, f.system(M), 0.05, start(d, 0.1), start(d, 0.7));
+    run.step();
+    const Snapshot before(run);
+    const long evaluations = run.statistics().gradient_evaluations;
+    f.counting = true;
+    const std::string message = error_of([&] { run.step(); });
+    EXPECT_CONTAINS(message, "non-finite value at step 2");
+    const int stage = named_stage(message);
+    EXPECT_TRUE(stage >= last_stage && stage <= m.stages() && (k > 1 || stage == 1)) << message;
+    last_stage = stage;
+    before.expect_same(run);
+    EXPECT_EQ(run.statistics().gradient_evaluations, evaluations);
+    f.fault = 0.5, f.calls = 0;  // negative control: a finite value steps on
+    EXPECT_NO_THROW(run.step());
+    EXPECT_EQ(run.statistics().steps, before.steps + 1);
+  }
+}
+
+TEST(ImplicitChecks, NonFiniteGradientAtEveryIterationIsNamedAndChangesNothing) {
+  using B = GridAxis::Boundary;
+  Eigen::VectorXd col = Eigen::VectorXd::Zero(16);
+  col[0] = 2, col[1] = col[15] = -1;
+  const std::vector<std::pair<const char*, Stiffness>> bases{
+      {"circulant", Stiffness::circulant(col)},
+      {"periodic grid", Stiffness::grid({{4, 0.5, B::periodic}, {4, 0.5, B::periodic}})}};
+  for (const auto& [name, M] : bases)
+    for (const Method& m : Method::all())
+      for (double fault : {kNaN, kInf}) {
+        if (m.is_explicit() || m.kind() == Kind::rkn) continue;  // (RKN: the identity basis)
+        SCOPED_TRACE(std::string(m.name()) + ", " + name);
+        check_every_call(m, M, fault);
+      }
+}
+
+}  // namespace
+}  // namespace erkn::test
