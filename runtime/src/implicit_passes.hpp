@@ -149,4 +149,63 @@ template <class C>
   return sums;
 }
 
+/// The stage's start on the half spectrum (stage_solver.hpp's start_stage, a transform with a
+/// staging buffer), one pass per term of r_i = phi0c q + hcphi1c p - sum_{j<i} abar_ij G_j: the
+/// first (kFromState) forms phi0c q + hcphi1c p, each with kTerm subtracts one abar_ij G_j (in j's
+/// order), and the last (kFinal) also forms Q_0 = r_i - abar_ii guess, stages scale Q_0 and
+/// returns sum_e w_e |Q_0|_e^2 (squared_norm's order; 0 before the last). Eigen's expressions
+/// made i + 3 passes and the inverse transform's scaled copy one more.
+struct StartTerms {
+  const double *q, *p, *G, *guess;
+  double *r, *Q0, *staged;
+  double scale;
+  const double* w;
+};
+template <bool kFromState, bool kTerm, bool kFinal, class C>
+[[gnu::noinline]] double start_pass(Eigen::Index n, StartTerms t, C phi0c, C hcphi1c, C abar_ij,
+                                    C abar_ii) {
+  using V = Lane<2>::Value;
+  const double* __restrict q = t.q, * __restrict p = t.p, * __restrict G = t.G, * __restrict guess = t.guess, * __restrict w = t.w;
+  double* __restrict r = t.r, * __restrict Q0 = t.Q0, * __restrict staged = t.staged;
+  double norm2 = 0;
+  for (Eigen::Index e = 0; e < n; ++e) {
+    const Eigen::Index x = 2 * e;
+    V rx;
+    if constexpr (kFromState)
+      rx = coefficient_at(phi0c, e) * lane_load<V>(q + x) +
+           coefficient_at(hcphi1c, e) * lane_load<V>(p + x);
+    else
+      rx = lane_load<V>(r + x);
+    if constexpr (kTerm) rx -= coefficient_at(abar_ij, e) * lane_load<V>(G + x);
+    lane_store(r + x, rx);
+    if constexpr (kFinal) {
+      const V Qx = rx - coefficient_at(abar_ii, e) * lane_load<V>(guess + x);
+      norm2 += w[e] * (Qx[0] * Qx[0] + Qx[1] * Qx[1]);
+      lane_store(Q0 + x, Qx);
+      lane_store(staged + x, V(t.scale * Qx));
+    }
+  }
+  return norm2;
+}
+
+/// start_pass over the i terms of stage i (term(j): G_j's lanes and abar_ij); returns |Q_0|^2.
+template <class C, class Term>
+double start_passes(int i, Eigen::Index n, StartTerms t, C phi0c, C hcphi1c, C abar_ii,
+                    Term&& term) {
+  if (i == 0) return start_pass<true, false, true>(n, t, phi0c, hcphi1c, abar_ii, abar_ii);
+  double norm2 = 0;
+  for (int j = 0; j < i; ++j) {
+    const auto [G, abar_ij] = term(j);
+    t.G = G;
+    const bool last = j + 1 == i;
+    if (j == 0)
+      norm2 = last ? start_pass<true, true, true>(n, t, phi0c, hcphi1c, abar_ij, abar_ii)
+                   : start_pass<true, true, false>(n, t, phi0c, hcphi1c, abar_ij, abar_ii);
+    else
+      norm2 = last ? start_pass<false, true, true>(n, t, phi0c, hcphi1c, abar_ij, abar_ii)
+                   : start_pass<false, true, false>(n, t, phi0c, hcphi1c, abar_ij, abar_ii);
+  }
+  return norm2;
+}
+
 }  // namespace erkn::detail

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <array>
 #include <type_traits>
+#include <utility>
 
 #include "erkn/system.hpp"
 #include "implicit_passes.hpp"
@@ -128,6 +129,29 @@ class SerialSpace {
     return {sums[0], sums[1]};
   }
   void to_physical_staged(Eigen::VectorXd& x) { transform_.inverse_staged(x); }
+  /// The stage's start (kStagedIterate; implicit_passes.hpp's start_passes): r = phi0c q +
+  /// hcphi1c p - sum_{j<i} abar_ij G_j (term(j): G_j and abar_ij), Q_0 = r - abar_ii guess staged;
+  /// returns this process's squared_norm(Q_0).
+  template <class Y, class A, class Term, class Out>
+  double start(int i, const Y& q, const Y& p, const A& phi0c, const A& hcphi1c, const A& abar_ii,
+               Term&& term, const Out& guess, Out& r, Out& Q0) {
+    const auto in = [](const auto& x) { return reinterpret_cast<const double*>(x.data()); };
+    const auto out = [](Out& x) { return reinterpret_cast<double*>(x.data()); };
+    const StartTerms t{in(q),
+                       in(p),
+                       nullptr,
+                       in(guess),
+                       out(r),
+                       out(Q0),
+                       transform_.staging(),
+                       transform_.staging_scale(),
+                       transform_.weight.data()};
+    return start_passes(i, m_, t, coefficient_of(phi0c), coefficient_of(hcphi1c),
+                        coefficient_of(abar_ii), [&](int j) {
+                          const auto [G, abar_ij] = term(j);
+                          return std::pair{in(G), coefficient_of(abar_ij)};
+                        });
+  }
   /// G = forward(g + M Q) of the stage path (g += M Q for RKN methods: in physical coordinates,
   /// where it is a stencil or an inline product; with a fixed D and M scalar or diagonal, g's
   /// entries plus m_k Q_k in registers, g left as the callback wrote it).

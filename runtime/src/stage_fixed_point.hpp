@@ -28,9 +28,10 @@ template <class Space, class Coef>
   // The first iteration on its own (the common stage ends there, contraction_proves): one reduce
   // of |dQ|^2, |Q_new|^2 and |Q|^2. (Inside the loop its tests of `it` and its spills were ~25
   // of P2's instructions per stage.)
+  if constexpr (kStagedIterate) x.finite_Q = std::isfinite(start.norm2_Q);  // (checked_iterate)
   const std::array<double, 2> change = iterate(i, 1, x, evaluations);
-  const auto sums =
-      space_.reduce(std::array{change[0], change[1], space_.squared_norm(x.Q_hat), 0.0});
+  const auto sums = space_.reduce(std::array{
+      change[0], change[1], kStagedIterate ? start.norm2_Q : space_.squared_norm(x.Q_hat), 0.0});
   const Change c = in_range(sums[0], std::max(sums[1], sums[2]));
   swap_views(x.Q_hat, x.Q_hat_new);
   if (c.X > 0 && contraction_proves(i, c)) return true;

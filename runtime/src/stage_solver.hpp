@@ -134,9 +134,11 @@ class StageSolver {
   // were ~20 instructions per stage, P3), else views of x_.r_hat and x_.Q_hat; and h^2 abar_ii(V)
   // as the arrays see it (its slot's address formed once per stage).
   using Abar = decltype(Space::co(std::declval<const StepCoefficients<Coef>&>().abar(0, 0)));
+  // (norm2_Q: with kStagedIterate |Q_0|^2, which start_stage's pass forms.)
   struct Start {
     Work r_hat, Q_hat;
     Abar abar_ii;
+    double norm2_Q = 0;
   };
   void solve_stage(int i, const Start& start, long& evaluations);
   [[gnu::noinline, gnu::cold]] void fall_back(int i, const Start& start);
@@ -399,6 +401,17 @@ template <class State>
     -> Start {
   const auto co = [](const auto& value) { return Space::co(value); };
   Start s{scratch(x_.r_hat), scratch(x_.Q_hat), co(k_.abar(i, i))};
+  if constexpr (kStagedIterate) {  // (one pass per term, Q_0 staged: SerialSpace::start)
+    predictor_.predict(i, x_.guess_hat);
+    s.norm2_Q = space_.start(
+        i, q_hat, p_hat, k_.phi0c(i), k_.hcphi1c(i), s.abar_ii,
+        [&](int j) {
+          return std::pair{G(j), k_.abar(i, j)};
+        },
+        x_.guess_hat, s.r_hat, s.Q_hat);
+    space_.to_physical_staged(x_.Q);
+    return s;
+  }
   s.r_hat = co(k_.phi0c(i)) * q_hat + co(k_.hcphi1c(i)) * p_hat;
   for (int j = 0; j < i; ++j) s.r_hat -= co(k_.abar(i, j)) * G(j);
   predictor_.predict(i, x_.guess_hat);

@@ -14,6 +14,7 @@
 #include <random>
 #include <tuple>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace erkn::detail {
@@ -165,6 +166,39 @@ TEST(ImplicitPasses, IterateGivesTheBitsOfEigensExpressions) {
                       got[0] == sums[0] && got[1] == sums[1];
     EXPECT_EQ(same, nudge == 0) << "nudge " << nudge;
   }
+}
+
+// The stage's start (start_passes) gives the bits of start_stage's expressions: r_i = phi0c q +
+// hcphi1c p - sum_{j<i} abar_ij G_j, Q_0 = r_i - abar_ii guess, its scaled copy and |Q_0|^2, for
+// stages i = 0..3.
+TEST(ImplicitPasses, StartGivesTheBitsOfEigensExpressions) {
+  for (int i = 0; i < 4; ++i)
+    for (double nudge : {0.0, 0x1p-40}) {
+      SCOPED_TRACE("stage " + std::to_string(i) + ", nudge " + std::to_string(nudge));
+      UpdateData<std::complex<double>> d(i + 1, 5u + unsigned(i));  // (g[i]: the guess)
+      const Eigen::ArrayXd w = d.phi0m1.abs(), &abar_ii = d.mhMphi1;
+      const double scale = 1.0 / 64;
+      Eigen::ArrayXcd r = d.phi0m1 * d.q + d.hphi1 * d.p;
+      for (int j = 0; j < i; ++j) r -= d.hb[size_t(j)] * d.g[size_t(j)];
+      const Eigen::ArrayXcd Q0 = r - abar_ii * d.g[size_t(i)];
+      Eigen::ArrayXcd r_got(kCoordinates), Q0_got(kCoordinates), staged(kCoordinates);
+      std::vector<Eigen::ArrayXd> hb = d.hb;
+      hb[size_t(i)][9] *= 1 + nudge;  // (negative control: abar_ii for i = 0, else abar_i0 too)
+      if (i > 0) hb[0][9] *= 1 + nudge;
+      const StartTerms t{lanes(d.q),   lanes(d.p),    nullptr,       lanes(d.g[size_t(i)]),
+                         lanes(r_got), lanes(Q0_got), lanes(staged), scale,
+                         w.data()};
+      const Eigen::ArrayXd abar = i == 0 ? Eigen::ArrayXd(abar_ii * (1 + nudge)) : abar_ii;
+      const double norm2 = start_passes<const double*>(
+          i, kCoordinates, t, d.phi0m1.data(), d.hphi1.data(), abar.data(), [&](int j) {
+            return std::pair{lanes(d.g[size_t(j)]),
+                             static_cast<const double*>(hb[size_t(j)].data())};
+          });
+      const bool same = bytes(r_got) == bytes(r) && bytes(Q0_got) == bytes(Q0) &&
+                        bytes(staged) == bytes(Eigen::ArrayXcd(scale * Q0)) &&
+                        norm2 == (w * Q0.abs2()).sum();
+      EXPECT_EQ(same, nudge == 0);
+    }
 }
 
 }  // namespace
