@@ -54,54 +54,85 @@ struct UpdateBits {
   std::uint64_t q = 0, p = 0;
 };
 
+// Each pass's loop is a Body::run, always inlined into one of two entries (run_pass), as
+// explicit_passes.hpp's passes are: the baseline one and, on x86-64 CPUs with AVX, a VEX-encoded
+// copy (kAvxPasses): the same IEEE operations in the same order, without register copies and with
+// vmovddup broadcasts of the coefficients (not fma: GCC would contract). callgrind, sine-Gordon
+// N = 32, instructions per grad U: SERKN2s3 6,862 -> 6,597, SERKN1s2(1) 6,465 -> 6,238.
+template <class Body, class... A>
+[[gnu::noinline]] auto pass_entry(A... a) {
+  return Body::run(a...);
+}
+#ifdef ERKN_AVX_PASSES
+template <class Body, class... A>
+[[gnu::noinline, gnu::target("avx")]] auto pass_entry_avx(A... a) {
+  return Body::run(a...);
+}
+#endif
+template <class Body, class... A>
+EIGEN_ALWAYS_INLINE auto run_pass(A... a) {
+#ifdef ERKN_AVX_PASSES
+  if (kAvxPasses) return pass_entry_avx<Body>(a...);
+#endif
+  return pass_entry<Body>(a...);
+}
+
 // One stage's pass over n eigen coordinates: stage i's terms (g, h2bbar, hb) added to dq, dp,
 // which the first pass (kFirst) starts from q and p; the last (kLast) returns the non-finite bits
 // of q + dq, p + dp. Every pointer a __restrict parameter (pass_body's reason).
 template <int kLanes, bool kFirst, bool kLast, class C>
-[[gnu::noinline]] UpdateBits update_pass(Eigen::Index n, const double* __restrict q,
-                                         const double* __restrict p, const double* __restrict g,
-                                         double* __restrict dq, double* __restrict dp,
-                                         UpdateCoefficients<C> k, C h2bbar, C hb) {
-  using L = Lane<kLanes>;
-  using V = typename L::Value;
-  typename L::Bits q_bits{}, p_bits{};
-  for (Eigen::Index e = 0; e < n; ++e) {
-    const Eigen::Index x = kLanes * e;
-    V a, b;
-    if constexpr (kFirst)
-      update_start(coefficient_at(k.phi0m1, e), coefficient_at(k.hphi1, e),
-                   coefficient_at(k.mhMphi1, e), lane_load<V>(q + x), lane_load<V>(p + x), a, b);
-    else
-      a = lane_load<V>(dq + x), b = lane_load<V>(dp + x);
-    update_stage(coefficient_at(h2bbar, e), coefficient_at(hb, e), lane_load<V>(g + x), a, b);
-    if constexpr (kLast) {
-      q_bits |= L::nonfinite(lane_load<V>(q + x) + a);
-      p_bits |= L::nonfinite(lane_load<V>(p + x) + b);
+struct UpdatePass {
+  static EIGEN_ALWAYS_INLINE UpdateBits run(Eigen::Index n, const double* __restrict q,
+                                            const double* __restrict p, const double* __restrict g,
+                                            double* __restrict dq, double* __restrict dp,
+                                            UpdateCoefficients<C> k, C h2bbar, C hb) {
+    using L = Lane<kLanes>;
+    using V = typename L::Value;
+    typename L::Bits q_bits{}, p_bits{};
+    for (Eigen::Index e = 0; e < n; ++e) {
+      const Eigen::Index x = kLanes * e;
+      V a, b;
+      if constexpr (kFirst)
+        update_start(coefficient_at(k.phi0m1, e), coefficient_at(k.hphi1, e),
+                     coefficient_at(k.mhMphi1, e), lane_load<V>(q + x), lane_load<V>(p + x), a, b);
+      else
+        a = lane_load<V>(dq + x), b = lane_load<V>(dp + x);
+      update_stage(coefficient_at(h2bbar, e), coefficient_at(hb, e), lane_load<V>(g + x), a, b);
+      if constexpr (kLast) {
+        q_bits |= L::nonfinite(lane_load<V>(q + x) + a);
+        p_bits |= L::nonfinite(lane_load<V>(p + x) + b);
+      }
+      lane_store(dq + x, a);
+      lane_store(dp + x, b);
     }
-    lane_store(dq + x, a);
-    lane_store(dp + x, b);
+    return {L::any(q_bits), L::any(p_bits)};
   }
-  return {L::any(q_bits), L::any(p_bits)};
-}
+};
 
 /// x += dx over n eigen coordinates, compensated (kKahan: error carries x's lost low-order
 /// bits; dx is clobbered) or plain.
 template <int kLanes, bool kKahan>
-[[gnu::noinline]] void add_pass(Eigen::Index n, double* __restrict x, double* __restrict error,
-                                double* __restrict dx) {
-  using V = typename Lane<kLanes>::Value;
-  for (Eigen::Index e = 0; e < n; ++e) {
-    const Eigen::Index j = kLanes * e;
-    V xv = lane_load<V>(x + j), dv = lane_load<V>(dx + j);
-    if constexpr (kKahan) {
-      V ev = lane_load<V>(error + j);
-      compensated_add(xv, ev, dv);
-      lane_store(error + j, ev);
-    } else {
-      xv += dv;
+struct AddPass {
+  static EIGEN_ALWAYS_INLINE void run(Eigen::Index n, double* __restrict x,
+                                      double* __restrict error, double* __restrict dx) {
+    using V = typename Lane<kLanes>::Value;
+    for (Eigen::Index e = 0; e < n; ++e) {
+      const Eigen::Index j = kLanes * e;
+      V xv = lane_load<V>(x + j), dv = lane_load<V>(dx + j);
+      if constexpr (kKahan) {
+        V ev = lane_load<V>(error + j);
+        compensated_add(xv, ev, dv);
+        lane_store(error + j, ev);
+      } else {
+        xv += dv;
+      }
+      lane_store(x + j, xv);
     }
-    lane_store(x + j, xv);
   }
+};
+template <int kLanes, bool kKahan>
+void add_pass(Eigen::Index n, double* x, double* error, double* dx) {
+  run_pass<AddPass<kLanes, kKahan>>(n, x, error, dx);
 }
 
 /// The stages' passes of the update: dq, dp from q, p and the gradients g[i] (i < s) with stage
@@ -111,7 +142,8 @@ UpdateBits update_passes(int s, Eigen::Index n, const double* q, const double* p
                          double* dp, const UpdateCoefficients<C>& k, Stage&& stage) {
   const auto run = [&](auto first, auto last, int i) {
     const auto [g, h2bbar, hb] = stage(i);
-    return update_pass<kLanes, first.value, last.value, C>(n, q, p, g, dq, dp, k, h2bbar, hb);
+    return run_pass<UpdatePass<kLanes, first.value, last.value, C>>(n, q, p, g, dq, dp, k, h2bbar,
+                                                                    hb);
   };
   using T = std::true_type;
   using F = std::false_type;
@@ -128,25 +160,33 @@ UpdateBits update_passes(int s, Eigen::Index n, const double* q, const double* p
 /// them (the same bits). In Eigen's expressions they were three passes and the inverse
 /// transform's scaled copy a fourth.
 template <class C>
-[[gnu::noinline]] Lane<2>::Value iterate_pass(Eigen::Index n, const double* __restrict r, C abar,
-                                              const double* __restrict g,
-                                              const double* __restrict Q, double* __restrict Q_new,
-                                              double* __restrict staged, double scale,
-                                              const double* __restrict w) {
-  using V = Lane<2>::Value;
-  using I = std::int64_t __attribute__((vector_size(16)));
-  V sums{};  // {X, N} (one register, returned as it is: GCC kept two doubles on the stack)
-  for (Eigen::Index e = 0; e < n; ++e) {
-    const Eigen::Index x = 2 * e;
-    const V next = lane_load<V>(r + x) - coefficient_at(abar, e) * lane_load<V>(g + x);
-    const V change = next - lane_load<V>(Q + x);
-    const V c2 = change * change, n2 = next * next;
-    // {re^2 of the change, of next} + {im^2 of the change, of next}: abs2 = re^2 + im^2
-    sums += w[e] * (__builtin_shuffle(c2, n2, I{0, 2}) + __builtin_shuffle(c2, n2, I{1, 3}));
-    lane_store(Q_new + x, next);
-    lane_store(staged + x, V(scale * next));
+struct IteratePass {
+  static EIGEN_ALWAYS_INLINE Lane<2>::Value run(Eigen::Index n, const double* __restrict r, C abar,
+                                                const double* __restrict g,
+                                                const double* __restrict Q,
+                                                double* __restrict Q_new, double* __restrict staged,
+                                                double scale, const double* __restrict w) {
+    using V = Lane<2>::Value;
+    using I = std::int64_t __attribute__((vector_size(16)));
+    V sums{};  // {X, N} (one register, returned as it is: GCC kept two doubles on the stack)
+    for (Eigen::Index e = 0; e < n; ++e) {
+      const Eigen::Index x = 2 * e;
+      const V next = lane_load<V>(r + x) - coefficient_at(abar, e) * lane_load<V>(g + x);
+      const V change = next - lane_load<V>(Q + x);
+      const V c2 = change * change, n2 = next * next;
+      // {re^2 of the change, of next} + {im^2 of the change, of next}: abs2 = re^2 + im^2
+      sums += w[e] * (__builtin_shuffle(c2, n2, I{0, 2}) + __builtin_shuffle(c2, n2, I{1, 3}));
+      lane_store(Q_new + x, next);
+      lane_store(staged + x, V(scale * next));
+    }
+    return sums;
   }
-  return sums;
+};
+template <class C>
+Lane<2>::Value iterate_pass(Eigen::Index n, const double* r, C abar, const double* g,
+                            const double* Q, double* Q_new, double* staged, double scale,
+                            const double* w) {
+  return run_pass<IteratePass<C>>(n, r, abar, g, Q, Q_new, staged, scale, w);
 }
 
 /// The stage's start on the half spectrum (stage_solver.hpp's start_stage, a transform with a
@@ -162,30 +202,36 @@ struct StartTerms {
   const double* w;
 };
 template <bool kFromState, bool kTerm, bool kFinal, class C>
-[[gnu::noinline]] double start_pass(Eigen::Index n, StartTerms t, C phi0c, C hcphi1c, C abar_ij,
-                                    C abar_ii) {
-  using V = Lane<2>::Value;
-  const double* __restrict q = t.q, * __restrict p = t.p, * __restrict G = t.G, * __restrict guess = t.guess, * __restrict w = t.w;
-  double* __restrict r = t.r, * __restrict Q0 = t.Q0, * __restrict staged = t.staged;
-  double norm2 = 0;
-  for (Eigen::Index e = 0; e < n; ++e) {
-    const Eigen::Index x = 2 * e;
-    V rx;
-    if constexpr (kFromState)
-      rx = coefficient_at(phi0c, e) * lane_load<V>(q + x) +
-           coefficient_at(hcphi1c, e) * lane_load<V>(p + x);
-    else
-      rx = lane_load<V>(r + x);
-    if constexpr (kTerm) rx -= coefficient_at(abar_ij, e) * lane_load<V>(G + x);
-    lane_store(r + x, rx);
-    if constexpr (kFinal) {
-      const V Qx = rx - coefficient_at(abar_ii, e) * lane_load<V>(guess + x);
-      norm2 += w[e] * (Qx[0] * Qx[0] + Qx[1] * Qx[1]);
-      lane_store(Q0 + x, Qx);
-      lane_store(staged + x, V(t.scale * Qx));
+struct StartPass {
+  static EIGEN_ALWAYS_INLINE double run(Eigen::Index n, StartTerms t, C phi0c, C hcphi1c, C abar_ij,
+                                        C abar_ii) {
+    using V = Lane<2>::Value;
+    const double* __restrict q = t.q, * __restrict p = t.p, * __restrict G = t.G, * __restrict guess = t.guess, * __restrict w = t.w;
+    double* __restrict r = t.r, * __restrict Q0 = t.Q0, * __restrict staged = t.staged;
+    double norm2 = 0;
+    for (Eigen::Index e = 0; e < n; ++e) {
+      const Eigen::Index x = 2 * e;
+      V rx;
+      if constexpr (kFromState)
+        rx = coefficient_at(phi0c, e) * lane_load<V>(q + x) +
+             coefficient_at(hcphi1c, e) * lane_load<V>(p + x);
+      else
+        rx = lane_load<V>(r + x);
+      if constexpr (kTerm) rx -= coefficient_at(abar_ij, e) * lane_load<V>(G + x);
+      lane_store(r + x, rx);
+      if constexpr (kFinal) {
+        const V Qx = rx - coefficient_at(abar_ii, e) * lane_load<V>(guess + x);
+        norm2 += w[e] * (Qx[0] * Qx[0] + Qx[1] * Qx[1]);
+        lane_store(Q0 + x, Qx);
+        lane_store(staged + x, V(t.scale * Qx));
+      }
     }
+    return norm2;
   }
-  return norm2;
+};
+template <bool kFromState, bool kTerm, bool kFinal, class C>
+double start_pass(Eigen::Index n, const StartTerms& t, C phi0c, C hcphi1c, C abar_ij, C abar_ii) {
+  return run_pass<StartPass<kFromState, kTerm, kFinal, C>>(n, t, phi0c, hcphi1c, abar_ij, abar_ii);
 }
 
 /// start_pass over the i terms of stage i (term(j): G_j's lanes and abar_ij); returns |Q_0|^2.

@@ -201,5 +201,78 @@ TEST(ImplicitPasses, StartGivesTheBitsOfEigensExpressions) {
     }
 }
 
+#ifdef ERKN_AVX_PASSES
+// The passes' AVX entry (run_pass takes it on CPUs with AVX) gives the baseline entry's bits:
+// the update's first-and-last stage pass and the compensated add, the fixed point's pass and the
+// stage's start, on the same random data with a NaN and an infinity among the gradients.
+// Negative control: one entry of q times 1 + 2^-40 changes the bits.
+TEST(ImplicitPasses, AvxEntryGivesTheBaselinesBits) {
+  const auto both = [](auto entry, double nudge) {
+    UpdateData<std::complex<double>> d(2, 3u);
+    d.q[9] *= 1 + nudge;
+    d.g[0][4] = {std::numeric_limits<double>::quiet_NaN(), 1.0};
+    d.g[1][6] = {2.0, std::numeric_limits<double>::infinity()};
+    Eigen::ArrayXcd a = Eigen::ArrayXcd::Zero(kCoordinates), b = a, c = a;
+    const auto result = entry(d, a, b, c);
+    std::vector<unsigned char> out = state_bytes(d);
+    for (const auto* x : {&a, &b, &c}) {
+      const std::vector<unsigned char> y = bytes(*x);
+      out.insert(out.end(), y.begin(), y.end());
+    }
+    const auto* r = reinterpret_cast<const unsigned char*>(&result);
+    out.insert(out.end(), r, r + sizeof(result));
+    return out;
+  };
+  using C = const double*;
+  const auto check = [&](auto baseline, auto avx) {
+    EXPECT_EQ(both(baseline, 0), both(avx, 0));
+    EXPECT_NE(both(baseline, 0), both(avx, 0x1p-40));  // (negative control)
+  };
+  const auto update = [](auto entry) {
+    return [entry](auto& d, auto& dq, auto& dp, auto&) {
+      const UpdateCoefficients<C> k{d.phi0m1.data(), d.hphi1.data(), d.mhMphi1.data()};
+      return entry(kCoordinates, lanes(d.q), lanes(d.p), lanes(d.g[0]), lanes(dq), lanes(dp), k,
+                   d.h2bbar[0].data(), d.hb[0].data());
+    };
+  };
+  using U = UpdatePass<2, true, true, C>;
+  check(update(pass_entry<U, Eigen::Index, double*, double*, double*, double*, double*,
+                          UpdateCoefficients<C>, C, C>),
+        update(pass_entry_avx<U, Eigen::Index, double*, double*, double*, double*, double*,
+                              UpdateCoefficients<C>, C, C>));
+  const auto add = [](auto entry) {
+    return [entry](auto& d, auto&, auto&, auto&) {
+      entry(kCoordinates, lanes(d.q), lanes(d.eq), lanes(d.g[1]));
+      return 0;
+    };
+  };
+  using A = AddPass<2, true>;
+  check(add(pass_entry<A, Eigen::Index, double*, double*, double*>),
+        add(pass_entry_avx<A, Eigen::Index, double*, double*, double*>));
+  const auto iterate = [](auto entry) {
+    return [entry](auto& d, auto& next, auto& staged, auto&) {
+      return entry(kCoordinates, lanes(d.q), d.hphi1.data(), lanes(d.g[0]), lanes(d.p), lanes(next),
+                   lanes(staged), 0.25, d.phi0m1.data());
+    };
+  };
+  using I = IteratePass<C>;
+  check(iterate(
+            pass_entry<I, Eigen::Index, double*, C, double*, double*, double*, double*, double, C>),
+        iterate(pass_entry_avx<I, Eigen::Index, double*, C, double*, double*, double*, double*,
+                               double, C>));
+  const auto start = [](auto entry) {
+    return [entry](auto& d, auto& r, auto& Q0, auto& staged) {
+      const StartTerms t{lanes(d.q), lanes(d.p),    lanes(d.g[0]), lanes(d.g[1]),  lanes(r),
+                         lanes(Q0),  lanes(staged), 0.25,          d.phi0m1.data()};
+      return entry(kCoordinates, t, d.hphi1.data(), d.mhMphi1.data(), d.hb[0].data(),
+                   d.hb[1].data());
+    };
+  };
+  using S = StartPass<true, true, true, C>;
+  check(start(pass_entry<S, Eigen::Index, StartTerms, C, C, C, C>),
+        start(pass_entry_avx<S, Eigen::Index, StartTerms, C, C, C, C>));
+}
+#endif
+
 }  // namespace
 }  // namespace erkn::detail
