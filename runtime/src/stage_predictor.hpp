@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "erkn/method.hpp"
+#include "implicit_passes.hpp"
 
 namespace erkn::detail {
 
@@ -129,11 +130,19 @@ class StagePredictor {
     while (n < node_count_[i] && nodes_[i][n].age <= history_) ++n;
     return n;
   }
-  // out = the polynomial through the first n nodes of stage i, at c_i (w: their weights).
+  // out = the polynomial through the first n nodes of stage i, at c_i (w: their weights): over
+  // arrays in one pass (implicit_passes.hpp's predict_pass), else as expressions.
   template <class Out>
   void predict(int i, int n, const double* w, Out& out) {
-    out = w[0] * node(i, 0);
-    for (int l = 1; l < n; ++l) out += w[l] * node(i, l);
+    if constexpr (Out::RowsAtCompileTime == Eigen::Dynamic) {
+      constexpr int kLanes = int(sizeof(Scalar) / sizeof(double));
+      std::array<const double*, kMaxNodes> g;
+      for (int l = 0; l < n; ++l) g[size_t(l)] = reinterpret_cast<const double*>(node(i, l).data());
+      predict_pass<kLanes>(out.size(), g.data(), w, n, reinterpret_cast<double*>(out.data()));
+    } else {
+      out = w[0] * node(i, 0);
+      for (int l = 1; l < n; ++l) out += w[l] * node(i, l);
+    }
   }
   // Node l of stage i: with a fixed size at its offset in block_ (a constant address: the
   // lookup of its step's pointer and its index were ~5 of ~9 instructions per node of the

@@ -201,6 +201,34 @@ TEST(ImplicitPasses, StartGivesTheBitsOfEigensExpressions) {
     }
 }
 
+// The predictor's pass (predict_pass) gives the bits of its expressions, w_0 g_0 + w_1 g_1 + ...
+// summed node after node, for 1 to 8 nodes (unrolled up to 6, a loop beyond), on real and
+// complex coordinates. Negative control: one weight times 1 + 2^-40 changes the bits.
+template <class Scalar>
+void check_predict() {
+  for (int nodes = 1; nodes <= 8; ++nodes)
+    for (double nudge : {0.0, 0x1p-40}) {
+      SCOPED_TRACE("nodes " + std::to_string(nodes) + ", nudge " + std::to_string(nudge));
+      UpdateData<Scalar> d(nodes, 11u + unsigned(nodes));
+      std::vector<double> w(static_cast<size_t>(nodes));
+      for (int l = 0; l < nodes; ++l) w[size_t(l)] = d.hb[size_t(l)][0];
+      typename UpdateData<Scalar>::Array expected = w[0] * d.g[0];
+      for (int l = 1; l < nodes; ++l) expected += w[size_t(l)] * d.g[size_t(l)];
+      std::vector<const double*> g;
+      for (auto& x : d.g) g.push_back(lanes(x));
+      w[size_t(nodes - 1)] *= 1 + nudge;
+      typename UpdateData<Scalar>::Array got(kCoordinates);
+      predict_pass<int(sizeof(Scalar) / sizeof(double))>(kCoordinates, g.data(), w.data(), nodes,
+                                                         lanes(got));
+      EXPECT_EQ(bytes(got) == bytes(expected), nudge == 0);
+    }
+}
+
+TEST(ImplicitPasses, PredictGivesTheBitsOfEigensExpressions) {
+  check_predict<double>();
+  check_predict<std::complex<double>>();
+}
+
 #ifdef ERKN_AVX_PASSES
 // The passes' AVX entry (run_pass takes it on CPUs with AVX) gives the baseline entry's bits:
 // the update's first-and-last stage pass and the compensated add, the fixed point's pass and the
