@@ -230,32 +230,36 @@ TEST(ImplicitPasses, PredictGivesTheBitsOfEigensExpressions) {
 }
 
 #ifdef ERKN_AVX_PASSES
-// The passes' AVX entry (run_pass takes it on CPUs with AVX) gives the baseline entry's bits:
-// the update's first-and-last stage pass and the compensated add, the fixed point's pass and the
-// stage's start, on the same random data with a NaN and an infinity among the gradients.
-// Negative control: one entry of q times 1 + 2^-40 changes the bits.
-TEST(ImplicitPasses, AvxEntryGivesTheBaselinesBits) {
-  const auto both = [](auto entry, double nudge) {
-    UpdateData<std::complex<double>> d(2, 3u);
-    d.q[9] *= 1 + nudge;
-    d.g[0][4] = {std::numeric_limits<double>::quiet_NaN(), 1.0};
-    d.g[1][6] = {2.0, std::numeric_limits<double>::infinity()};
-    Eigen::ArrayXcd a = Eigen::ArrayXcd::Zero(kCoordinates), b = a, c = a;
-    const auto result = entry(d, a, b, c);
-    std::vector<unsigned char> out = state_bytes(d);
-    for (const auto* x : {&a, &b, &c}) {
-      const std::vector<unsigned char> y = bytes(*x);
-      out.insert(out.end(), y.begin(), y.end());
-    }
-    const auto* r = reinterpret_cast<const unsigned char*>(&result);
-    out.insert(out.end(), r, r + sizeof(result));
-    return out;
-  };
-  using C = const double*;
-  const auto check = [&](auto baseline, auto avx) {
-    EXPECT_EQ(both(baseline, 0), both(avx, 0));
-    EXPECT_NE(both(baseline, 0), both(avx, 0x1p-40));  // (negative control)
-  };
+// The passes' AVX entry (run_pass takes it on CPUs with AVX) gives the baseline entry's bits,
+// on the same random data with a NaN and an infinity among the gradients: the bytes of the
+// state, of three output arrays and of what the entry returns. Negative control: one entry of q
+// times 1 + 2^-40 changes the bits.
+template <class Entry>
+std::vector<unsigned char> entry_bytes(Entry entry, double nudge) {
+  UpdateData<std::complex<double>> d(2, 3u);
+  d.q[9] *= 1 + nudge;
+  d.g[0][4] = {std::numeric_limits<double>::quiet_NaN(), 1.0};
+  d.g[1][6] = {2.0, std::numeric_limits<double>::infinity()};
+  Eigen::ArrayXcd a = Eigen::ArrayXcd::Zero(kCoordinates), b = a, c = a;
+  const auto result = entry(d, a, b, c);
+  std::vector<unsigned char> out = state_bytes(d);
+  for (const auto* x : {&a, &b, &c}) {
+    const std::vector<unsigned char> y = bytes(*x);
+    out.insert(out.end(), y.begin(), y.end());
+  }
+  const auto* r = reinterpret_cast<const unsigned char*>(&result);
+  out.insert(out.end(), r, r + sizeof(result));
+  return out;
+}
+template <class Baseline, class Avx>
+void check_avx_entry(Baseline baseline, Avx avx) {
+  EXPECT_EQ(entry_bytes(baseline, 0), entry_bytes(avx, 0));
+  EXPECT_NE(entry_bytes(baseline, 0), entry_bytes(avx, 0x1p-40));  // (negative control)
+}
+using C = const double*;
+
+// The update's first-and-last stage pass and the compensated add.
+TEST(ImplicitPasses, AvxEntryGivesTheBaselinesBitsInTheUpdate) {
   const auto update = [](auto entry) {
     return [entry](auto& d, auto& dq, auto& dp, auto&) {
       const UpdateCoefficients<C> k{d.phi0m1.data(), d.hphi1.data(), d.mhMphi1.data()};
@@ -264,10 +268,10 @@ TEST(ImplicitPasses, AvxEntryGivesTheBaselinesBits) {
     };
   };
   using U = UpdatePass<2, true, true, C>;
-  check(update(pass_entry<U, Eigen::Index, double*, double*, double*, double*, double*,
-                          UpdateCoefficients<C>, C, C>),
-        update(pass_entry_avx<U, Eigen::Index, double*, double*, double*, double*, double*,
-                              UpdateCoefficients<C>, C, C>));
+  check_avx_entry(update(pass_entry<U, Eigen::Index, double*, double*, double*, double*, double*,
+                                    UpdateCoefficients<C>, C, C>),
+                  update(pass_entry_avx<U, Eigen::Index, double*, double*, double*, double*,
+                                        double*, UpdateCoefficients<C>, C, C>));
   const auto add = [](auto entry) {
     return [entry](auto& d, auto&, auto&, auto&) {
       entry(kCoordinates, lanes(d.q), lanes(d.eq), lanes(d.g[1]));
@@ -275,8 +279,12 @@ TEST(ImplicitPasses, AvxEntryGivesTheBaselinesBits) {
     };
   };
   using A = AddPass<2, true>;
-  check(add(pass_entry<A, Eigen::Index, double*, double*, double*>),
-        add(pass_entry_avx<A, Eigen::Index, double*, double*, double*>));
+  check_avx_entry(add(pass_entry<A, Eigen::Index, double*, double*, double*>),
+                  add(pass_entry_avx<A, Eigen::Index, double*, double*, double*>));
+}
+
+// The fixed point's pass, the stage's start and the predictor's polynomial (three nodes).
+TEST(ImplicitPasses, AvxEntryGivesTheBaselinesBitsInTheStage) {
   const auto iterate = [](auto entry) {
     return [entry](auto& d, auto& next, auto& staged, auto&) {
       return entry(kCoordinates, lanes(d.q), d.hphi1.data(), lanes(d.g[0]), lanes(d.p), lanes(next),
@@ -284,10 +292,11 @@ TEST(ImplicitPasses, AvxEntryGivesTheBaselinesBits) {
     };
   };
   using I = IteratePass<C>;
-  check(iterate(
-            pass_entry<I, Eigen::Index, double*, C, double*, double*, double*, double*, double, C>),
-        iterate(pass_entry_avx<I, Eigen::Index, double*, C, double*, double*, double*, double*,
-                               double, C>));
+  check_avx_entry(
+      iterate(
+          pass_entry<I, Eigen::Index, double*, C, double*, double*, double*, double*, double, C>),
+      iterate(pass_entry_avx<I, Eigen::Index, double*, C, double*, double*, double*, double*,
+                             double, C>));
   const auto start = [](auto entry) {
     return [entry](auto& d, auto& r, auto& Q0, auto& staged) {
       const StartTerms t{lanes(d.q), lanes(d.p),    lanes(d.g[0]), lanes(d.g[1]),  lanes(r),
@@ -297,8 +306,19 @@ TEST(ImplicitPasses, AvxEntryGivesTheBaselinesBits) {
     };
   };
   using S = StartPass<true, true, true, C>;
-  check(start(pass_entry<S, Eigen::Index, StartTerms, C, C, C, C>),
-        start(pass_entry_avx<S, Eigen::Index, StartTerms, C, C, C, C>));
+  check_avx_entry(start(pass_entry<S, Eigen::Index, StartTerms, C, C, C, C>),
+                  start(pass_entry_avx<S, Eigen::Index, StartTerms, C, C, C, C>));
+  const auto predict = [](auto entry) {
+    return [entry](auto& d, auto& out, auto&, auto&) {
+      const std::array<const double*, 3> g{lanes(d.q), lanes(d.g[0]), lanes(d.g[1])};
+      entry(kCoordinates, g.data(), d.hb[0].data(), 3, lanes(out));
+      return 0;
+    };
+  };
+  using P = PredictPass<2, 3>;
+  using G = const double* const*;
+  check_avx_entry(predict(pass_entry<P, Eigen::Index, G, C, int, double*>),
+                  predict(pass_entry_avx<P, Eigen::Index, G, C, int, double*>));
 }
 #endif
 
