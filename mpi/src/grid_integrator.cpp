@@ -17,15 +17,16 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "blowup_guard.hpp"  // (runtime/src)
 #include "collective.hpp"
-#include "compensated_sum.hpp"  // (runtime/src)
 #include "distributed_transform.hpp"
 #include "erkn/mpi.hpp"
 #include "erkn/time_grid.hpp"
 #include "explicit_stepper.hpp"  // (runtime/src)
+#include "implicit_passes.hpp"   // (runtime/src)
 #include "slab_advice.hpp"
 #include "slab_space.hpp"
 #include "stage_solver.hpp"       // (runtime/src)
@@ -295,26 +296,28 @@ class GridStepper {
         grid_.h());
   }
 
-  // Eq. (d)'s update from the solved stages, added to the state (eigen coordinates) at the end.
+  // Eq. (d)'s update from the solved stages, added to the state (eigen coordinates) at the end:
+  // the serial stepper's passes (implicit_passes.hpp, one coordinate per double). (The result's
+  // finiteness is the blow-up guard's, as before: the passes' non-finite bits are not used.)
   void update(Stages& st) {
+    using erkn::detail::add_pass;
     const StepCoefficients<Eigen::ArrayXd>& k = st.k;
-    x_.dq_hat = k.phi0m1() * x_.q_hat + k.hphi1() * x_.p_hat;
-    x_.dp_hat = k.mhMphi1() * x_.q_hat + k.phi0m1() * x_.p_hat;
-    for (int i = 0; i < method_.stages(); ++i) {
-      x_.dq_hat -= k.h2bbar(i) * st.solver.G(i);
-      x_.dp_hat -= k.hb(i) * st.solver.G(i);
+    const erkn::detail::UpdateCoefficients<const double*> c{k.phi0m1().data(), k.hphi1().data(),
+                                                            k.mhMphi1().data()};
+    const Eigen::Index n = x_.q_hat.size();
+    erkn::detail::update_passes<1>(
+        method_.stages(), n, x_.q_hat.data(), x_.p_hat.data(), x_.dq_hat.data(), x_.dp_hat.data(),
+        c, [&](int i) {
+          return std::tuple{st.solver.G(i).data(), k.h2bbar(i).data(), k.hb(i).data()};
+        });
+    for (auto [x, error, dx] : {std::tuple{&x_.q_hat, &x_.q_error, &x_.dq_hat},
+                                std::tuple{&x_.p_hat, &x_.p_error, &x_.dp_hat}}) {
+      if (options_.compensated_summation)
+        add_pass<1, true>(n, x->data(), error->data(), dx->data());
+      else
+        add_pass<1, false>(n, x->data(), error->data(), dx->data());
     }
-    add(x_.q_hat, x_.q_error, x_.dq_hat);
-    add(x_.p_hat, x_.p_error, x_.dp_hat);
     x_.physical = false;
-  }
-
-  // x += dx, Kahan-compensated when enabled (the library's update, compensated_sum.hpp).
-  void add(Eigen::ArrayXd& x, Eigen::ArrayXd& error, Eigen::ArrayXd& dx) {
-    if (options_.compensated_summation)
-      erkn::detail::compensated_add(x, error, dx);
-    else
-      x += dx;
   }
 };
 
