@@ -55,26 +55,8 @@ std::vector<Method> explicit_methods() {
   return out;
 }
 
-// sin q, whose `fault` replaces entry 0 of the gradient at call number `at` (1-based, counted
-// from `counting` on); hessian-vector products for the modified kicks.
-struct Faulty {
-  double fault = 0;
-  long at = 0, calls = 0;
-  bool counting = false;
-  System system(const Stiffness& M) {
-    System s;
-    s.M = M;
-    s.gradient = [this](const Eigen::VectorXd& q, Eigen::VectorXd& g) {
-      g = q.array().sin().matrix();
-      if (counting && ++calls == at) g[0] = fault;
-    };
-    s.hessian_vector_product = [](const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                                  Eigen::VectorXd& hv) {
-      hv = (q.array().cos() * v.array()).matrix();
-    };
-    return s;
-  }
-};
+// Faulty (refusals.hpp) with the Hessian-vector product the modified kicks call.
+constexpr Faulty kFaulty{.hessian = true};
 
 Eigen::VectorXd start(Eigen::Index d, double phase) {
   return (Eigen::VectorXd::LinSpaced(d, 0, 1).array() + phase).sin().matrix();
@@ -88,7 +70,7 @@ TEST(ExplicitChecks, NonFiniteGradientAtEveryStageIsNamedAndChangesNothing) {
       for (double fault : {kNaN, kInf}) {
         SCOPED_TRACE(std::string(basis.name) + ", " + std::string(m.name()));
         const Eigen::Index d = basis.M.dim();
-        Faulty probe;
+        Faulty probe = kFaulty;
         Integrator counted(m, probe.system(basis.M), 0.05, start(d, 0.1), start(d, 0.7));
         counted.step();
         const long iterations = counted.statistics().stage_iterations;
@@ -96,7 +78,7 @@ TEST(ExplicitChecks, NonFiniteGradientAtEveryStageIsNamedAndChangesNothing) {
         const long calls = counted.statistics().stage_iterations - iterations;
         const int shift = calls == m.stages() - 1 ? 1 : 0;
         for (long k = 1; k <= calls; ++k) {
-          Faulty f;
+          Faulty f = kFaulty;
           f.fault = fault;
           f.at = k;
           Integrator run(m, f.system(basis.M), 0.05, start(d, 0.1), start(d, 0.7));
@@ -128,13 +110,13 @@ TEST(ExplicitChecks, AFailedStepWithinIntegrateKeepsTheStepsBefore) {
       SCOPED_TRACE(std::string(basis.name) + ", " + std::string(m.name()));
       const Eigen::Index d = basis.M.dim();
       const double h = 0.05;
-      Faulty clean;
+      Faulty clean = kFaulty;
       Integrator five(m, clean.system(basis.M), h, start(d, 0.1), start(d, 0.7));
       const long built = five.statistics().gradient_evaluations;  // (a processed method's pi^-1)
       five.step(5);  // (then a processed method's pi: the state read where the steps end)
       const long evaluations = built + five.statistics().stage_iterations;  // (before step 6's)
       for (double fault : {kNaN, kInf, 0.5}) {  // (kInf: the gradient throws)
-        Faulty f;
+        Faulty f = kFaulty;
         f.fault = fault, f.at = evaluations + 1, f.counting = true;
         System s = f.system(basis.M);
         if (fault == kInf)
@@ -173,7 +155,7 @@ TEST(ExplicitChecks, OverflowingKickIsRefusedAndChangesNothing) {
       SCOPED_TRACE(std::string(basis.name) + ", " + std::string(m.name()));
       const Eigen::Index d = basis.M.dim();
       double size = -1e300;
-      System s = Faulty().system(basis.M);
+      System s = Faulty(kFaulty).system(basis.M);
       s.gradient = [&size](const Eigen::VectorXd& q, Eigen::VectorXd& g) {
         g = (q.array().sin() + size).matrix();
       };

@@ -20,22 +20,8 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// sin q, whose `fault` replaces entry 3 of the gradient at call number `at` (1-based, counted
-// from `counting` on).
-struct Faulty {
-  double fault = 0;
-  long at = 0, calls = 0;
-  bool counting = false;
-  System system(const Stiffness& M) {
-    System s;
-    s.M = M;
-    s.gradient = [this](const Eigen::VectorXd& q, Eigen::VectorXd& g) {
-      g = q.array().sin().matrix();
-      if (counting && ++calls == at) g[3] = fault;
-    };
-    return s;
-  }
-};
+// Faulty (refusals.hpp) faulting entry 3.
+constexpr Faulty kFaulty{.entry = 3};
 
 Eigen::VectorXd start(Eigen::Index d, double phase) {
   return (Eigen::VectorXd::LinSpaced(d, 0, 1).array() + phase).sin().matrix();
@@ -49,7 +35,7 @@ int named_stage(const std::string& message) {
 
 void check_every_call(const Method& m, const Stiffness& M, double fault) {
   const Eigen::Index d = M.dim();
-  Faulty probe;
+  Faulty probe = kFaulty;
   Integrator counted(m, probe.system(M), 0.05, start(d, 0.1), start(d, 0.7));
   counted.step();
   const long before_step = counted.statistics().gradient_evaluations;
@@ -58,7 +44,7 @@ void check_every_call(const Method& m, const Stiffness& M, double fault) {
   int last_stage = 1;
   for (long k = 1; k <= calls; ++k) {
     SCOPED_TRACE("call " + std::to_string(k) + " of " + std::to_string(calls));
-    Faulty f;
+    Faulty f = kFaulty;
     f.fault = fault, f.at = k;
     Integrator run(m, f.system(M), 0.05, start(d, 0.1), start(d, 0.7));
     run.step();
