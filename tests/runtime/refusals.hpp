@@ -65,4 +65,31 @@ struct Faulty {
   }
 };
 
+/// sin(x + phase) at d points x in [0, 1]: the faulty tests' start.
+inline Eigen::VectorXd sine_start(Eigen::Index d, double phase) {
+  return (Eigen::VectorXd::LinSpaced(d, 0, 1).array() + phase).sin().matrix();
+}
+
+/// Two steps of m (h = 0.05) on M from sine_start, the second with f's `fault` at its gradient
+/// call k: returns the refusal's message, having checked that the refused step left the state,
+/// t and the counts as they were, and that the same step with a finite value steps on (the
+/// negative control).
+inline std::string refused_second_step(const Method& m, const Stiffness& M, Faulty f, double fault,
+                                       long k) {
+  const Eigen::Index d = M.dim();
+  f.fault = fault, f.at = k;
+  Integrator run(m, f.system(M), 0.05, sine_start(d, 0.1), sine_start(d, 0.7));
+  run.step();
+  const Snapshot before(run);
+  const long evaluations = run.statistics().gradient_evaluations;
+  f.counting = true;
+  const std::string message = error_of([&] { run.step(); });
+  before.expect_same(run);
+  EXPECT_EQ(run.statistics().gradient_evaluations, evaluations);
+  f.fault = 0.5, f.calls = 0;  // negative control: a finite value steps on
+  EXPECT_NO_THROW(run.step());
+  EXPECT_EQ(run.statistics().steps, before.steps + 1);
+  return message;
+}
+
 }  // namespace erkn::test
