@@ -337,13 +337,16 @@ class Solution:
     them; status 1 if a terminal event stopped the run, else 0."""
 
     t_events = q_events = p_events = y_events = None  # (without events)
+    choice, status, _stats = None, 0, None  # (without tol, not stopped; statistics not read yet)
 
     def __init__(self, t, q, p, energy, run, method, choice=None, events=None, stopped=False):
         self.t, self.q, self.p, self.method = t, q, p, method
         self._energy = energy  # (or _LATER: computed by run on first access)
-        self._run, self._stats = run, None  # (the integrator: statistics read on first access)
-        self.choice = choice
-        self.status = 1 if stopped else 0
+        self._run = run  # (the integrator: statistics read on first access)
+        if choice is not None:
+            self.choice = choice
+        if stopped:
+            self.status = 1
         if events is not None:
             self.t_events, self.q_events, self.p_events, self.stats["events"] = events
             self.y_events = [np.hstack([q, p]) for q, p in zip(self.q_events, self.p_events)]
@@ -407,36 +410,46 @@ def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None
     holder = []  # (the integrator, once built: a failed run's output is in its _partial)
     choice = None
     try:
-        # (the common call, its arguments as they are: _erkn._solve_builtin, None for other forms)
-        out = _erkn._solve_builtin(holder, M, grad, q0, p0, t_span, h, method or _DEFAULT_METHOD,
-                                   every, tol, t_eval, events, progress, options, potential,
-                                   hessian, energy_tolerance, check_stability,
-                                   hessian_vector_product)
-        if out is None:  # (any form: each argument checked and converted)
-            t0, t1 = _span(t_span)
-            if tol is not None and (method in (None, "auto") or h is None):
-                choice = _choice(M, grad, q0, p0, t0, t1, h, method, tol, potential, hessian,
-                                 options, energy_tolerance, check_stability, pilot_fraction,
-                                 safety, hessian_vector_product)
-                method, h = choice["method"], choice["h"]
-            elif h is None or method == "auto":
-                raise Error("solve: give h (and a method), or tol= to let erkn choose them")
-            if t_eval is not None:
-                t_eval = np.ascontiguousarray(t_eval, dtype=float)
-            out = _erkn._construct_and_run(
-                holder, *_integrator_arguments(M, grad, q0, p0, h, method or _DEFAULT_METHOD, t0,
-                                               potential, hessian, options, energy_tolerance,
-                                               check_stability, hessian_vector_product),
-                *_run_arguments(t0, t1, t_eval, every, True, events, progress))
+        t0, t1 = _span(t_span)
+        if tol is not None and (method in (None, "auto") or h is None):
+            choice = _choice(M, grad, q0, p0, t0, t1, h, method, tol, potential, hessian,
+                             options, energy_tolerance, check_stability, pilot_fraction,
+                             safety, hessian_vector_product)
+            method, h = choice["method"], choice["h"]
+        elif h is None or method == "auto":
+            raise Error("solve: give h (and a method), or tol= to let erkn choose them")
+        if t_eval is not None:
+            t_eval = np.ascontiguousarray(t_eval, dtype=float)
+        return _erkn._construct_and_run(
+            holder, *_integrator_arguments(M, grad, q0, p0, h, method or _DEFAULT_METHOD, t0,
+                                           potential, hessian, options, energy_tolerance,
+                                           check_stability, hessian_vector_product),
+            *_run_arguments(t0, t1, t_eval, every, True, events, progress), choice)
     except BaseException as e:  # keep the output up to the last completed step (if one began)
-        if holder and holder[0]._partial is not None:
-            run = holder[0]
-            t, q, p, energy, found, _ = run._partial  # (energy None: left for later, or no U)
-            e.solution = Solution(t, q, p, _LATER if energy is None else energy, run,
-                                  run.method, choice, found)
+        _attach_partial(holder, choice, e)
         raise
-    name, later, (t, q, p, energy, found, stopped) = out
-    return Solution(t, q, p, _LATER if later else energy, holder[0], name, choice, found, stopped)
+
+
+def _attach_partial(holder, choice, e):
+    """e.solution: the output of the run in holder (if one was built) up to its last completed
+    step (solve's; erkn.solve's entry calls it too)."""
+    if holder and holder[0]._partial is not None:
+        run = holder[0]
+        t, q, p, energy, found, _ = run._partial  # (energy None: left for later, or no U)
+        e.solution = Solution(t, q, p, _LATER if energy is None else energy, run, run.method,
+                              choice, found)
+
+
+# erkn.solve: _erkn's entry (python/src/integrator.cpp: solve_entry), which runs solve's common
+# call (a built-in potential's name, M a float or an erkn.Stiffness, float64 1-D q0 and p0,
+# Python numbers, a method's name, the other arguments left out or None) in C++ as it comes, and
+# hands any other form, with its arguments as given, to the Python solve above (_solve_checked),
+# which checks and converts each: one set of checks, the same messages. Its text signature and
+# docstring are the Python solve's.
+_solve_checked = solve
+solve = _erkn._solve_entry(
+    _solve_checked, globals(),
+    "solve" + str(inspect.signature(_solve_checked)) + "\n--\n\n" + _solve_checked.__doc__)
 
 
 def _span(t_span):

@@ -8,9 +8,11 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <memory>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -253,23 +255,51 @@ class PyIntegrator {
   py::object partial_ = py::none();
 };
 
-// erkn.solve's construction and run() in one call from Python: each call through pybind11 costs
-// ~1.5k instructions (argument and self casts, type lookups), and solve made four (the
-// constructor, _run, _energy_can_wait, method) of a 1-step solve's ~56k (callgrind, Duffing,
+// The arguments erkn.solve's common call reads, beyond M and grad (positional).
+enum Slot { kQ0, kP0, kSpan, kH, kMethod, kEvery, kSlots };
+constexpr const char* kSlotNames[kSlots] = {"q0", "p0", "t_span", "h", "method", "every"};
+
+// What erkn.solve (the entry, solve_entry) knows of the Python solve: its keyword parameters
+// (the names interned in its code object), each with the slot it fills or kSlots (one the
+// common call needs to be None), read when the entry is made; and the names it looks up in
+// erkn's namespace.
+struct SolveEntry {
+  py::dict globals;                                 // erkn's namespace
+  py::object checked, solution, later, fallback;    // "_solve_checked" (a name: looked up at each
+                                                    // call); Solution, _LATER, _attach_partial
+  py::object default_method;                        // _DEFAULT_METHOD
+  py::tuple names;                                  // the Python solve's co_varnames
+  std::vector<std::pair<PyObject*, int>> keywords;  // (a name in `names`, its slot)
+};
+// (made by _erkn._solve_entry when erkn is imported; never destroyed: it holds Python objects)
+SolveEntry* solve_entry_state = nullptr;
+
+// erkn.solve's construction and run() in one call, returning the Solution: each call through
+// pybind11 costs ~1.5k instructions (argument and self casts, type lookups), and solve made four
+// (the constructor, _run, _energy_can_wait, method) of a 1-step solve's ~56k (callgrind, Duffing,
 // Strang). The integrator joins `holder` before it runs, so that a failed run's output stays
-// reachable (its _partial). With `energy`, the energies are computed now only if they cannot wait
-// (Python callbacks). Returns (the method's name, energies left for later, run()'s tuple).
-py::tuple construct_and_run(py::list holder, const Method& method, const PySystem& system, double h,
-                            const VectorArg& q0, const VectorArg& p0, double t0,
-                            const Options& options, double t_end, const py::object& t_eval,
-                            long every, bool energy, const py::object& events,
-                            const py::object& progress) {
+// reachable (its _partial: _attach_partial). With `energy`, the energies are computed now only if
+// they cannot wait (Python callbacks). `choice`: Solution.choice (None without tol).
+py::object construct_and_run(py::list holder, const Method& method, const PySystem& system,
+                             double h, const VectorArg& q0, const VectorArg& p0, double t0,
+                             const Options& options, double t_end, const py::object& t_eval,
+                             long every, bool energy, const py::object& events,
+                             const py::object& progress, const py::object& choice) {
   auto owned = std::make_unique<PyIntegrator>(method, system, h, q0, p0, t0, options);
   PyIntegrator& run = *owned;
   holder.append(py::cast(std::move(owned)));
   const bool later = energy && run.energy_can_wait();
-  py::tuple out = run.run(t_end, t_eval, every, energy && !later, events, progress);
-  return py::make_tuple(std::string(run.get().method().name()), later, std::move(out));
+  const py::tuple out = run.run(t_end, t_eval, every, energy && !later, events, progress);
+  const SolveEntry& e = *solve_entry_state;
+  const py::str name(run.get().method().name().data(), run.get().method().name().size());
+  // Solution(t, q, p, energy or _LATER, run, method, choice, events, stopped)
+  PyObject* const args[] = {
+      out[0].ptr(),    out[1].ptr(), out[2].ptr(), later ? e.later.ptr() : out[3].ptr(),
+      holder[0].ptr(), name.ptr(),   choice.ptr(), out[4].ptr(),
+      out[5].ptr()};
+  PyObject* const solution = PyObject_Vectorcall(e.solution.ptr(), args, 9, nullptr);
+  if (!solution) throw py::error_already_set();
+  return py::reinterpret_steal<py::object>(solution);
 }
 
 // x's value if it is a Python float or int (not a bool; not an int beyond a double's range).
@@ -312,77 +342,158 @@ std::optional<std::string_view> plain_name(py::handle x) {
   return std::string_view(text, size_t(size));
 }
 
-// sys.stderr.isatty(), asked once per stderr object (a system call of ~5 us here).
+// sys.stderr.isatty(), asked once per stderr object (a system call of ~5 us here). sys.stderr is
+// read from sys's namespace dict with an interned key (sys.stderr as an attribute lookup:
+// ~240 instructions).
 bool on_terminal() {
-  // (never destroyed: it holds a Python object, which must not be released after the
+  // (never destroyed: they hold Python objects, which must not be released after the
   // interpreter has ended)
   static auto* const last = new std::pair<py::object, bool>(py::none(), false);
-  static auto* const sys = new py::module_(py::module_::import("sys"));
-  static auto* const name = new py::str("stderr");  // (PySys_GetObject makes it every call)
-  const py::object stderr_now = sys->attr(*name);
-  if (!stderr_now.is(last->first))
-    *last = {stderr_now, py::bool_(stderr_now.attr("isatty")()).cast<bool>()};
+  static auto* const sys = new py::dict(py::module_::import("sys").attr("__dict__"));
+  static auto* const name =
+      new py::object(py::reinterpret_steal<py::object>(PyUnicode_InternFromString("stderr")));
+  PyObject* const stderr_now = PyDict_GetItemWithError(sys->ptr(), name->ptr());  // (borrowed)
+  if (!stderr_now) {
+    if (PyErr_Occurred()) throw py::error_already_set();
+    throw py::attribute_error("module 'sys' has no attribute 'stderr'");  // (as sys.stderr)
+  }
+  if (last->first.ptr() != stderr_now) {
+    const py::object now = py::reinterpret_borrow<py::object>(stderr_now);
+    *last = {now, py::bool_(now.attr("isatty")()).cast<bool>()};
+  }
   return last->second;
 }
 
-// erkn.solve's arguments as _solve_builtin takes them (solve_builtin_call).
-constexpr Py_ssize_t kSolveArguments = 19;
+// The call's keywords in their slots (kwnames: the vectorcall's names, their values after the
+// positional ones); false if one is not a keyword of solve's by identity (an unknown name, or
+// one not interned: solve's checked path then reports or takes it) or one the common call does
+// not read is not None.
+bool fill_slots(const SolveEntry& e, PyObject* const* values, PyObject* kwnames,
+                std::array<PyObject*, kSlots>& slots) {
+  const Py_ssize_t n = kwnames ? PyTuple_GET_SIZE(kwnames) : 0;
+  for (Py_ssize_t k = 0; k < n; ++k) {
+    PyObject* const name = PyTuple_GET_ITEM(kwnames, k);
+    const auto known = std::find_if(e.keywords.begin(), e.keywords.end(),
+                                    [&](const auto& kw) { return kw.first == name; });
+    if (known == e.keywords.end()) return false;
+    if (known->second < kSlots)
+      slots[size_t(known->second)] = values[k];
+    else if (values[k] != Py_None)
+      return false;
+  }
+  return true;
+}
 
-// erkn.solve's common call (python/erkn/__init__.py), its arguments as the caller gave them:
-// grad a built-in potential's name, M a float or an erkn.Stiffness, q0 and p0 float64 1-D
-// arrays, t_span a tuple or list of two numbers, h a number, method a name other than "auto",
-// every an int in [1, 2^53], `defaults` (solve's other arguments but pilot_fraction and safety,
-// which only tol reads) all None, and stderr not a terminal (progress None draws no bar). In
-// these forms solve's Python-level checks and conversions (_span, _state, _real, _every,
-// _system's, _progress) leave each argument as it is, so none is repeated here; every value is
-// checked where it is for any call (the System, the method's name, the Integrator). Another
-// form: None (solve's general path). args: holder, M, grad, q0, p0, t_span, h, method, every,
-// then the defaults.
-py::object solve_builtin(PyObject* const* args) {
-  const py::handle M = args[1], grad = args[2], t_span = args[5], h = args[6], method = args[7];
+// erkn.solve's common call: M a float or an erkn.Stiffness, grad a built-in potential's name,
+// q0 and p0 float64 1-D arrays, t_span a tuple or list of two numbers, h a number, method a name
+// other than "auto" (or None or absent: the default), every an int in [1, 2^53] (or absent), every
+// other argument None or absent, and stderr not a terminal (progress None draws no bar). In these
+// forms solve's checked path (_solve_checked's checks and conversions: _span, _state, _real,
+// _every, _system's, _progress) leaves each argument as it is, so none is repeated here; every
+// value is checked where it is for any call (the System, the method's name, the Integrator).
+// Returns the Solution, or None for another form (the checked path's).
+py::object solve_builtin(const SolveEntry& e, py::list& holder, py::handle M, py::handle grad,
+                         const std::array<PyObject*, kSlots>& a) {
+  if (!a[kQ0] || !a[kP0] || !a[kSpan] || !a[kH]) return py::none();
+  const py::handle t_span = a[kSpan];
   const bool span = (PyTuple_CheckExact(t_span.ptr()) || PyList_CheckExact(t_span.ptr())) &&
                     PySequence_Fast_GET_SIZE(t_span.ptr()) == 2;
   const auto t0 = span ? plain_number(PySequence_Fast_GET_ITEM(t_span.ptr(), 0)) : std::nullopt;
   const auto t1 = span ? plain_number(PySequence_Fast_GET_ITEM(t_span.ptr(), 1)) : std::nullopt;
-  const auto step = plain_number(h);
-  const auto q = plain_vector(args[3]), p = plain_vector(args[4]);
-  const auto name = plain_name(grad), method_name = plain_name(method);
-  const auto interval = plain_interval(args[8]);
-  const bool none =
-      std::all_of(args + 9, args + kSolveArguments, [](PyObject* x) { return x == Py_None; });
+  const auto step = plain_number(a[kH]);
+  const auto q = plain_vector(a[kQ0]), p = plain_vector(a[kP0]);
+  const auto name = plain_name(grad);
+  const auto method_name =
+      plain_name(a[kMethod] && a[kMethod] != Py_None ? a[kMethod] : e.default_method.ptr());
+  const auto interval = a[kEvery] ? plain_interval(a[kEvery]) : std::optional<long>(1);
   if (!t0 || !t1 || !step || !q || !p || !name || !method_name || *method_name == "auto" ||
-      !interval || !none || !(PyFloat_CheckExact(M.ptr()) || py::isinstance<Stiffness>(M)) ||
-      on_terminal())
+      !interval || !(PyFloat_CheckExact(M.ptr()) || py::isinstance<Stiffness>(M)) || on_terminal())
     return py::none();
   const auto system = builtin_system(M, std::string(*name), {}, q->size());
-  return construct_and_run(py::reinterpret_borrow<py::list>(args[0]), Method::by_name(*method_name),
-                           *system, *step, *q, *p, *t0, Options(), *t1, py::none(), *interval, true,
-                           py::none(), py::none());
+  return construct_and_run(holder, Method::by_name(*method_name), *system, *step, *q, *p, *t0,
+                           Options(), *t1, py::none(), *interval, true, py::none(), py::none(),
+                           py::none());
 }
 
-// _erkn._solve_builtin(holder, M, grad, q0, p0, t_span, h, method, every, tol, t_eval, events,
-// progress, options, potential, hessian, energy_tolerance, check_stability,
-// hessian_vector_product): solve_builtin as CPython calls a METH_FASTCALL function, without
-// pybind11's dispatch (~1.3k instructions a call, 5 % of a 1-step solve: argument vectors, the
-// overload loop; with py::args a tuple more). C++ exceptions reach Python through pybind11's own
-// translators, tried as its dispatcher tries them (module-local ones first): erkn::Error as
-// erkn.Error.
-PyObject* solve_builtin_call(PyObject*, PyObject* const* args, Py_ssize_t n) {
+// With a Python error set and a run in `holder`: the error carries the run's output up to its
+// last completed step as its `solution` (solve's _attach_partial, the checked path's too).
+void attach_partial(const SolveEntry& e, const py::list& holder) {
+  if (holder.empty()) return;
+  PyObject *type = nullptr, *value = nullptr, *trace = nullptr;
+  PyErr_Fetch(&type, &value, &trace);
+  PyErr_NormalizeException(&type, &value, &trace);
+  if (trace) PyException_SetTraceback(value, trace);
+  PyObject* args[] = {holder.ptr(), Py_None, value};
+  PyObject* const done = PyObject_Vectorcall(e.fallback.ptr(), args, 3, nullptr);
+  if (done)
+    Py_DECREF(done);
+  else
+    PyErr_Clear();  // (the run's own error is the one to report)
+  PyErr_Restore(type, value, trace);
+}
+
+// erkn.solve as CPython calls it (vectorcall, without pybind11's dispatch: ~1.3k instructions a
+// call) and without the Python solve's frame (binding 20 keyword parameters, ~130 ns): the
+// common call (solve_builtin) here; any other form, or a keyword not matched by identity, goes
+// to the Python solve's checked path (erkn._solve_checked, looked up at each such call) with its
+// arguments as given, which then binds, checks and reports them (the same errors). C++
+// exceptions reach Python through pybind11's own translators, tried as its dispatcher tries them
+// (module-local ones first): erkn::Error as erkn.Error.
+PyObject* solve_entry(PyObject*, PyObject* const* args, size_t nargsf, PyObject* kwnames) {
+  const SolveEntry& e = *solve_entry_state;
+  const Py_ssize_t n = PyVectorcall_NARGS(nargsf);
+  py::list holder;  // (the integrator, once built)
   try {
-    if (n != kSolveArguments || !PyList_CheckExact(args[0]))
-      throw py::type_error("_solve_builtin takes a list and solve's 18 arguments");
-    return solve_builtin(args).release().ptr();
-  } catch (py::error_already_set& e) {
-    e.restore();
+    std::array<PyObject*, kSlots> slots{};
+    if (n == 2 && fill_slots(e, args + n, kwnames, slots)) {
+      py::object out = solve_builtin(e, holder, args[0], args[1], slots);
+      if (!out.is_none()) return out.release().ptr();
+    }
+    return PyObject_Vectorcall(e.globals[e.checked].ptr(), args, nargsf, kwnames);
+  } catch (py::error_already_set& err) {
+    err.restore();
   } catch (...) {
     namespace detail = py::detail;
     if (!detail::apply_exception_translators(
             detail::get_local_internals().registered_exception_translators) &&
         !detail::apply_exception_translators(
             detail::get_internals().registered_exception_translators))
-      PyErr_SetString(PyExc_SystemError, "_solve_builtin: an exception no translator took");
+      PyErr_SetString(PyExc_SystemError, "erkn.solve: an exception no translator took");
   }
+  attach_partial(e, holder);
   return nullptr;
+}
+
+// _erkn._solve_entry(checked, namespace, doc): erkn.solve, the entry (solve_entry) before the
+// Python solve `checked` (its keyword parameters read from its code object), with `doc` (its
+// text signature and docstring); `namespace`: erkn's, where it finds _solve_checked, Solution,
+// _LATER, _attach_partial and _DEFAULT_METHOD. (A reload of erkn makes a new one; the last
+// one's state stays.)
+py::object make_solve_entry(const py::function& checked, const py::dict& globals,
+                            const std::string& doc) {
+  auto* e = new SolveEntry{globals,
+                           py::str("_solve_checked"),
+                           globals["Solution"],
+                           globals["_LATER"],
+                           globals["_attach_partial"],
+                           globals["_DEFAULT_METHOD"],
+                           checked.attr("__code__").attr("co_varnames"),
+                           {}};
+  const py::object code = checked.attr("__code__");
+  const auto positional = code.attr("co_argcount").cast<Py_ssize_t>();
+  const auto keywords = code.attr("co_kwonlyargcount").cast<Py_ssize_t>();
+  const py::tuple& names = e->names;
+  for (Py_ssize_t k = positional; k < positional + keywords; ++k) {
+    const std::string name = py::str(names[size_t(k)]);
+    const auto slot = std::find(std::begin(kSlotNames), std::end(kSlotNames), name);
+    e->keywords.emplace_back(names[size_t(k)].ptr(), int(slot - std::begin(kSlotNames)));
+  }
+  solve_entry_state = e;
+  static PyMethodDef def{"solve",
+                         reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&solve_entry)),
+                         METH_FASTCALL | METH_KEYWORDS, (new std::string(doc))->c_str()};
+  return py::reinterpret_steal<py::object>(
+      PyCFunction_NewEx(&def, nullptr, py::str(globals["__name__"]).ptr()));
 }
 
 // erkn.Integrator's C++ side.
@@ -431,27 +542,25 @@ void bind_integrator_class(py::module_& m) {
       .def("_energies", &PyIntegrator::energies, py::arg("q"), py::arg("p"));
 }
 
-// erkn.solve's calls into C++: construction and run in one (_construct_and_run), its common call
-// (_solve_builtin), and whether stderr is a terminal (_on_terminal).
+// erkn.solve's calls into C++: the entry (_solve_entry, made once by erkn's __init__), the
+// checked path's construction and run in one (_construct_and_run), and whether stderr is a
+// terminal (_on_terminal).
 void bind_solve_calls(py::module_& m) {
+  m.def("_solve_entry", &make_solve_entry, py::arg("checked"), py::arg("namespace"),
+        py::arg("doc"));
   m.def(
       "_construct_and_run",
       [](py::list holder, const std::string& method, const PySystem& system, double h,
          const VectorArg& q0, const VectorArg& p0, double t0, const Options& options, double t_end,
          const py::object& t_eval, long every, bool energy, const py::object& events,
-         const py::object& progress) {
+         const py::object& progress, const py::object& choice) {
         return construct_and_run(std::move(holder), Method::by_name(method), system, h, q0, p0, t0,
-                                 options, t_end, t_eval, every, energy, events, progress);
+                                 options, t_end, t_eval, every, energy, events, progress, choice);
       },
       py::arg("holder"), py::arg("method"), py::arg("system"), py::arg("h"), py::arg("q0"),
       py::arg("p0"), py::arg("t0"), py::arg("options"), py::arg("t_end"), py::arg("t_eval"),
-      py::arg("every"), py::arg("energy"), py::arg("events"), py::arg("progress"));
-  static PyMethodDef solve_builtin_def{
-      "_solve_builtin",
-      reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&solve_builtin_call)),
-      METH_FASTCALL, "erkn.solve's common call (integrator.cpp: solve_builtin), or None"};
-  m.add_object("_solve_builtin", py::reinterpret_steal<py::object>(PyCFunction_NewEx(
-                                     &solve_builtin_def, nullptr, m.attr("__name__").ptr())));
+      py::arg("every"), py::arg("energy"), py::arg("events"), py::arg("progress"),
+      py::arg("choice"));
   m.def("_on_terminal", &on_terminal);
 }
 

@@ -56,7 +56,7 @@ BUILTIN, EVERY = 'erkn.potential("phi4")', "every=10**6"
 LIST, ARRAY = "[0.5, -0.3]", "np.array([0.5, -0.3])"
 
 
-# (A name with float64 arrays: solve's common call, _erkn._solve_builtin.)
+# (A name with float64 arrays: solve's common call, in its C++ entry.)
 @pytest.mark.parametrize("grad, q0, output", [
     (BUILTIN, LIST, EVERY), ("lambda q: q**3", LIST, EVERY),
     (BUILTIN, LIST, "t_eval=np.linspace(0, 1e9, 11)"), ('"phi4"', ARRAY, EVERY)],

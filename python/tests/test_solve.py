@@ -193,7 +193,7 @@ def test_a_built_in_systems_cache_gives_the_uncached_solutions():
     # solve keeps a built-in's System for a float M or an erkn.Stiffness (erkn._builtin_system):
     # each key gives the System built for it, whatever was asked for before.
     kw = dict(q0=np.array([0.3, -0.2]), p0=np.array([1.0, 0.5]), t_span=(0, 2), h=0.05,
-              method="SABA2")  # (with a name: solve's common call, _erkn._solve_builtin)
+              method="SABA2")  # (with a name: solve's common call, in its C++ entry)
     M = erkn.diagonal(np.array([4.0, 9.0]))
     duffing = erkn.potential("duffing", k=0.5)
     runs = {}
@@ -216,27 +216,31 @@ def test_a_built_in_systems_cache_gives_the_uncached_solutions():
 
 def test_the_common_call_gives_what_its_arguments_in_other_forms_give(monkeypatch):
     # solve's common call (a built-in's name, M a float or an erkn.Stiffness, float64 arrays,
-    # Python numbers) runs as _erkn._solve_builtin, without solve's Python-level checks; the
-    # same values in other forms take the checked path: the same bits, counts and errors.
+    # Python numbers) runs in erkn.solve's C++ entry, without the Python solve's checks; the
+    # same values in other forms take the checked path (erkn._solve_checked): the same bits,
+    # counts, errors and partial output of a failed run.
     taken = []
 
-    def spy(*args):
-        taken.append("raised")
-        out = original(*args)
-        taken[-1] = "declined" if out is None else "ran"
-        return out
+    def spy(*args, **kw):
+        taken.append("checked")
+        return original(*args, **kw)
 
-    original = erkn._erkn._solve_builtin
-    monkeypatch.setattr(erkn._erkn, "_solve_builtin", spy)
+    original = erkn._solve_checked
+    monkeypatch.setattr(erkn, "_solve_checked", spy)
+
+    def solve(M, grad, **kw):  # (and whether the checked path took the call)
+        taken.clear()
+        return erkn.solve(M, grad, **kw), bool(taken)
+
     q0, p0 = np.array([0.3, -0.2]), np.array([1.0, 0.5])
     common = dict(q0=q0, p0=p0, t_span=(0, 2.0), h=0.05, every=3)
     other = dict(q0=list(q0), p0=p0.tolist(), t_span=np.array([0, 2.0]), h=np.float64(0.05),
                  every=3.0)
     for M in (9.0, erkn.diagonal(np.array([4.0, 9.0]))):
         for method in [m["name"] for m in erkn.methods()]:
-            a = erkn.solve(M, "duffing", method=method, **common)
-            b = erkn.solve(M, "duffing", method=method, **other)
-            assert taken[-2:] == ["ran", "declined"], method
+            (a, checked_a), (b, checked_b) = (solve(M, "duffing", method=method, **kw)
+                                              for kw in (common, other))
+            assert (checked_a, checked_b) == (False, True), method
             for x, y in ((a.t, b.t), (a.q, b.q), (a.p, b.p), (a.energy, b.energy)):
                 assert np.array_equal(x, y), (M, method)
             assert a.stats["gradient_evaluations"] == b.stats["gradient_evaluations"]
@@ -244,15 +248,26 @@ def test_the_common_call_gives_what_its_arguments_in_other_forms_give(monkeypatc
     c = erkn.solve(9.0, "duffing", method=method, **dict(common, h=0.05 * (1 + 2.0**-40)))
     assert not np.array_equal(a.q, c.q)  # (negative control: the comparison sees it)
     for bad in (dict(h=-0.1), dict(method="nope"), dict(grad="cosh"), dict(M=float("nan")),
-                dict(p0=np.zeros(3)), dict(t_span=(0, 1e30)), dict(every=0)):
-        messages = []
+                dict(p0=np.zeros(3)), dict(t_span=(0, 1e30)), dict(every=0),
+                dict(q0=np.array([30.0, 0.0]), h=0.5, t_span=(0, 100.0))):  # (a run that blows up)
+        refusals = []
         for kw, form in ((common, lambda x: x), (other, _other_form)):
-            args = {**kw, "M": 9.0, "grad": "sine", **{k: form(v) for k, v in bad.items()}}
+            args = {**kw, "M": 9.0 - 8 * ("q0" in bad), "grad": "duffing" if "q0" in bad
+                    else "sine", **{k: form(v) for k, v in bad.items()}}
+            taken.clear()
             with pytest.raises(ValueError) as refused:
                 erkn.solve(args.pop("M"), args.pop("grad"), **args)
-            messages.append((type(refused.value), str(refused.value)))
-        assert messages[0] == messages[1] and messages[0][0] is erkn.Error, bad
-        assert taken[-2:] == ["declined" if "every" in bad else "raised", "declined"], bad
+            partial = getattr(refused.value, "solution", None)
+            refusals.append((type(refused.value), str(refused.value), bool(taken),
+                             None if partial is None else (partial.t.tolist(), partial.q.tolist())))
+        assert refusals[0][:2] == refusals[1][:2] and refusals[0][0] is erkn.Error, bad
+        assert refusals[0][3] == refusals[1][3], bad  # (the output up to the failed step)
+        assert (refusals[0][2], refusals[1][2]) == ("every" in bad, True), bad
+    assert len(refusals[0][3][0]) > 1  # (the blow-up: steps were taken and kept)
+    # A keyword solve does not have: Python's TypeError in both forms.
+    for kw in (common, other):
+        with pytest.raises(TypeError, match="unexpected keyword argument 'tolerance'"):
+            erkn.solve(9.0, "duffing", tolerance=None, **kw)
 
 
 def _other_form(x):
