@@ -338,18 +338,14 @@ class Solution:
 
     t_events = q_events = p_events = y_events = None  # (without events)
     choice, status, _stats = None, 0, None  # (without tol, not stopped; statistics not read yet)
+    # (Made by erkn.solve, in C++ (python/src/integrator.cpp: make_solution), which sets t, q, p,
+    # method, _energy (or _LATER: computed by _run, the integrator, on first access) and _run,
+    # and choice, status and the events where they differ from the defaults above.)
 
-    def __init__(self, t, q, p, energy, run, method, choice=None, events=None, stopped=False):
-        self.t, self.q, self.p, self.method = t, q, p, method
-        self._energy = energy  # (or _LATER: computed by run on first access)
-        self._run = run  # (the integrator: statistics read on first access)
-        if choice is not None:
-            self.choice = choice
-        if stopped:
-            self.status = 1
-        if events is not None:
-            self.t_events, self.q_events, self.p_events, self.stats["events"] = events
-            self.y_events = [np.hstack([q, p]) for q, p in zip(self.q_events, self.p_events)]
+    def _add_events(self, events):
+        """The events' zeros: events = (t_events, q_events, p_events, their statistics)."""
+        self.t_events, self.q_events, self.p_events, self.stats["events"] = events
+        self.y_events = [np.hstack([q, p]) for q, p in zip(self.q_events, self.p_events)]
 
     @property
     def stats(self):
@@ -435,9 +431,8 @@ def _attach_partial(holder, choice, e):
     step (solve's; erkn.solve's entry calls it too)."""
     if holder and holder[0]._partial is not None:
         run = holder[0]
-        t, q, p, energy, found, _ = run._partial  # (energy None: left for later, or no U)
-        e.solution = Solution(t, q, p, _LATER if energy is None else energy, run, run.method,
-                              choice, found)
+        partial = run._partial  # (its energies None: left for later, or no U)
+        e.solution = _erkn._solution(run, run.method, partial, partial[3] is None, choice)
 
 
 # erkn.solve: _erkn's entry (python/src/integrator.cpp: solve_entry), which runs solve's common

@@ -259,27 +259,73 @@ class PyIntegrator {
 enum Slot { kQ0, kP0, kSpan, kH, kMethod, kEvery, kSlots };
 constexpr const char* kSlotNames[kSlots] = {"q0", "p0", "t_span", "h", "method", "every"};
 
+// A Solution's fields that make_solution sets, and the method it calls with events.
+enum Field { kT, kQ, kP, kEnergy, kRun, kName, kChoice, kStatus, kAddEvents, kFields };
+constexpr const char* kFieldNames[kFields] = {"t",      "q",      "p",      "_energy",    "_run",
+                                              "method", "choice", "status", "_add_events"};
+
 // What erkn.solve (the entry, solve_entry) knows of the Python solve: its keyword parameters
 // (the names interned in its code object), each with the slot it fills or kSlots (one the
-// common call needs to be None), read when the entry is made; and the names it looks up in
-// erkn's namespace.
+// common call needs to be None), read when the entry is made; and what it takes from erkn's
+// namespace.
 struct SolveEntry {
   py::dict globals;                                 // erkn's namespace
-  py::object checked, solution, later, fallback;    // "_solve_checked" (a name: looked up at each
-                                                    // call); Solution, _LATER, _attach_partial
+  py::object checked_name;                          // "_solve_checked": looked up at each call
+  py::object solution, later, fallback;             // Solution, _LATER, _attach_partial
   py::object default_method;                        // _DEFAULT_METHOD
   py::tuple names;                                  // the Python solve's co_varnames
   std::vector<std::pair<PyObject*, int>> keywords;  // (a name in `names`, its slot)
+  std::array<py::object, kFields> fields;           // their names, interned (make_solution)
 };
 // (made by _erkn._solve_entry when erkn is imported; never destroyed: it holds Python objects)
 SolveEntry* solve_entry_state = nullptr;
+const SolveEntry& solve_entry_made() {
+  if (!solve_entry_state) throw Error("erkn.solve's entry is made when erkn is imported");
+  return *solve_entry_state;
+}
+
+// An erkn.Solution (its class: python/erkn/__init__.py) of the integrator `run` (a PyIntegrator),
+// `method` its name, from `out`, a run()'s tuple (t, q, p, energy, events, stopped): made here
+// rather than by a Python __init__ (~2.1k instructions of a 1-step solve's ~17k): t, q, p,
+// _energy (out's energies, or _LATER if `later`: computed on first access), _run and method are
+// set; choice, status and the events (Solution._add_events) only where they differ from the
+// class's defaults (no tol, not stopped, no events).
+py::object make_solution(const SolveEntry& e, py::handle run, py::handle method,
+                         const py::tuple& out, bool later, py::handle choice) {
+  auto* const type = reinterpret_cast<PyTypeObject*>(e.solution.ptr());
+  static auto* const no_arguments = new py::tuple();  // (never destroyed, as on_terminal's)
+  const auto s =
+      py::reinterpret_steal<py::object>(type->tp_new(type, no_arguments->ptr(), nullptr));
+  if (!s) throw py::error_already_set();
+  const auto set = [&](Field field, py::handle value) {
+    if (PyObject_SetAttr(s.ptr(), e.fields[field].ptr(), value.ptr()) != 0)
+      throw py::error_already_set();
+  };
+  const auto item = [&](Py_ssize_t k) { return py::handle(PyTuple_GET_ITEM(out.ptr(), k)); };
+  set(kT, item(0)), set(kQ, item(1)), set(kP, item(2));
+  set(kEnergy, later ? py::handle(e.later) : item(3)), set(kRun, run), set(kName, method);
+  if (!choice.is_none()) set(kChoice, choice);
+  if (item(5).ptr() == Py_True) set(kStatus, py::int_(1));
+  if (!item(4).is_none()) s.attr(e.fields[kAddEvents])(item(4));
+  return s;
+}
+
+// A registry method's name as a Python str, kept for the last method asked (solve's loops: one
+// method; the registry's entries stay where they are).
+py::handle name_of(const Method& method) {
+  static auto* const last = new std::pair<const Method*, py::object>(nullptr, py::none());
+  if (last->first != &method)
+    *last = {&method, py::str(method.name().data(), method.name().size())};
+  return last->second;
+}
 
 // erkn.solve's construction and run() in one call, returning the Solution: each call through
 // pybind11 costs ~1.5k instructions (argument and self casts, type lookups), and solve made four
 // (the constructor, _run, _energy_can_wait, method) of a 1-step solve's ~56k (callgrind, Duffing,
 // Strang). The integrator joins `holder` before it runs, so that a failed run's output stays
 // reachable (its _partial: _attach_partial). With `energy`, the energies are computed now only if
-// they cannot wait (Python callbacks). `choice`: Solution.choice (None without tol).
+// they cannot wait (Python callbacks). `method`: the registry's; `choice`: Solution.choice (None
+// without tol).
 py::object construct_and_run(py::list holder, const Method& method, const PySystem& system,
                              double h, const VectorArg& q0, const VectorArg& p0, double t0,
                              const Options& options, double t_end, const py::object& t_eval,
@@ -290,16 +336,7 @@ py::object construct_and_run(py::list holder, const Method& method, const PySyst
   holder.append(py::cast(std::move(owned)));
   const bool later = energy && run.energy_can_wait();
   const py::tuple out = run.run(t_end, t_eval, every, energy && !later, events, progress);
-  const SolveEntry& e = *solve_entry_state;
-  const py::str name(run.get().method().name().data(), run.get().method().name().size());
-  // Solution(t, q, p, energy or _LATER, run, method, choice, events, stopped)
-  PyObject* const args[] = {
-      out[0].ptr(),    out[1].ptr(), out[2].ptr(), later ? e.later.ptr() : out[3].ptr(),
-      holder[0].ptr(), name.ptr(),   choice.ptr(), out[4].ptr(),
-      out[5].ptr()};
-  PyObject* const solution = PyObject_Vectorcall(e.solution.ptr(), args, 9, nullptr);
-  if (!solution) throw py::error_already_set();
-  return py::reinterpret_steal<py::object>(solution);
+  return make_solution(solve_entry_made(), holder[0], name_of(method), out, later, choice);
 }
 
 // x's value if it is a Python float or int (not a bool; not an int beyond a double's range).
@@ -384,6 +421,19 @@ bool fill_slots(const SolveEntry& e, PyObject* const* values, PyObject* kwnames,
   return true;
 }
 
+// Method::by_name(name), kept for the last name asked: a loop of solves asks for one method again
+// and again, and by_name compares with the registry's names in turn (~360 instructions for
+// Strang, more for later methods). A method found stays the answer for its name: the registry
+// only grows (load_methods), and by_name returns the first match.
+const Method& method_named(std::string_view name) {
+  static auto* const last = new std::pair<std::string, const Method*>("", nullptr);
+  if (!last->second || name != last->first) {
+    const Method& found = Method::by_name(name);  // (throws for an unknown name: nothing kept)
+    *last = {std::string(name), &found};
+  }
+  return *last->second;
+}
+
 // erkn.solve's common call: M a float or an erkn.Stiffness, grad a built-in potential's name,
 // q0 and p0 float64 1-D arrays, t_span a tuple or list of two numbers, h a number, method a name
 // other than "auto" (or None or absent: the default), every an int in [1, 2^53] (or absent), every
@@ -410,7 +460,7 @@ py::object solve_builtin(const SolveEntry& e, py::list& holder, py::handle M, py
       !interval || !(PyFloat_CheckExact(M.ptr()) || py::isinstance<Stiffness>(M)) || on_terminal())
     return py::none();
   const auto system = builtin_system(M, std::string(*name), {}, q->size());
-  return construct_and_run(holder, Method::by_name(*method_name), *system, *step, *q, *p, *t0,
+  return construct_and_run(holder, method_named(*method_name), *system, *step, *q, *p, *t0,
                            Options(), *t1, py::none(), *interval, true, py::none(), py::none(),
                            py::none());
 }
@@ -440,7 +490,7 @@ void attach_partial(const SolveEntry& e, const py::list& holder) {
 // exceptions reach Python through pybind11's own translators, tried as its dispatcher tries them
 // (module-local ones first): erkn::Error as erkn.Error.
 PyObject* solve_entry(PyObject*, PyObject* const* args, size_t nargsf, PyObject* kwnames) {
-  const SolveEntry& e = *solve_entry_state;
+  const SolveEntry& e = *solve_entry_state;  // (made with the function itself)
   const Py_ssize_t n = PyVectorcall_NARGS(nargsf);
   py::list holder;  // (the integrator, once built)
   try {
@@ -449,7 +499,7 @@ PyObject* solve_entry(PyObject*, PyObject* const* args, size_t nargsf, PyObject*
       py::object out = solve_builtin(e, holder, args[0], args[1], slots);
       if (!out.is_none()) return out.release().ptr();
     }
-    return PyObject_Vectorcall(e.globals[e.checked].ptr(), args, nargsf, kwnames);
+    return PyObject_Vectorcall(e.globals[e.checked_name].ptr(), args, nargsf, kwnames);
   } catch (py::error_already_set& err) {
     err.restore();
   } catch (...) {
@@ -478,7 +528,10 @@ py::object make_solve_entry(const py::function& checked, const py::dict& globals
                            globals["_attach_partial"],
                            globals["_DEFAULT_METHOD"],
                            checked.attr("__code__").attr("co_varnames"),
+                           {},
                            {}};
+  for (size_t k = 0; k < e->fields.size(); ++k)
+    e->fields[k] = py::reinterpret_steal<py::object>(PyUnicode_InternFromString(kFieldNames[k]));
   const py::object code = checked.attr("__code__");
   const auto positional = code.attr("co_argcount").cast<Py_ssize_t>();
   const auto keywords = code.attr("co_kwonlyargcount").cast<Py_ssize_t>();
@@ -561,6 +614,12 @@ void bind_solve_calls(py::module_& m) {
       py::arg("p0"), py::arg("t0"), py::arg("options"), py::arg("t_end"), py::arg("t_eval"),
       py::arg("every"), py::arg("energy"), py::arg("events"), py::arg("progress"),
       py::arg("choice"));
+  m.def(
+      "_solution",
+      [](py::handle run, py::handle method, const py::tuple& out, bool later, py::handle choice) {
+        return make_solution(solve_entry_made(), run, method, out, later, choice);
+      },
+      py::arg("run"), py::arg("method"), py::arg("out"), py::arg("later"), py::arg("choice"));
   m.def("_on_terminal", &on_terminal);
 }
 
