@@ -339,8 +339,9 @@ class Solution:
     t_events = q_events = p_events = y_events = None  # (without events)
     choice, status, _stats = None, 0, None  # (without tol, not stopped; statistics not read yet)
     # (Made by erkn.solve, in C++ (python/src/integrator.cpp: make_solution), which sets t, q, p,
-    # method, _energy (or _LATER: computed by _run, the integrator, on first access) and _run,
-    # and choice, status and the events where they differ from the defaults above.)
+    # method, _energy (or _LATER: computed on first access) and _run (the integrator, in a capsule
+    # for _erkn's _run_statistics and _run_energies), and choice, status and the events where
+    # they differ from the defaults above.)
 
     def _add_events(self, events):
         """The events' zeros: events = (t_events, q_events, p_events, their statistics)."""
@@ -352,7 +353,7 @@ class Solution:
         """The run's counters and times (a dict; solve reads them from the run when first
         asked for, as building the dict costs about a microsecond)."""
         if self._stats is None:
-            self._stats = self._run.statistics
+            self._stats = _erkn._run_statistics(self._run)
         return self._stats
 
     @property
@@ -360,7 +361,7 @@ class Solution:
         """H at each output time, or None without a potential (a built-in potential's is
         computed on first access: solve does not pay for it unless it is looked at)."""
         if self._energy is _LATER:
-            self._energy = self._run._energies(self.q, self.p)
+            self._energy = _erkn._run_energies(self._run, self.q, self.p)
         return self._energy
 
     def __repr__(self):
@@ -403,7 +404,7 @@ def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None
     draws it only on a terminal and once the run has lasted 2 s; False never. Raises erkn.Error with erkn's message on any bad input
     or failed step; an error (or an exception from a callback) during the run carries the
     output up to the last completed step as its `solution` attribute."""
-    holder = []  # (the integrator, once built: a failed run's output is in its _partial)
+    holder = []  # (the integrator, once built: a failed run's output is kept there)
     choice = None
     try:
         t0, t1 = _span(t_span)
@@ -429,10 +430,9 @@ def solve(M, grad, *, q0, p0, t_span, h=None, method=None, tol=None, t_eval=None
 def _attach_partial(holder, choice, e):
     """e.solution: the output of the run in holder (if one was built) up to its last completed
     step (solve's; erkn.solve's entry calls it too)."""
-    if holder and holder[0]._partial is not None:
-        run = holder[0]
-        partial = run._partial  # (its energies None: left for later, or no U)
-        e.solution = _erkn._solution(run, run.method, partial, partial[3] is None, choice)
+    solution = _erkn._partial_solution(holder[0], choice) if holder else None
+    if solution is not None:
+        e.solution = solution
 
 
 # erkn.solve: _erkn's entry (python/src/integrator.cpp: solve_entry), which runs solve's common

@@ -284,7 +284,7 @@ const SolveEntry& solve_entry_made() {
   return *solve_entry_state;
 }
 
-// An erkn.Solution (its class: python/erkn/__init__.py) of the integrator `run` (a PyIntegrator),
+// An erkn.Solution (its class: python/erkn/__init__.py) of the integrator `run` (run_capsule's),
 // `method` its name, from `out`, a run()'s tuple (t, q, p, energy, events, stopped): made here
 // rather than by a Python __init__ (~2.1k instructions of a 1-step solve's ~17k): t, q, p,
 // _energy (out's energies, or _LATER if `later`: computed on first access), _run and method are
@@ -319,11 +319,29 @@ py::handle name_of(const Method& method) {
   return last->second;
 }
 
+// A Solution's integrator (its _run): a capsule of that name owning a PyIntegrator, rather than a
+// pybind11 instance of _Integrator (~1.6k instructions to make and free: the instance registry,
+// type lookups by name hash).
+constexpr const char* kRunCapsule = "erkn.solve's integrator";
+py::object run_capsule(std::unique_ptr<PyIntegrator> run) {
+  PyObject* const capsule = PyCapsule_New(run.get(), kRunCapsule, [](PyObject* c) {
+    delete static_cast<PyIntegrator*>(PyCapsule_GetPointer(c, kRunCapsule));
+  });
+  if (!capsule) throw py::error_already_set();
+  run.release();
+  return py::reinterpret_steal<py::object>(capsule);
+}
+PyIntegrator& run_of(py::handle capsule) {
+  auto* const run = static_cast<PyIntegrator*>(PyCapsule_GetPointer(capsule.ptr(), kRunCapsule));
+  if (!run) throw py::error_already_set();
+  return *run;
+}
+
 // erkn.solve's construction and run() in one call, returning the Solution: each call through
 // pybind11 costs ~1.5k instructions (argument and self casts, type lookups), and solve made four
 // (the constructor, _run, _energy_can_wait, method) of a 1-step solve's ~56k (callgrind, Duffing,
-// Strang). The integrator joins `holder` before it runs, so that a failed run's output stays
-// reachable (its _partial: _attach_partial). With `energy`, the energies are computed now only if
+// Strang). The integrator (run_capsule) joins `holder` before it runs, so that a failed run's
+// output stays reachable (partial_solution). With `energy`, the energies are computed now only if
 // they cannot wait (Python callbacks). `method`: the registry's; `choice`: Solution.choice (None
 // without tol).
 py::object construct_and_run(py::list holder, const Method& method, const PySystem& system,
@@ -333,10 +351,21 @@ py::object construct_and_run(py::list holder, const Method& method, const PySyst
                              const py::object& progress, const py::object& choice) {
   auto owned = std::make_unique<PyIntegrator>(method, system, h, q0, p0, t0, options);
   PyIntegrator& run = *owned;
-  holder.append(py::cast(std::move(owned)));
+  holder.append(run_capsule(std::move(owned)));
   const bool later = energy && run.energy_can_wait();
   const py::tuple out = run.run(t_end, t_eval, every, energy && !later, events, progress);
   return make_solution(solve_entry_made(), holder[0], name_of(method), out, later, choice);
+}
+
+// The Solution of a failed run (`capsule`: its integrator) up to its last completed step, or None
+// if it failed before its run began.
+py::object partial_solution(py::handle capsule, py::handle choice) {
+  PyIntegrator& run = run_of(capsule);
+  const py::object partial = run.partial();  // (its energies None: left for later, or no U)
+  if (partial.is_none()) return partial;
+  const std::string_view name = run.get().method().name();
+  return make_solution(solve_entry_made(), capsule, py::str(name.data(), name.size()),
+                       partial.cast<py::tuple>(), partial.cast<py::tuple>()[3].is_none(), choice);
 }
 
 // x's value if it is a Python float or int (not a bool; not an int beyond a double's range).
@@ -614,12 +643,14 @@ void bind_solve_calls(py::module_& m) {
       py::arg("p0"), py::arg("t0"), py::arg("options"), py::arg("t_end"), py::arg("t_eval"),
       py::arg("every"), py::arg("energy"), py::arg("events"), py::arg("progress"),
       py::arg("choice"));
+  m.def("_partial_solution", &partial_solution, py::arg("run"), py::arg("choice"));
   m.def(
-      "_solution",
-      [](py::handle run, py::handle method, const py::tuple& out, bool later, py::handle choice) {
-        return make_solution(solve_entry_made(), run, method, out, later, choice);
-      },
-      py::arg("run"), py::arg("method"), py::arg("out"), py::arg("later"), py::arg("choice"));
+      "_run_statistics", [](py::handle run) { return run_of(run).statistics(); }, py::arg("run"));
+  m.def(
+      "_run_energies",
+      [](py::handle run, const Eigen::Ref<const RowMatrix>& q,
+         const Eigen::Ref<const RowMatrix>& p) { return run_of(run).energies(q, p); },
+      py::arg("run"), py::arg("q"), py::arg("p"));
   m.def("_on_terminal", &on_terminal);
 }
 
