@@ -26,11 +26,17 @@
 namespace erkn::python {
 namespace {
 
-// `value` moved to the heap and the capsule that deletes it, the base of NumPy arrays on it.
+// `value` moved to the heap and the capsule that deletes it, the base of NumPy arrays on it. (A
+// plain PyCapsule: pybind11's capsule with a destructor keeps it in the context and saves and
+// restores the error state around it, ~150 instructions more per capsule.)
 template <class T>
 std::pair<T*, py::capsule> owned(T&& value) {
-  auto* heap = new T(std::move(value));
-  return {heap, py::capsule(heap, [](void* v) { delete static_cast<T*>(v); })};
+  auto heap = std::make_unique<T>(std::move(value));
+  PyObject* const capsule = PyCapsule_New(heap.get(), nullptr, [](PyObject* c) {
+    delete static_cast<T*>(PyCapsule_GetPointer(c, nullptr));
+  });
+  if (!capsule) throw py::error_already_set();
+  return {heap.release(), py::reinterpret_steal<py::capsule>(capsule)};
 }
 
 // A C-order float64 array of shape (rows) (cols < 0) or (rows, cols) on `data` (no copy), which
