@@ -144,8 +144,9 @@ class PyIntegrator {
     out.reserve(expected_rows(t_end, t_eval.is_none() ? -1 : times.size(), every));
     if (!t_eval.is_none())  // (all of them before any step: the chunks see only their own)
       TimeGrid(run_.t(), run_.h()).require_output_times(t_end, times);
-    std::optional<Events> found;
-    if (!events.is_none()) found.emplace(run_, events_from_python(events));
+    // (on the heap: an std::optional<Events> in this frame was zeroed, 552 bytes, on every run)
+    std::unique_ptr<Events> found;
+    if (!events.is_none()) found = std::make_unique<Events>(run_, events_from_python(events));
     bool stopped = false;
     try {
       if (t_eval.is_none()) add(run_.t(), run_.q(), run_.p());
@@ -204,7 +205,7 @@ class PyIntegrator {
   // `times`; true when a terminal event stopped it. Built-in potentials step without the GIL;
   // events hold it.
   template <class Add>
-  bool chunk_every(std::optional<Events>& found, double t_c, Add& add, long every) {
+  bool chunk_every(const std::unique_ptr<Events>& found, double t_c, Add& add, long every) {
     const auto none = [](double, const Eigen::VectorXd&, const Eigen::VectorXd&) {};
     if (found)
       return every ? found->integrate(run_, t_c, add, every)
@@ -215,7 +216,7 @@ class PyIntegrator {
   // (An observer interval no chunk reaches: none is called.)
   static constexpr long kNever = std::numeric_limits<long>::max();
   template <class Add>
-  bool chunk_times(std::optional<Events>& found, double t_c,
+  bool chunk_times(const std::unique_ptr<Events>& found, double t_c,
                    const Eigen::Ref<const Eigen::VectorXd>& times, Add& add) {
     if (found) return found->integrate(run_, t_c, times, add);
     stepping([&] { run_.integrate(t_c, times, add); });
@@ -231,7 +232,7 @@ class PyIntegrator {
     return rows >= 0 ? long(std::min(rows, double(LongRun::kFirstChunk))) : 2;  // (NaN: 2)
   }
 
-  py::tuple result(Output& out, const std::optional<Events>& found, const py::object& events,
+  py::tuple result(Output& out, const std::unique_ptr<Events>& found, const py::object& events,
                    bool stopped) {
     py::object hits = py::none();
     if (found) hits = hits_to_python(*found, py::len(events), run_.q().size());
