@@ -113,7 +113,9 @@ class SerialSpace {
       transform_.inverse(y, x);
   }
   template <class Y>
-  void to_eigen(const Eigen::VectorXd& x, Y&& y);
+  void to_eigen(const Eigen::VectorXd& x, Y&& y) {
+    transform_.forward(x, y);
+  }
 
   /// A transform with a staging buffer (HalfSpectrumTransform) takes the fixed point's iterate
   /// in one pass (iterate: implicit_passes.hpp's iterate_pass): Q_new = r - abar g, this
@@ -153,18 +155,27 @@ class SerialSpace {
                         });
   }
   /// G = forward(g + M Q) of the stage path (g += M Q for RKN methods: in physical coordinates,
-  /// where it is a stencil or an inline product; with a fixed D and M scalar or diagonal, g's
-  /// entries plus m_k Q_k in registers, g left as the callback wrote it).
+  /// where it is a stencil or an inline product). With a fixed D g is left as the callback wrote
+  /// it (the stage solver may scan it after the iteration, checked_iterate) and read entry by
+  /// entry into registers (callback_entries: no vector load spanning the callback's scalar
+  /// stores): plus m_k Q_k for M scalar or diagonal, else plus M Q (the sums add_MQ forms).
+  /// (Always inlined: GCC left it out of line at D = 2, its G through memory: P3 +13 % CPU.)
   template <class Y, class G>
-  void to_eigen_force(const Eigen::VectorXd& Q, const Y& Q_hat, Eigen::VectorXd& g, G&& G_hat) {
+  [[gnu::always_inline]] void to_eigen_force(const Eigen::VectorXd& Q, const Y& Q_hat,
+                                             Eigen::VectorXd& g, G&& G_hat) {
     if constexpr (kFixed) {
-      if (rkn_ && m_diagonal_) {
+      if (!rkn_) {
+        G_hat = callback_entries<D>(g.data());
+      } else if (m_diagonal_) {
         G_hat = callback_entries<D>(g.data()) + m_diag_ * Q_hat;
-        return;
+      } else {
+        M_.apply(Q, Mq_);
+        G_hat = callback_entries<D>(g.data()) + Eigen::Map<const Array>(Mq_.data());
       }
+    } else {
+      add_MQ(Q, g);
+      to_eigen(g, G_hat);
     }
-    add_MQ(Q, g);
-    to_eigen(g, G_hat);
   }
 
   // |inverse(y)|^2.
@@ -214,17 +225,6 @@ class SerialSpace {
   bool m_diagonal_ = false;  // RKN, fixed D, M scalar or diagonal: M = diag(m_diag_)
   Eigen::Array<double, kFixed ? D : 1, 1> m_diag_;
 };
-
-// With a fixed D, x (the callback's g) is read entry by entry into registers (callback_entries:
-// no vector load spanning the callback's scalar stores).
-template <class Transform, int D>
-template <class Y>
-void SerialSpace<Transform, D>::to_eigen(const Eigen::VectorXd& x, Y&& y) {
-  if constexpr (kFixed)
-    y = callback_entries<D>(x.data());
-  else
-    transform_.forward(x, y);
-}
 
 // g += M Q (RKN methods only). With a fixed D and a scalar or diagonal M inline, g_k += m_k Q_k:
 // the products MOperator::apply forms, without its call and the pass over Mq_ (P2, D = 1: 15-18 %

@@ -54,7 +54,7 @@ template <class Space, class Coef>
   stage_force(i, x.Q_hat, x.G, evaluations, true, x.finite_Q);  // (and one stage iteration)
   if constexpr (Space::kFixed) x.G_i = x.G;                     // (a view: G is G_i)
   const std::array<double, 2> change = next_iterate(x);
-  if constexpr (kStagedIterate) x.finite_Q = checked_iterate(i, change[1]);
+  if constexpr (kSumChecks) x.finite_Q = checked_iterate(i, change[1]);
   return change;
 }
 
@@ -71,7 +71,7 @@ template <class Space, class Coef>
   }
 }
 
-// kStagedIterate: the checks of g and of the next iterate Q on |Q_new|^2 (norm2_Q_new), which the
+// kSumChecks: the checks of g and of the next iterate Q on |Q_new|^2 (norm2_Q_new), which the
 // iteration sums anyway. A non-finite g makes it non-finite: the forward transform spreads a
 // non-finite entry over its outputs, and Q_new = r - abar G keeps it (abar G is NaN where abar =
 // 0), as does the weighted sum of non-negative terms. So g is scanned, and the error thrown as

@@ -173,7 +173,7 @@ class StagePredictor {
   struct Node {
     int age, stage;  // age 0: this step
   };
-  static constexpr int kMaxAdaptInterval = 8;
+  static constexpr int kMaxAdaptInterval = 64;
   // Whether the gradients of the steps before stay in block_ at fixed places (advance).
   static constexpr bool kInPlace = Space::kFixed;
   const Space& space_;
@@ -226,6 +226,8 @@ void StagePredictor<Space>::set_nodes(int i) {
 // norms per stage cost P2/P3 15-20% of the CPU per grad U (erkn_implicit_benchmark) and saved
 // no evaluation there; with the interval, evaluations per stage (erkn_stage_evaluations) moved
 // by <= 0.05 on P1-P3, and P1's savings (SERKN3s4(1) at 1e-9: 1.13 against 1.42) stay.
+// kMaxAdaptInterval 64, not 8: at 8 the checks still cost P2 and P3 ~3 % of the CPU per grad U
+// (knock-out and 64 against 8, A/B in one process: median -2.8 % P2, -3 % P3).
 // prediction, below and above may be overwritten (guess_error; the errors of n, n - 1 and n + 1
 // nodes in one reduce).
 template <class Space>

@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <new>
 #include <optional>
@@ -29,6 +31,31 @@
 #include "stepper_base.hpp"
 
 namespace erkn::detail {
+
+// True when the entries of a fixed-size array are all finite (stage_checks.hpp's nonfinite_bits),
+// two at a time where the size allows: the fixed point's iterate, kept on the stack across the
+// gradient call, was stored as one 16-byte value, and an 8-byte load of its upper half is not
+// forwarded from that store (perf, P3: ~15 % of the samples on that load and its branch; the
+// packed check: -3 % CPU per grad U at P3, A/B in one process).
+template <class A>
+[[gnu::always_inline]] inline bool all_finite_values(const A& a) {
+  constexpr int n = int(A::SizeAtCompileTime);
+  if constexpr (n % 2 == 0) {
+    using V = double __attribute__((vector_size(16)));
+    using B = std::uint64_t __attribute__((vector_size(16)));
+    B bits{};
+    for (int k = 0; k < n; k += 2) {
+      V v;
+      std::memcpy(&v, a.data() + k, sizeof v);
+      bits |= (B)(v - v);
+    }
+    return (bits[0] | bits[1]) == 0;
+  } else {
+    std::uint64_t bits = 0;
+    for (int k = 0; k < n; ++k) bits |= nonfinite_bits(a[k]);
+    return bits == 0;
+  }
+}
 
 template <class Space, class Coef>
 class StageSolver {
@@ -148,7 +175,7 @@ class StageSolver {
   // The fixed point's arrays: with a fixed D values (Work), else views of x_'s (the iterates,
   // the next, the force, g(Q_0) of the first iteration), G(i) and h^2 abar_ii, held in locals:
   // after each call of the user's gradient the compiler reloads what it reads through members.
-  // (finite_Q: with kStagedIterate, the staged iterate is known finite; checked_iterate.)
+  // (finite_Q: with kSumChecks, the iterate is known finite; checked_iterate.)
   struct Iterates {
     Work r_hat, Q_hat, Q_hat_new, G, g_first_hat;
     Map G_i;
@@ -166,6 +193,11 @@ class StageSolver {
     else
       return false;
   }();
+  // Whether the fixed point checks g and the next iterate on |Q_new|^2 (checked_iterate) rather
+  // than scanning them around each call of the gradient: with a staged iterate, and with a fixed D
+  // (P3: with the first iterate's check packed, all_finite_values, -6 % CPU per grad U against
+  // the scans, median over the implicit methods, A/B in one process).
+  static constexpr bool kSumChecks = kStagedIterate || Space::kFixed;
   bool iterate_on(int i, Iterates& x, Change c, double first2, double norm2_Q, long& evaluations);
   [[gnu::noinline]] bool fixed_point_call(int i, const Start& start, long& evaluations) {
     return fixed_point(i, start, evaluations);
@@ -201,17 +233,23 @@ class StageSolver {
   void set_preconditioner(int i, double sigma);
   void jacobian(int i, Statistics& stats);
 
-  // G_i = the force at the iterate (Q, Q_hat) in eigen coordinates. With kStagedIterate the
-  // fixed point checks g and Q on its sums instead (finite_Q: Q known finite; checked_iterate).
+  // G_i = the force at the iterate (Q, Q_hat) in eigen coordinates. With kSumChecks the fixed
+  // point checks g and Q on its sums instead (finite_Q: Q known finite; checked_iterate). With a
+  // fixed D, a Q not known finite is checked on Q_hat (= Q: the identity basis), not on x_.Q:
+  // reloaded right after its store, that check waited for it (perf, P3: ~8 % of the samples).
   // (Always inlined: with solve inlined into the step GCC left it out of line at D = 2, P3: +10 %
   // instructions.)
   template <class Y, class G>
   [[gnu::always_inline]] void stage_force(int i, const Y& Q_hat, G&& G_i, long& evaluations,
                                           bool iterate = false, bool finite_Q = false) {
-    if constexpr (kStagedIterate)
+    if constexpr (kStagedIterate) {
       space_.gradient(system_, x_.Q, x_.g, i, *at_, evaluations, !iterate, !finite_Q);
-    else
+    } else if constexpr (Space::kFixed) {
+      if (!finite_Q && !all_finite_values(Q_hat)) non_finite_stage(i, *at_);
+      space_.gradient(system_, x_.Q, x_.g, i, *at_, evaluations, !iterate, false);
+    } else {
       space_.gradient(system_, x_.Q, x_.g, i, *at_, evaluations);
+    }
     space_.to_eigen_force(x_.Q, Q_hat, x_.g, G_i);
   }
   // g = grad U(Q) (+ M Q for RKN methods).
