@@ -5,7 +5,8 @@
 // median per grad U per round, as erkn_integrate_benchmark's add_implicit) and against the
 // explicit specialist peers' (bench/specialist_peer.hpp, gradient inlined), in one process,
 // interleaved rounds (bench/integrate_timing.hpp), thread pinned. Also erkn's implicit method in
-// the same rounds. Before timing, every loop's final state is checked against erkn's.
+// the same rounds; cb+ is the callback loop with erkn's compensated summation and finiteness
+// checks. Before timing, every loop's final state is compared with erkn's (the report's column).
 //
 //   erkn_implicit_floor [--short] [--order K]
 #include "implicit_floor.hpp"
@@ -30,13 +31,17 @@ void report(const floor::SceneResult& r) {
       "\n## %s: explicit path %.2f ns per grad U (erkn, median of %d methods), peers %.2f\n",
       r.label.c_str(), 1e9 * r.explicit_s, r.explicit_methods, 1e9 * r.peer_s);
   std::printf(
-      "| method | grad U/step erkn | floor | max |state diff| | floor inl / expl | "
-      "floor cb / expl | erkn / expl | floor inl / peers | floor cb / peers | "
-      "erkn / floor cb | floor cb us/step |\n|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
+      "| method | grad U/step erkn | floor | max abs state diff | floor inl / expl | floor cb / "
+      "expl | floor cb+ / expl | erkn / expl | floor inl / peers | floor cb / peers | erkn / "
+      "floor cb | erkn / floor cb+ | floor cb us/step |\n"
+      "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
   for (const floor::MethodResult& m : r.methods)
-    std::printf("| %s | %.3f | %.3f | %.1e | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.4f |\n",
-                m.name.c_str(), m.erkn_per_step, m.floor_per_step, m.state_diff, m.inl_expl,
-                m.cb_expl, m.erkn_expl, m.inl_peer, m.cb_peer, m.erkn_cb, 1e6 * m.cb_step_s);
+    std::printf(
+        "| %s | %.3f | %.3f | %.1e | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | "
+        "%.4f |\n",
+        m.name.c_str(), m.erkn_per_step, m.floor_per_step, m.state_diff, m.inl_expl, m.cb_expl,
+        m.extras_expl, m.erkn_expl, m.inl_peer, m.cb_peer, m.erkn_cb, m.erkn_extras,
+        1e6 * m.cb_step_s);
 }
 
 }  // namespace

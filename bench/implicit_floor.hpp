@@ -25,10 +25,10 @@
 //     |h^2 abar_ii (f(Q_1) - f(Q_0))| / |Q_1 - Q_0|), weight_i = max(1, |bbar_i / abar_ii|,
 //     |b_i / (h abar_ii)|), and the measurement younger than kThetaRefresh solves;
 //   - the stage's force is the one at the last iterate but one (no confirming evaluation).
-// Left out against erkn (bench/implicit_floor.cpp's report names them): Newton fallback, the
-// finiteness checks, the predictor's adaptive order, the extra iterations after a cold start
-// (reset_tightening), too_slow, in_range's rescaling of extreme norms, compensated summation,
-// statistics beyond the evaluation count.
+// Left out against erkn: Newton fallback (a stage that fails throws), the predictor's adaptive
+// order, the extra iterations after a cold start (reset_tightening), too_slow, in_range's
+// rescaling of extreme norms, statistics beyond the evaluation count; compensated summation and
+// the finiteness checks only on request (Settings; erkn_implicit_floor times both ways).
 #pragma once
 
 #include <Eigen/Core>
@@ -47,6 +47,10 @@ struct Settings {
   double tolerance = 1e-14, roundoff_level = 1e-12, max_theta = 0.9;  // erkn's Options defaults
   int max_iterations = 30;
   int order = 0;  // predictor nodes per stage (0: every node, as erkn starts)
+  // Two of erkn's extras, to measure what they cost: Kahan-compensated q += dq, p += dp (erkn's
+  // default, compensated_sum.hpp's form), and finiteness checks as erkn makes them at a fixed D
+  // (each iterate's |Q_new|^2, which the test sums anyway, and the step's result; throws).
+  bool compensated = false, checks = false;
 };
 
 /// x as a value of its own: the empty asm keeps GCC from merging adjacent entries into one
@@ -157,9 +161,23 @@ class Loop {
     for (int i = 0; i < S; ++i) stage(i);
     Arr dq = (phi0_ - 1) * q_ + hphi1_ * p_, dp = mhMphi1_ * q_ + (phi0_ - 1) * p_;
     for (int i = 0; i < S; ++i) dq -= bq_[i] * G_[i], dp -= bp_[i] * G_[i];
-    q_ += dq, p_ += dp;
+    if (set_.checks && !std::isfinite((dq + dp).square().sum()))
+      throw std::runtime_error("floor::Loop: non-finite step");
+    if (set_.compensated) {
+      add(q_, eq_, dq), add(p_, ep_, dp);
+    } else {
+      q_ += dq, p_ += dp;
+    }
     for (int i = 0; i < S; ++i) G_old_[i] = G_[i];
     history_ = true;
+  }
+
+  // x += dx, Kahan-compensated: e carries the low-order bits lost by earlier updates.
+  static void add(Arr& x, Arr& e, Arr dx) {
+    dx += e;
+    e = x;
+    x += dx;
+    e = (e - x) + dx;
   }
 
   // f(Q), its entries read one by one (one_entry).
@@ -191,6 +209,7 @@ class Loop {
     const Arr& A = A_[i][i];
     Arr g = force(Q), Q_new = r - A * g;
     double X = (Q_new - Q).square().sum(), N = std::max(Q_new.square().sum(), Q.square().sum());
+    if (set_.checks && !std::isfinite(N)) throw std::runtime_error("floor::Loop: non-finite");
     Record& rec = record_[i];
     rec.age += rec.age < kThetaRefresh;
     if (X > 0 && rec.age < kThetaRefresh && X * rec.proof_X <= rec.proof_N * N) return g;
@@ -201,6 +220,7 @@ class Loop {
       const double norm2_Q = Q_new.square().sum();
       Q = Q_new, g = force(Q), Q_new = r - A * g;
       X = (Q_new - Q).square().sum(), N = std::max(Q_new.square().sum(), norm2_Q);
+      if (set_.checks && !std::isfinite(N)) throw std::runtime_error("floor::Loop: non-finite");
       if (it == 2 && first2 > 0) record(i, first2, X, N, delta_first, A * (g - g_first));
       if (X == 0 || within(X, N, delta_old)) return g;
       const bool noise = X <= set_.roundoff_level * set_.roundoff_level * N;
@@ -247,7 +267,7 @@ class Loop {
   Arr lambda_;
   Settings set_;
   bool rkn_ = false, history_ = false;
-  Arr q_, p_, phi0_, hphi1_, mhMphi1_;
+  Arr q_, p_, eq_ = Arr::Zero(), ep_ = Arr::Zero(), phi0_, hphi1_, mhMphi1_;
   std::array<Arr, S> phi0c_, hcphi1c_, bq_, bp_, G_, G_old_;
   std::array<std::array<Arr, S>, S> A_;
   std::array<std::array<const Arr*, 2 * S>, S> node_{};

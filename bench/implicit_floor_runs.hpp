@@ -1,7 +1,8 @@
 // erkn_implicit_floor's runs (bench/implicit_floor.cpp): per scene one Schedule group with, per
 // round, erkn's explicit registry methods (System::gradient, defaults, construct + integrate),
 // the explicit specialist peers (gradient inlined), and per implicit method erkn's run and the
-// floor loop's (bench/implicit_floor.hpp) with the gradient inlined and through System::gradient.
+// floor loop's (bench/implicit_floor.hpp) with the gradient inlined and through System::gradient
+// (without and with erkn's compensated summation and finiteness checks).
 #pragma once
 
 #include <Eigen/Core>
@@ -35,11 +36,13 @@ inline FloorScene stellar_scene(bool short_mode) {
 
 /// One implicit method on a scene (ratios: medians over rounds of the per-round ratios of CPU per
 /// grad U; "expl": erkn's explicit path, "peers": the specialist peers; cb: the floor loop through
-/// System::gradient, inl: inlined).
+/// System::gradient, inl: inlined, extras: through System::gradient with compensated summation and
+/// finiteness checks).
 struct MethodResult {
   std::string name;
   double erkn_per_step = 0, floor_per_step = 0, state_diff = 0;
-  double inl_expl = 0, cb_expl = 0, erkn_expl = 0, inl_peer = 0, cb_peer = 0, erkn_cb = 0;
+  double inl_expl = 0, cb_expl = 0, extras_expl = 0, erkn_expl = 0, inl_peer = 0, cb_peer = 0,
+         erkn_cb = 0, erkn_extras = 0;
   double cb_step_s = 0;  // the floor loop's CPU per step through System::gradient (median)
 };
 struct SceneResult {
@@ -70,11 +73,14 @@ struct FloorRuns {
     if (q) *q = run.q(), *p = run.p();
     return run.statistics().gradient_evaluations;
   }
-  /// The floor loop with gradient G (construct + run); evaluations, final state in q, p.
+  /// The floor loop with gradient G (construct + run), with settings, or with erkn's compensated
+  /// summation and finiteness checks too (extras); evaluations, final state in q, p.
   template <class G>
-  long floor(const erkn::Method& m, const G& gradient, Eigen::VectorXd* q = nullptr,
-             Eigen::VectorXd* p = nullptr) {
-    return with_loop<D>(m, lambda, s.h, gradient, q0, p0, settings, [&](auto& loop) {
+  long floor(const erkn::Method& m, const G& gradient, bool extras = false,
+             Eigen::VectorXd* q = nullptr, Eigen::VectorXd* p = nullptr) {
+    Settings st = settings;
+    st.compensated = st.checks = extras;
+    return with_loop<D>(m, lambda, s.h, gradient, q0, p0, st, [&](auto& loop) {
       loop.run(s.steps);
       sink = sink + loop.q()[0] + loop.p()[0];
       if (q) *q = loop.q().matrix(), *p = loop.p().matrix();
@@ -119,18 +125,21 @@ inline std::vector<double> per_grad(const Schedule::Seconds& t, const std::vecto
   return x;
 }
 
-/// The ratios of the implicit methods' contenders (three each from `first`: erkn, floor inlined,
-/// floor through System::gradient) against the references.
+/// The ratios of the implicit methods' contenders (kPerMethod each from `first`: erkn, floor
+/// inlined, floor through System::gradient, the same with extras) against the references.
+inline constexpr size_t kPerMethod = 4;
 inline void implicit_ratios(const Schedule::Seconds& t, const std::vector<double>& ev,
                             const std::vector<double>& expl, const std::vector<double>& peers,
                             size_t first, long steps, SceneResult& out) {
   for (size_t k = 0; k < out.methods.size(); ++k) {
     MethodResult& m = out.methods[k];
-    const size_t c = first + 3 * k;
-    const auto erkn = per_grad(t, ev, c), inl = per_grad(t, ev, c + 1), cb = per_grad(t, ev, c + 2);
+    const size_t c = first + kPerMethod * k;
+    const auto erkn = per_grad(t, ev, c), inl = per_grad(t, ev, c + 1), cb = per_grad(t, ev, c + 2),
+               extras = per_grad(t, ev, c + 3);
     m.erkn_expl = median_ratio(erkn, expl), m.inl_expl = median_ratio(inl, expl);
-    m.cb_expl = median_ratio(cb, expl), m.inl_peer = median_ratio(inl, peers);
-    m.cb_peer = median_ratio(cb, peers), m.erkn_cb = median_ratio(erkn, cb);
+    m.cb_expl = median_ratio(cb, expl), m.extras_expl = median_ratio(extras, expl);
+    m.inl_peer = median_ratio(inl, peers), m.cb_peer = median_ratio(cb, peers);
+    m.erkn_cb = median_ratio(erkn, cb), m.erkn_extras = median_ratio(erkn, extras);
     m.cb_step_s = median(t[c + 2]) / double(steps);
   }
 }
@@ -157,14 +166,14 @@ void add_scene(FloorScene s, Gradient g, const Settings& settings, Schedule& sch
   for (const erkn::Method& m : erkn::Method::all()) {
     if (m.is_explicit()) continue;
     Eigen::VectorXd qe, pe, qf, pf;
-    const long e = sc->erkn(m, &qe, &pe), f = sc->floor(m, sc->g, &qf, &pf);
-    sc->floor(m, sc->callback());
+    const long e = sc->erkn(m, &qe, &pe), f = sc->floor(m, sc->g, false, &qf, &pf);
     out.methods.push_back({std::string(m.name()), double(e) / double(s.steps),
                            double(f) / double(s.steps), state_diff(qe, pe, qf, pf)});
-    ev.insert(ev.end(), {double(e), double(f), double(f)});
+    ev.insert(ev.end(), {double(e), double(f), double(f), double(sc->floor(m, sc->g, true))});
     runs.push_back([sc, m] { sc->erkn(m); });
     runs.push_back([sc, m] { sc->floor(m, sc->g); });
     runs.push_back([sc, m] { sc->floor(m, sc->callback()); });
+    runs.push_back([sc, m] { sc->floor(m, sc->callback(), true); });
   }
   schedule.add(std::move(runs), [=, &out](const Schedule::Seconds& t) {
     const auto expl = per_grad_median(t, ev, 0, peers_from);

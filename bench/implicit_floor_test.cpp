@@ -25,14 +25,16 @@ void check_scene(FloorRuns<D, G>& r, const G& wrong) {
   for (const erkn::Method& m : erkn::Method::all()) {
     if (m.is_explicit()) continue;
     SCOPED_TRACE(std::string(m.name()) + " on " + r.s.label);
-    Eigen::VectorXd qe, pe, qf, pf, qc, pc, qw, pw;
-    const long e = r.erkn(m, &qe, &pe), f = r.floor(m, r.g, &qf, &pf);
+    Eigen::VectorXd qe, pe, qf, pf, qc, pc, qx, px, qw, pw;
+    const long e = r.erkn(m, &qe, &pe), f = r.floor(m, r.g, false, &qf, &pf);
     const double scale = std::max(qe.cwiseAbs().maxCoeff(), pe.cwiseAbs().maxCoeff());
     EXPECT_LE(floor::state_diff(qe, pe, qf, pf), kAgree * scale);
     EXPECT_NEAR(double(f), double(e), 0.1 * double(e));
-    EXPECT_EQ(r.floor(m, r.callback(), &qc, &pc), f);
+    EXPECT_EQ(r.floor(m, r.callback(), false, &qc, &pc), f);
     EXPECT_EQ(floor::state_diff(qf, pf, qc, pc), 0.0);  // (the same arithmetic)
-    r.floor(m, wrong, &qw, &pw);                        // negative control
+    r.floor(m, r.callback(), true, &qx, &px);           // (compensated, checked)
+    EXPECT_LE(floor::state_diff(qe, pe, qx, px), kAgree * scale);
+    r.floor(m, wrong, false, &qw, &pw);  // negative control
     EXPECT_GT(floor::state_diff(qe, pe, qw, pw), kAgree * scale);
   }
 }
