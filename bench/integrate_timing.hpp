@@ -8,12 +8,22 @@
 // could cover whole (stellar orbits Strang, compiled: erkn 0.75 of the peer in one run, 1.34 in
 // the next, every round alike; N = 8192 and 256^2 cells moved 5-20 %). The caller pins the thread
 // to one CPU (the two vCPUs differ in speed from moment to moment), for every contender alike.
-// Not removed by this: in microsecond runs (Duffing, stellar orbits) one contender's sample can
-// run 4-5x slower in all its reps, at the same (round, contender) in two runs of one binary: a
-// state left by what ran before (running a group's contenders once untimed before its samples
-// removed those patterns in one run and gave another cell one); 0-3 such cells of 948 per pair.
+// The caller also turns off glibc malloc's fastbins (mallopt(M_MXFAST, 0)), for every contender
+// alike. With them, microsecond runs (Duffing, stellar orbits; erkn's and the peer's alike) had
+// 24-30 samples of ~8500 per run over 2x (most 3-11x) their contender's median, at (round,
+// contender) positions that moved from process to process. perf (cpu-clock, each slow sample's
+// window against a normal sample of the same contender): 55-75 % of the slow ones in
+// malloc_consolidate, 15-30 % in unlink_chunk, ~0 in the normal ones; no page faults, no system
+// time (getrusage). gdb: the consolidations come from requests glibc's per-thread cache does not
+// serve (the peer's fftw_malloc, a memalign; erkn's FlowCoefficients array) while freed small
+// blocks wait in fastbins, so how often a run pays one depends on the heap the other ~150 groups
+// leave: a run repeated alone in a process had none of this (12 processes of --scene Duffing /
+// stellar: no sample over 2x), and its medians moved too (stellar ABA1064, erkn / peer with
+// compensation off: 0.68 alone, 0.76-0.97 in six full runs, 0.68 without fastbins). Without
+// fastbins a freed block is coalesced at once: the full run had 2 samples over 2x (2.1x, 2.7x).
 #pragma once
 
+#include <malloc.h>
 #include <sched.h>
 
 #include <algorithm>
@@ -49,6 +59,16 @@ inline bool pin_to_one_cpu() {
       return sched_setaffinity(0, sizeof one, &one) == 0;
     }
   return false;
+}
+
+/// Turns off glibc malloc's fastbins (freed small blocks coalesced at once rather than by
+/// malloc_consolidate on a later request; see the header); false where it cannot.
+inline bool without_fastbins() {
+#ifdef M_MXFAST
+  return mallopt(M_MXFAST, 0) == 1;
+#else
+  return false;
+#endif
 }
 
 /// Groups of contenders timed together: add() every group, then run(). seconds[c][r] of a group

@@ -10,6 +10,7 @@
 #include <erkn/problems.hpp>
 
 #include "../tests/runtime/problems.hpp"
+#include "integrate_timing.hpp"
 #include "scenes.hpp"
 
 namespace bench {
@@ -176,6 +177,25 @@ TEST(SpecialistPeer, ThroughACallbackIsTheSameLoop) {
   // (the identity basis: sine-Gordon's gradient with M's eigenvalues as a diagonal M)
   check_callback_peer(p, identity_basis<Eigen::Dynamic>(p.M, p.dim()), SineGordonGradient{},
                       1.0 / 40, 50);
+}
+
+// Blocks of one small size freed beyond what glibc's per-thread cache holds (7): the number of
+// them left in fastbins (mallinfo2's smblks) for malloc_consolidate to merge later.
+int small_blocks_left_in_fastbins() {
+  std::vector<void*> blocks(32);
+  for (void*& b : blocks) *static_cast<volatile char*>(b = std::malloc(48)) = 1;  // (kept)
+  for (void* b : blocks) std::free(b);
+  return int(mallinfo2().smblks);
+}
+
+// erkn_integrate_benchmark's timing turns fastbins off (integrate_timing.hpp's header: with them,
+// the heap state other cells leave made microsecond runs consolidate every run). Negative
+// control: with glibc's default fastbins, the same frees leave blocks there.
+TEST(Timing, WithoutFastbinsNoFreedBlockWaitsForConsolidation) {
+  ASSERT_EQ(mallopt(M_MXFAST, 64 * int(sizeof(size_t)) / 4), 1);  // (glibc's default)
+  EXPECT_GT(small_blocks_left_in_fastbins(), 0);
+  ASSERT_TRUE(without_fastbins());
+  EXPECT_EQ(small_blocks_left_in_fastbins(), 0);
 }
 
 }  // namespace
