@@ -81,7 +81,9 @@ struct Callback {
   }
 };
 
-template <int S, int D, class Gradient>
+/// kCarry: the next step's first Q_0 formed at the end of a step (next_guess), and stored stage
+/// forces read entry by entry (stored()).
+template <int S, int D, class Gradient, bool kCarry = false>
 class Loop {
  public:
   using Arr = Eigen::Array<double, D, 1>;
@@ -160,7 +162,15 @@ class Loop {
   void step() {
     for (int i = 0; i < S; ++i) stage(i);
     Arr dq = (phi0_ - 1) * q_ + hphi1_ * p_, dp = mhMphi1_ * q_ + (phi0_ - 1) * p_;
-    for (int i = 0; i < S; ++i) dq -= bq_[i] * G_[i], dp -= bp_[i] * G_[i];
+    for (int i = 0; i + 1 < S; ++i) {
+      const Arr g = stored(G_[i]);
+      dq -= bq_[i] * g, dp -= bp_[i] * g;
+    }
+    for (int i = 0; i < S; ++i)  // (entry by entry: G_ was stored so, one_entry)
+      for (int k = 0; k < D; ++k) G_old_[i][k] = one_entry(G_[i][k]);
+    const Arr g = stored(G_[S - 1]);
+    if constexpr (kCarry) next_guess_ = next_guess(q_ + dq, p_ + dp, g);
+    dq -= bq_[S - 1] * g, dp -= bp_[S - 1] * g;
     if (set_.checks && !std::isfinite((dq + dp).square().sum()))
       throw std::runtime_error("floor::Loop: non-finite step");
     if (set_.compensated) {
@@ -168,9 +178,28 @@ class Loop {
     } else {
       q_ += dq, p_ += dp;
     }
-    for (int i = 0; i < S; ++i)  // (entry by entry: G_ was stored so, one_entry)
-      for (int k = 0; k < D; ++k) G_old_[i][k] = one_entry(G_[i][k]);
     history_ = true;
+  }
+
+  // The next step's first iterate Q_0 of stage 1 (a guess: any reassociation is harmless), one
+  // multiply-subtract after this step's last stage force g, as stage() forms Q_0 after G_{i-1}:
+  // with (q, p) the new state without g's terms, Q_0 = phi0c_1 (q - h^2 bbar_s g) + hcphi1c_1
+  // (p - h b_s g) - h^2 abar_11 (rest + w_0 g), rest the guess's other nodes (G_old_ = this
+  // step's).
+  Arr next_guess(const Arr& q, const Arr& p, const Arr& g) const {
+    Arr rest = Arr::Zero();
+    for (int l = used_[0] - 1; l >= 1; --l) rest += w_[0][l] * stored(*node_[0][l]);
+    const Arr combined = phi0c_[0] * bq_[S - 1] + hcphi1c_[0] * bp_[S - 1] + A_[0][0] * w_[0][0];
+    return (phi0c_[0] * q + hcphi1c_[0] * p - A_[0][0] * rest) - combined * g;
+  }
+
+  // A stored stage force; with kCarry read entry by entry (one_entry: GCC otherwise loaded
+  // adjacent entries, or adjacent stages' entries at D = 1, as one vector over separate stores).
+  static Arr stored(const Arr& a) {
+    if constexpr (!kCarry) return a;
+    Arr v;
+    for (int k = 0; k < D; ++k) v[k] = one_entry(a[k]);
+    return v;
   }
 
   // x += dx, Kahan-compensated: e carries the low-order bits lost by earlier updates.
@@ -197,20 +226,24 @@ class Loop {
   // for it.)
   void stage(int i) {
     Arr base = phi0c_[i] * q_ + hcphi1c_[i] * p_;
-    for (int j = 0; j + 1 < i; ++j) base -= A_[i][j] * G_[j];
+    for (int j = 0; j + 1 < i; ++j) base -= A_[i][j] * stored(G_[j]);
     if (explicit_[i]) {
       G_[i] = force(i > 0 ? Arr(base - A_[i][i - 1] * G_[i - 1]) : base);
+      return;
+    }
+    if (kCarry && i == 0 && history_) {  // (Q_0 formed by the step before: next_guess)
+      G_[0] = fixed_point(0, base, next_guess_);
       return;
     }
     const int n = history_ ? used_[i] : first_used_[i], newest = i > 0 ? 1 : 0;
     const double* w = history_ ? w_[i].data() : w_first_[i].data();
     Arr rest = Arr::Zero();  // the guess without this step's G_{i-1}
-    for (int l = n - 1; l >= newest; --l) rest += w[l] * *node_[i][l];
+    for (int l = n - 1; l >= newest; --l) rest += w[l] * stored(*node_[i][l]);
     if (i == 0) {
       G_[i] = fixed_point(i, base, base - A_[i][i] * rest);
       return;
     }
-    const Arr& g = G_[i - 1];
+    const Arr g = stored(G_[i - 1]);
     const Arr combined = A_[i][i - 1] + A_[i][i] * w[0];
     G_[i] = fixed_point(i, base - A_[i][i - 1] * g, (base - A_[i][i] * rest) - combined * g);
   }
@@ -278,7 +311,7 @@ class Loop {
   Arr lambda_;
   Settings set_;
   bool rkn_ = false, history_ = false;
-  Arr q_, p_, eq_ = Arr::Zero(), ep_ = Arr::Zero(), phi0_, hphi1_, mhMphi1_;
+  Arr q_, p_, eq_ = Arr::Zero(), ep_ = Arr::Zero(), phi0_, hphi1_, mhMphi1_, next_guess_;
   std::array<Arr, S> phi0c_, hcphi1c_, bq_, bp_, G_, G_old_;
   std::array<std::array<Arr, S>, S> A_;
   std::array<std::array<const Arr*, 2 * S>, S> node_{};
@@ -290,19 +323,20 @@ class Loop {
   long evaluations_ = 0;
 };
 
-/// f(loop) with a Loop<S, D, Gradient> of m's stage count S (1..kMaxImplicitStages) constructed
-/// from the arguments; returns f's result.
+/// f(loop) with a Loop<S, D, Gradient, kCarry> of m's stage count S (1..kMaxImplicitStages)
+/// constructed from the arguments; returns f's result.
 inline constexpr int kMaxImplicitStages = 4;
-template <int D, class Gradient, class F, int S = 1>
+template <int D, class Gradient, class F, int S = 1, bool kCarry = false>
 auto with_loop(const erkn::Method& m, const Eigen::Array<double, D, 1>& lambda, double h,
                const Gradient& g, const Eigen::Array<double, D, 1>& q0,
                const Eigen::Array<double, D, 1>& p0, const Settings& settings, F&& f) {
   if (m.stages() == S) {
-    Loop<S, D, Gradient> loop(m, lambda, h, g, q0, p0, settings);
+    Loop<S, D, Gradient, kCarry> loop(m, lambda, h, g, q0, p0, settings);
     return f(loop);
   }
   if constexpr (S < kMaxImplicitStages)
-    return with_loop<D, Gradient, F, S + 1>(m, lambda, h, g, q0, p0, settings, std::forward<F>(f));
+    return with_loop<D, Gradient, F, S + 1, kCarry>(m, lambda, h, g, q0, p0, settings,
+                                                    std::forward<F>(f));
   throw std::invalid_argument("floor::with_loop: more stages than kMaxImplicitStages");
 }
 

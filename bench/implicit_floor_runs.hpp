@@ -37,12 +37,12 @@ inline FloorScene stellar_scene(bool short_mode) {
 /// One implicit method on a scene (ratios: medians over rounds of the per-round ratios of CPU per
 /// grad U; "expl": erkn's explicit path, "peers": the specialist peers; cb: the floor loop through
 /// System::gradient, inl: inlined, extras: through System::gradient with compensated summation and
-/// finiteness checks).
+/// finiteness checks; carry: Variant::carry).
 struct MethodResult {
   std::string name;
   double erkn_per_step = 0, floor_per_step = 0, state_diff = 0;
   double inl_expl = 0, cb_expl = 0, extras_expl = 0, erkn_expl = 0, inl_peer = 0, cb_peer = 0,
-         erkn_cb = 0, erkn_extras = 0;
+         erkn_cb = 0, erkn_extras = 0, inl_carry_expl = 0, cb_carry_expl = 0;
   double cb_step_s = 0;  // the floor loop's CPU per step through System::gradient (median)
 };
 struct SceneResult {
@@ -51,6 +51,10 @@ struct SceneResult {
   int explicit_methods = 0;
   std::vector<MethodResult> methods;
 };
+
+/// The floor loop's variants: as it is; with erkn's compensated summation and finiteness checks
+/// (extras); with the next step's first Q_0 formed at the end of a step (carry: Loop's kCarry).
+enum class Variant { plain, extras, carry };
 
 /// What a scene's contenders read.
 template <int D, class Gradient>
@@ -73,19 +77,22 @@ struct FloorRuns {
     if (q) *q = run.q(), *p = run.p();
     return run.statistics().gradient_evaluations;
   }
-  /// The floor loop with gradient G (construct + run), with settings, or with erkn's compensated
-  /// summation and finiteness checks too (extras); evaluations, final state in q, p.
+  /// The floor loop with gradient G (construct + run), as `variant` says; evaluations, final state
+  /// in q, p.
   template <class G>
-  long floor(const erkn::Method& m, const G& gradient, bool extras = false,
+  long floor(const erkn::Method& m, const G& gradient, Variant variant = Variant::plain,
              Eigen::VectorXd* q = nullptr, Eigen::VectorXd* p = nullptr) {
     Settings st = settings;
-    st.compensated = st.checks = extras;
-    return with_loop<D>(m, lambda, s.h, gradient, q0, p0, st, [&](auto& loop) {
+    st.compensated = st.checks = variant == Variant::extras;
+    auto run = [&](auto& loop) {
       loop.run(s.steps);
       sink = sink + loop.q()[0] + loop.p()[0];
       if (q) *q = loop.q().matrix(), *p = loop.p().matrix();
       return loop.evaluations();
-    });
+    };
+    if (variant == Variant::carry)
+      return with_loop<D, G, decltype(run)&, 1, true>(m, lambda, s.h, gradient, q0, p0, st, run);
+    return with_loop<D>(m, lambda, s.h, gradient, q0, p0, st, run);
   }
   long peer(const erkn::Method& m) {
     specialist::Peer run(m.table().c, m.table().d, m.stages(), s.h, basis, g, s.problem.q0,
@@ -126,8 +133,9 @@ inline std::vector<double> per_grad(const Schedule::Seconds& t, const std::vecto
 }
 
 /// The ratios of the implicit methods' contenders (kPerMethod each from `first`: erkn, floor
-/// inlined, floor through System::gradient, the same with extras) against the references.
-inline constexpr size_t kPerMethod = 4;
+/// inlined, floor through System::gradient, the same with extras, the carry variant inlined and
+/// through System::gradient) against the references.
+inline constexpr size_t kPerMethod = 6;
 inline void implicit_ratios(const Schedule::Seconds& t, const std::vector<double>& ev,
                             const std::vector<double>& expl, const std::vector<double>& peers,
                             size_t first, long steps, SceneResult& out) {
@@ -140,6 +148,8 @@ inline void implicit_ratios(const Schedule::Seconds& t, const std::vector<double
     m.cb_expl = median_ratio(cb, expl), m.extras_expl = median_ratio(extras, expl);
     m.inl_peer = median_ratio(inl, peers), m.cb_peer = median_ratio(cb, peers);
     m.erkn_cb = median_ratio(erkn, cb), m.erkn_extras = median_ratio(erkn, extras);
+    m.inl_carry_expl = median_ratio(per_grad(t, ev, c + 4), expl);
+    m.cb_carry_expl = median_ratio(per_grad(t, ev, c + 5), expl);
     m.cb_step_s = median(t[c + 2]) / double(steps);
   }
 }
@@ -166,14 +176,19 @@ void add_scene(FloorScene s, Gradient g, const Settings& settings, Schedule& sch
   for (const erkn::Method& m : erkn::Method::all()) {
     if (m.is_explicit()) continue;
     Eigen::VectorXd qe, pe, qf, pf;
-    const long e = sc->erkn(m, &qe, &pe), f = sc->floor(m, sc->g, false, &qf, &pf);
+    const long e = sc->erkn(m, &qe, &pe), f = sc->floor(m, sc->g, Variant::plain, &qf, &pf);
     out.methods.push_back({std::string(m.name()), double(e) / double(s.steps),
                            double(f) / double(s.steps), state_diff(qe, pe, qf, pf)});
-    ev.insert(ev.end(), {double(e), double(f), double(f), double(sc->floor(m, sc->g, true))});
+    const double fx = double(sc->floor(m, sc->g, Variant::extras)),
+                 fc = double(sc->floor(m, sc->g, Variant::carry));
+    ev.insert(ev.end(), {double(e), double(f), double(f), fx, fc, fc});
     runs.push_back([sc, m] { sc->erkn(m); });
-    runs.push_back([sc, m] { sc->floor(m, sc->g); });
-    runs.push_back([sc, m] { sc->floor(m, sc->callback()); });
-    runs.push_back([sc, m] { sc->floor(m, sc->callback(), true); });
+    for (Variant v : {Variant::plain, Variant::carry}) {
+      runs.push_back([sc, m, v] { sc->floor(m, sc->g, v); });
+      runs.push_back([sc, m, v] { sc->floor(m, sc->callback(), v); });
+      if (v == Variant::plain)
+        runs.push_back([sc, m] { sc->floor(m, sc->callback(), Variant::extras); });
+    }
   }
   schedule.add(std::move(runs), [=, &out](const Schedule::Seconds& t) {
     const auto expl = per_grad_median(t, ev, 0, peers_from);

@@ -1,5 +1,6 @@
 // The floor loop of erkn_implicit_floor (bench/implicit_floor.hpp): for every implicit registry
-// method its final state on P2 and P3 agrees with erkn's (same step count and tolerance), its
+// method its final state on P2 and P3 agrees with erkn's (same step count and tolerance; also the
+// compensated, checked variant and the carry variant), its
 // gradient evaluations are within 10 % of erkn's, the inlined and the callback loop give the same
 // bits, and it reaches its order on Duffing (P2, exact solution known). Negative controls: a
 // gradient off by a factor 1 + 1e-2 fails the agreement; U off by 1e-3 breaks the order.
@@ -14,6 +15,7 @@ namespace {
 
 using namespace bench;
 using floor::FloorRuns;
+using floor::Variant;
 
 // The agreement with erkn's final state: both converge every stage to 1e-14 (relative), so the
 // states differ by what the steps accumulate of that (measured <= 1.7e-10 at |p| ~ 10, RKN4s6
@@ -26,15 +28,17 @@ void check_scene(FloorRuns<D, G>& r, const G& wrong) {
     if (m.is_explicit()) continue;
     SCOPED_TRACE(std::string(m.name()) + " on " + r.s.label);
     Eigen::VectorXd qe, pe, qf, pf, qc, pc, qx, px, qw, pw;
-    const long e = r.erkn(m, &qe, &pe), f = r.floor(m, r.g, false, &qf, &pf);
+    const long e = r.erkn(m, &qe, &pe), f = r.floor(m, r.g, Variant::plain, &qf, &pf);
     const double scale = std::max(qe.cwiseAbs().maxCoeff(), pe.cwiseAbs().maxCoeff());
     EXPECT_LE(floor::state_diff(qe, pe, qf, pf), kAgree * scale);
     EXPECT_NEAR(double(f), double(e), 0.1 * double(e));
-    EXPECT_EQ(r.floor(m, r.callback(), false, &qc, &pc), f);
-    EXPECT_EQ(floor::state_diff(qf, pf, qc, pc), 0.0);  // (the same arithmetic)
-    r.floor(m, r.callback(), true, &qx, &px);           // (compensated, checked)
-    EXPECT_LE(floor::state_diff(qe, pe, qx, px), kAgree * scale);
-    r.floor(m, wrong, false, &qw, &pw);  // negative control
+    EXPECT_EQ(r.floor(m, r.callback(), Variant::plain, &qc, &pc), f);
+    EXPECT_EQ(floor::state_diff(qf, pf, qc, pc), 0.0);     // (the same arithmetic)
+    for (Variant v : {Variant::extras, Variant::carry}) {  // (compensated and checked; carry)
+      EXPECT_NEAR(double(r.floor(m, r.callback(), v, &qx, &px)), double(e), 0.1 * double(e));
+      EXPECT_LE(floor::state_diff(qe, pe, qx, px), kAgree * scale);
+    }
+    r.floor(m, wrong, Variant::plain, &qw, &pw);  // negative control
     EXPECT_GT(floor::state_diff(qe, pe, qw, pw), kAgree * scale);
   }
 }
