@@ -60,6 +60,24 @@ EIGEN_ALWAYS_INLINE Eigen::Array<double, D, 1> callback_entries(const double* x)
   return v;
 }
 
+/// A stage's force (a fixed-size map, D = 1: one double) as a value of its own: the forces of
+/// successive stages are adjacent doubles, each written by one 8-byte store, and GCC vectorized
+/// the loops over stages (r_i, eq. (d)'s update, the predictor's advance) into 16-byte loads
+/// spanning two of them, which are not forwarded from the store buffer (perf, P2 SERKN2s3). The
+/// empty asm keeps each load apart. (Larger forces, each stored as a whole, are read so: a.)
+template <class A>
+EIGEN_ALWAYS_INLINE auto stored_force(const A& a) {
+  if constexpr (A::SizeAtCompileTime == 1) {
+    typename A::PlainObject v = a;
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+    asm("" : "+x"(v.coeffRef(0)));
+#endif
+    return v;
+  } else {
+    return a;
+  }
+}
+
 // The errors (stage_checks.cpp: out of line, so the checks inline into the step).
 [[noreturn]] void non_finite_stage(int i, const StepPlace& at);
 // (callback: the System member that returned g.)

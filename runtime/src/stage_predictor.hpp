@@ -11,6 +11,7 @@
 
 #include "erkn/method.hpp"
 #include "implicit_passes.hpp"
+#include "stage_checks.hpp"
 
 namespace erkn::detail {
 
@@ -77,7 +78,8 @@ class StagePredictor {
     if constexpr (kInPlace) {  // (array by array: std::copy_n of s D values was a memmove call)
       for (int age = kHistory; age > 0; --age)
         for (int j = 0; j < s_; ++j)
-          space_.map(block_.data(), age * s_ + j) = space_.map(block_.data(), (age - 1) * s_ + j);
+          space_.map(block_.data(), age * s_ + j) =
+              stored_force(space_.map(block_.data(), (age - 1) * s_ + j));
     } else {
       Scalar* const oldest = steps_[kHistory];  // (rotated by hand: std::rotate was a call)
       for (int age = kHistory; age > 0; --age) steps_[age] = steps_[age - 1];

@@ -451,7 +451,7 @@ template <class State>
     return s;
   }
   s.r_hat = co(k_.phi0c(i)) * q_hat + co(k_.hcphi1c(i)) * p_hat;
-  for (int j = 0; j < i; ++j) s.r_hat -= co(k_.abar(i, j)) * G(j);
+  for (int j = 0; j < i; ++j) s.r_hat -= co(k_.abar(i, j)) * stored_force(G(j));
   predictor_.predict(i, x_.guess_hat);
   s.Q_hat = s.r_hat - s.abar_ii * x_.guess_hat;
   space_.to_physical(s.Q_hat, x_.Q);
