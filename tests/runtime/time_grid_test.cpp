@@ -130,6 +130,44 @@ TEST(TimeGrid, RefusalsNameTheProblemAndLeaveTheGridUnchanged) {
   EXPECT_TRUE(TimeGrid(1e20, 1e6).resolved());
 }
 
+// require_output_times accepts exactly the times its definition does (finite, ascending, within
+// [t, t_end] up to 4 eps max(|t|, |time|, h) and 4 eps max(|t_end|, |time|, h), the windows
+// written out here), at and one ulp beyond each window's edge, and names the first time that
+// fails when several do, whatever fails after it.
+TEST(TimeGrid, OutputTimesAreCheckedAsDefinedAndTheFirstBadOneIsNamed) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const TimeGrid& g : grids()) {
+    const double t = g.t(), h = g.h(), t_end = t + 7 * h;
+    const auto window = [h](double a, double b) {
+      return 4 * kEps * std::max({std::abs(a), std::abs(b), h});
+    };
+    const auto defined = [&](double tau) {
+      return std::isfinite(tau) && tau >= t - window(t, tau) && tau <= t_end + window(t_end, tau);
+    };
+    int accepted = 0, refused = 0;
+    for (double edge : {t - window(t, t), t_end + window(t_end, t_end)}) {
+      double tau = std::nextafter(std::nextafter(edge, -inf), -inf);
+      for (int k = 0; k < 5; ++k, tau = std::nextafter(tau, inf)) {
+        const Eigen::VectorXd one = Eigen::VectorXd::Constant(1, tau);
+        const bool ok = error_of([&] { g.require_output_times(t_end, one); }).empty();
+        EXPECT_EQ(ok, defined(tau)) << "t = " << t << ", h = " << h << ", time " << tau;
+        ++(ok ? accepted : refused);
+      }
+    }
+    EXPECT_GT(accepted, 0);  // (both outcomes met at the edges: the sweep crosses them)
+    EXPECT_GT(refused, 0);
+    for (int j = 0; j < 5; ++j)
+      for (double bad : {nan, inf, t - h, t_end + h, t - 1}) {
+        Eigen::VectorXd times = Eigen::VectorXd::LinSpaced(5, t, t_end);
+        times[j] = bad == t - 1 && j > 0 ? times[j - 1] - h : bad;       // (t - 1: descending)
+        for (int k = j + 1; k < 5; ++k) times[k] = k % 2 ? nan : t - h;  // (later ones bad too)
+        EXPECT_CONTAINS(error_of([&] { g.require_output_times(t_end, times); }),
+                        "output time " + std::to_string(j) + " =");
+      }
+  }
+}
+
 // Integrator(..., options, t0) starts on the grid t0 + n h: bit-identical to a start at 0 and
 // set_state at t0, for every method.
 TEST(TimeGrid, AnIntegratorStartedAtT0IsTheOneMovedThereBySetState) {

@@ -287,10 +287,12 @@ class Integrator {
   bool timing_ = false;
 
   void load_state() const;
+  void load() const;  // (load_state's body)
   // t is t() up to round-off.
   bool is_now(double t) const { return std::abs(t - this->t()) <= grid_.tolerance(t); }
   // n steps of h (n calls of step()), in batches that end where the guard checks.
   void advance(long n);
+  void batches(long n);  // (advance's body)
   void batch(long n);
   void take(long n, long& done);
   void processed_batch(long n);
@@ -301,7 +303,8 @@ class Integrator {
   void require_output_times(double t_end, const Eigen::Ref<const Eigen::VectorXd>& times) const;
   void require_reachable(double t_out) const;
   // Steps to the last grid point at or before the output time tau (up to round-off: as
-  // steps_until); true when tau is that point (is_now).
+  // steps_until) and loads the state there (q(), p() current); true when tau is that point
+  // (is_now).
   bool reach(double tau);
   detail::StepperBase& stepper_of_size(double h);
   void step_to(double t_end);
