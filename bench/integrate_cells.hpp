@@ -68,8 +68,8 @@ struct ImplicitCell {
 struct Results {
   std::vector<Cell> cells;
   std::vector<ImplicitCell> implicit_cells;
-  bool pinned = false;       // the timing thread on one CPU
-  bool no_fastbins = false;  // glibc malloc without fastbins (without_fastbins)
+  bool pinned = false;         // the timing thread on one CPU
+  bool malloc_steady = false;  // glibc malloc without fastbins, trimming, mmap (steady_malloc)
 };
 
 /// integrate(t_end) and read the final state of a run just constructed; returns the gradient
@@ -238,12 +238,12 @@ inline void add_implicit(const Scene& s, Schedule& schedule, Results& out) {
 
 /// Every scene: the identity basis for scalar and diagonal M, FFTW r2c/c2r otherwise; all cells
 /// timed in one Schedule (a cell's rounds spread over the whole run), the thread on one CPU,
-/// malloc without fastbins (integrate_timing.hpp).
+/// malloc steady (integrate_timing.hpp: steady_malloc).
 inline Results measure_all(const Config& cfg) {
   using Kind = erkn::problems::LinearPart::Kind;
   Results out;
   out.pinned = pin_to_one_cpu();
-  out.no_fastbins = without_fastbins();
+  out.malloc_steady = steady_malloc();
   Schedule schedule;
   for (const Scene& s : scenes(cfg.short_mode)) {
     if (s.label.find(cfg.scene) == std::string::npos) continue;

@@ -60,11 +60,12 @@ inline void markdown_header(std::ofstream& f, const Results& r, const Config& cf
     << "spread over the whole run rather than taken in one stretch that a slow spell of the "
     << "shared machine could cover whole; "
     << (r.pinned ? "the timing thread pinned to one CPU" : "the timing thread not pinned")
-    << (r.no_fastbins
-            ? "; glibc malloc without fastbins (mallopt(M_MXFAST, 0), both sides alike: with them "
-              "the heap state the other cells leave made some microsecond runs' samples 3-11x "
-              "slow in malloc_consolidate, bench/integrate_timing.hpp)"
-            : "; glibc malloc's fastbins on")
+    << (r.malloc_steady
+            ? "; glibc malloc without fastbins, heap trimming or mmap up to 32 MiB (mallopt, both "
+              "sides alike: with fastbins the heap state the other cells leave made some "
+              "microsecond runs' samples 3-11x slow in malloc_consolidate, and with trimming the "
+              "256^2 grid's buffers came back as fresh pages; bench/integrate_timing.hpp)"
+            : "; glibc malloc's defaults")
     << ". The machine is shared: see the spread below. erkn calls the "
     << "problems library's System::gradient (a std::function); the rows \"<scene>" << kCompiledRows
     << "\" are erkn with the peer's gradient functor compiled into its steps instead "

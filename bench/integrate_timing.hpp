@@ -9,10 +9,10 @@
 // the next, every round alike; N = 8192 and 256^2 cells moved 5-20 %). The caller pins the thread
 // to one CPU (the two vCPUs differ in speed from moment to moment), for every contender alike.
 // The caller also turns off glibc malloc's fastbins (mallopt(M_MXFAST, 0)), for every contender
-// alike. With them, microsecond runs (Duffing, stellar orbits; erkn's and the peer's alike) had
-// 24-30 samples of ~8500 per run over 2x (most 3-11x) their contender's median, at (round,
-// contender) positions that moved from process to process. perf (cpu-clock, each slow sample's
-// window against a normal sample of the same contender): 55-75 % of the slow ones in
+// alike (steady_malloc). With them, microsecond runs (Duffing, stellar orbits; erkn's and the
+// peer's alike) had 24-30 samples of ~8500 per run over 2x (most 3-11x) their contender's median,
+// at (round, contender) positions that moved from process to process. perf (cpu-clock, each slow
+// sample's window against a normal sample of the same contender): 55-75 % of the slow ones in
 // malloc_consolidate, 15-30 % in unlink_chunk, ~0 in the normal ones; no page faults, no system
 // time (getrusage). gdb: the consolidations come from requests glibc's per-thread cache does not
 // serve (the peer's fftw_malloc, a memalign; erkn's FlowCoefficients array) while freed small
@@ -21,6 +21,12 @@
 // stellar: no sample over 2x), and its medians moved too (stellar ABA1064, erkn / peer with
 // compensation off: 0.68 alone, 0.76-0.97 in six full runs, 0.68 without fastbins). Without
 // fastbins a freed block is coalesced at once: the full run had 2 samples over 2x (2.1x, 2.7x).
+// Without them alone, though, the 256^2 grid's erkn Strang, compiled, defaults, took 1.47-1.51x
+// the peer in two full runs (1.01-1.05 in runs of that scene alone): its 0.5 MB buffers, above
+// glibc's mmap threshold or freed into a heap top over the trim threshold, came back as fresh
+// pages. So the heap is also kept (M_TRIM_THRESHOLD 1 GiB) and such buffers taken from it
+// (M_MMAP_THRESHOLD 32 MiB, glibc's maximum), as glibc's dynamic thresholds do in a warm
+// process: that cell 1.01 in a full run, every other ratio within 9 % of the run without.
 #pragma once
 
 #include <malloc.h>
@@ -61,11 +67,13 @@ inline bool pin_to_one_cpu() {
   return false;
 }
 
-/// Turns off glibc malloc's fastbins (freed small blocks coalesced at once rather than by
-/// malloc_consolidate on a later request; see the header); false where it cannot.
-inline bool without_fastbins() {
-#ifdef M_MXFAST
-  return mallopt(M_MXFAST, 0) == 1;
+/// glibc malloc in a steady state for every contender (see the header): no fastbins (freed small
+/// blocks coalesced at once rather than by malloc_consolidate on a later request), the heap never
+/// trimmed, blocks up to 32 MiB taken from it rather than mapped; false where it cannot.
+inline bool steady_malloc() {
+#if defined(M_MXFAST) && defined(M_TRIM_THRESHOLD) && defined(M_MMAP_THRESHOLD)
+  return mallopt(M_MXFAST, 0) == 1 && mallopt(M_TRIM_THRESHOLD, 1 << 30) == 1 &&
+         mallopt(M_MMAP_THRESHOLD, 32 << 20) == 1;
 #else
   return false;
 #endif

@@ -4,8 +4,10 @@
 // agrees with erkn::Integrator's on the benchmark's scenes to round-off. Negative control: d_1
 // nudged by 5% breaks the order.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <erkn/erkn.hpp>
 #include <erkn/problems.hpp>
 
@@ -188,14 +190,38 @@ int small_blocks_left_in_fastbins() {
   return int(mallinfo2().smblks);
 }
 
-// erkn_integrate_benchmark's timing turns fastbins off (integrate_timing.hpp's header: with them,
-// the heap state other cells leave made microsecond runs consolidate every run). Negative
-// control: with glibc's default fastbins, the same frees leave blocks there.
-TEST(Timing, WithoutFastbinsNoFreedBlockWaitsForConsolidation) {
-  ASSERT_EQ(mallopt(M_MXFAST, 64 * int(sizeof(size_t)) / 4), 1);  // (glibc's default)
+// Whether a 4 MiB block is mapped (mallinfo2's hblks) while live, and whether freeing it gives
+// pages back (the program break moves down: the heap trimmed).
+struct LargeBlock {
+  bool mapped, trimmed;
+};
+LargeBlock large_block() {
+  void* b = std::malloc(size_t(4) << 20);
+  static_cast<volatile char*>(b)[0] = 1;
+  const bool mapped = mallinfo2().hblks > 0;
+  void* live = sbrk(0);
+  std::free(b);
+  return {mapped, sbrk(0) < live};
+}
+
+// erkn_integrate_benchmark's timing keeps malloc steady (integrate_timing.hpp's header: with
+// fastbins the heap state other cells leave made microsecond runs consolidate every run; with
+// trimming or mmap the 256^2 grid's buffers came back as fresh pages). Negative controls: with
+// glibc's defaults the same frees leave blocks in fastbins and the large block is mapped; with
+// it taken from the heap but glibc's trim threshold, freeing it trims the heap.
+TEST(Timing, SteadyMallocNoFastbinWaitsAndLargeBlocksStayInTheHeap) {
+  ASSERT_EQ(mallopt(M_MXFAST, 64 * int(sizeof(size_t)) / 4), 1);  // (glibc's defaults)
+  ASSERT_EQ(mallopt(M_MMAP_THRESHOLD, 128 * 1024), 1);
+  ASSERT_EQ(mallopt(M_TRIM_THRESHOLD, 128 * 1024), 1);
   EXPECT_GT(small_blocks_left_in_fastbins(), 0);
-  ASSERT_TRUE(without_fastbins());
+  EXPECT_TRUE(large_block().mapped);
+  ASSERT_EQ(mallopt(M_MMAP_THRESHOLD, 32 << 20), 1);
+  EXPECT_TRUE(large_block().trimmed);
+  ASSERT_TRUE(steady_malloc());
   EXPECT_EQ(small_blocks_left_in_fastbins(), 0);
+  const LargeBlock steady = large_block();
+  EXPECT_FALSE(steady.mapped);
+  EXPECT_FALSE(steady.trimmed);
 }
 
 }  // namespace
