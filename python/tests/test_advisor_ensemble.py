@@ -251,10 +251,11 @@ def test_ensemble_with_builtin_potentials_releases_the_gil(chain):
         ens.integrate(t_end, threads=1)
         alone = time.perf_counter() - start
     worker = threading.Thread(target=ens.integrate, args=(t_end, 1))
-    worker.start()
     # Python runs here only while the ensemble does not hold the GIL: holding it for the run
-    # would stall this loop for about `alone`.
+    # would stall this loop for about `alone`. (The clock starts before the thread: a worker
+    # holding the GIL from its start stalls start() itself, which the loop would not see.)
     last, gap = time.perf_counter(), 0.0
+    worker.start()
     while worker.is_alive():
         now = time.perf_counter()
         gap, last = max(gap, now - last), now
