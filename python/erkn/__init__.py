@@ -336,12 +336,13 @@ class Solution:
     y_events[k] = [q, p] (n_k, 2d) at event k's zeros; stats["events"]: the work spent locating
     them; status 1 if a terminal event stopped the run, else 0."""
 
-    t_events = q_events = p_events = y_events = None  # (without events)
-    choice, status, _stats = None, 0, None  # (without tol, not stopped; statistics not read yet)
-    # (Made by erkn.solve, in C++ (python/src/integrator.cpp: make_solution), which sets t, q, p,
-    # method, _energy (or _LATER: computed on first access) and _run (the integrator, in a capsule
-    # for _erkn's _run_statistics and _run_energies), and choice, status and the events where
-    # they differ from the defaults above.)
+    # (Made by erkn.solve, in C++ (python/src/integrator.cpp: make_solution), which stores every
+    # slot but __dict__ and __weakref__ directly: t, q, p, method, choice (None without tol),
+    # status, the events (None without events, then set by _add_events), _energy (or _LATER:
+    # computed on first access), _run (the integrator, in a capsule for _erkn's _run_statistics
+    # and _run_energies) and _stats (None: statistics not read yet).)
+    __slots__ = ("t", "q", "p", "method", "choice", "status", "t_events", "q_events", "p_events",
+                 "y_events", "_energy", "_run", "_stats", "__dict__", "__weakref__")
 
     def _add_events(self, events):
         """The events' zeros: events = (t_events, q_events, p_events, their statistics)."""

@@ -1,11 +1,12 @@
 // erkn.Integrator: the runtime's Integrator over a System from Python. Loops run in C++ and
 // collect their output into arrays handed to NumPy without a copy; with built-in potentials
-// the GIL is released while stepping.
+// the GIL is released while stepping (but for runs of a few microseconds: releases_gil).
 #include "erkn/integrator.hpp"
 
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
+#include <structmember.h>
 
 #include <algorithm>
 #include <array>
@@ -56,33 +57,86 @@ py::object array_on(double* data, py::ssize_t rows, py::ssize_t cols, const py::
   return array;
 }
 
-// Output of a run: times, states and (with a potential) energies, row k for time k.
-struct Output {
-  Eigen::Index d;
-  bool energy;
-  std::vector<double> t, q, p, H;
-  // Room for `rows` rows: the vectors allocated once rather than grown from one row.
-  void reserve(long rows) {
-    t.reserve(size_t(rows)), q.reserve(size_t(rows * d)), p.reserve(size_t(rows * d));
-    if (energy) H.reserve(size_t(rows));
-  }
-  void add(const Integrator& run, double tk, const Eigen::VectorXd& qk, const Eigen::VectorXd& pk) {
-    t.push_back(tk);
-    q.insert(q.end(), qk.data(), qk.data() + d);
-    p.insert(p.end(), pk.data(), pk.data() + d);
-    if (energy) H.push_back(run.energy(qk, pk));
-  }
+// The capsule that deletes `block` (new[]), the base of NumPy arrays on it.
+py::capsule owning(std::unique_ptr<double[]> block) {
+  PyObject* const capsule = PyCapsule_New(block.get(), nullptr, [](PyObject* c) {
+    delete[] static_cast<double*>(PyCapsule_GetPointer(c, nullptr));
+  });
+  if (!capsule) throw py::error_already_set();
+  block.release();
+  return py::reinterpret_steal<py::capsule>(capsule);
+}
+
+// A run's result: arrays t (n), q and p (n, d), energies (n) or None, the events' zeros or None,
+// and whether a terminal event stopped the run. (erkn.solve reads it in C++; Integrator.run
+// returns it as a tuple: no tuple made and freed per solve, ~200 instructions.)
+struct RunResult {
+  py::object t, q, p, energy, hits;
+  bool stopped = false;
+  py::tuple as_tuple() const { return py::make_tuple(t, q, p, energy, hits, stopped); }
 };
 
-// (t, q, p, energies or None, hits, stopped): arrays on the output's vectors, which one capsule
-// owns.
-py::tuple to_python(Output&& run_output, const py::object& hits, bool stopped) {
-  const auto n = py::ssize_t(run_output.t.size());
-  const auto [out, base] = owned(std::move(run_output));
-  const py::ssize_t d = out->d;
-  const py::object E = out->energy ? array_on(out->H.data(), n, -1, base) : py::none();
-  return py::make_tuple(array_on(out->t.data(), n, -1, base), array_on(out->q.data(), n, d, base),
-                        array_on(out->p.data(), n, d, base), E, hits, stopped);
+// Output of a run: times, states and (with energies) H, row k for time k, in one block of
+// `capacity` rows laid out t | q | p | H, doubled when full: one allocation, which the arrays'
+// capsule owns itself, where a vector for each and the struct holding them took four or five
+// (callgrind, 1-step Duffing Strang erkn.solve: 10.5k -> 9.7k instructions).
+class Output {
+ public:
+  /// Room for `rows` rows (>= 1 kept) at first.
+  Output(Eigen::Index d, bool energy, long rows) : d_(d), energy_(energy) {
+    grow(std::max(rows, 1L));
+  }
+  void add(const Integrator& run, double tk, const Eigen::VectorXd& qk, const Eigen::VectorXd& pk) {
+    if (rows_ == capacity_) grow(2 * capacity_);
+    t()[rows_] = tk;
+    std::copy_n(qk.data(), d_, q() + rows_ * d_);
+    std::copy_n(pk.data(), d_, p() + rows_ * d_);
+    if (energy_) H()[rows_] = run.energy(qk, pk);
+    ++rows_;
+  }
+  /// Whether the last row is at time `tk`.
+  bool ends_at(double tk) const { return rows_ > 0 && block_[size_t(rows_ - 1)] == tk; }
+  RunResult to_python(py::object hits, bool stopped) &&;
+
+ private:
+  Eigen::Index d_;
+  bool energy_;
+  long rows_ = 0, capacity_ = 0;
+  std::unique_ptr<double[]> block_;
+
+  double* t() const { return block_.get(); }
+  double* q() const { return t() + capacity_; }
+  double* p() const { return q() + capacity_ * d_; }
+  double* H() const { return p() + capacity_ * d_; }
+  // A block of `capacity` rows with the rows so far.
+  void grow(long capacity) {
+    Output bigger(*this, capacity);
+    std::copy_n(t(), rows_, bigger.t());
+    std::copy_n(q(), rows_ * d_, bigger.q());
+    std::copy_n(p(), rows_ * d_, bigger.p());
+    if (energy_) std::copy_n(H(), rows_, bigger.H());
+    *this = std::move(bigger);
+  }
+  Output(const Output& o, long capacity)
+      : d_(o.d_),
+        energy_(o.energy_),
+        rows_(o.rows_),
+        capacity_(capacity),
+        block_(std::make_unique_for_overwrite<double[]>(size_t(capacity) *
+                                                        size_t(1 + 2 * d_ + (energy_ ? 1 : 0)))) {}
+};
+
+// The result of the run with `hits` and `stopped`: arrays on the block, which one capsule owns.
+RunResult Output::to_python(py::object hits, bool stopped) && {
+  double *const t_k = t(), *const q_k = q(), *const p_k = p(), *const H_k = H();
+  const py::capsule base = owning(std::move(block_));
+  const auto n = py::ssize_t(rows_);
+  return {array_on(t_k, n, -1, base),
+          array_on(q_k, n, d_, base),
+          array_on(p_k, n, d_, base),
+          energy_ ? array_on(H_k, n, -1, base) : py::none(),
+          std::move(hits),
+          stopped};
 }
 
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
@@ -106,11 +160,14 @@ class PyIntegrator {
   PyIntegrator(const Method& method, const PySystem& system, double h, const VectorArg& q0,
                const VectorArg& p0, double t0, const Options& options)
       : calls_python_(system.calls_python),
+        step_work_(double(q0.size()) * double(method.stages())),
         run_(method, System(system.system), h, q0, p0, options, t0, system.compiled) {}
 
   void step(long n) {
     if (n < 0) throw Error("step(n): n must be >= 0; got " + std::to_string(n));
-    LongRun(py::none()).steps(run_, n, [&](long k) { stepping([&] { run_.step(k); }); });
+    LongRun(py::none()).steps(run_, n, [&](long k) {
+      stepping(releases_gil(double(k)), [&] { run_.step(k); });
+    });
   }
 
   // H(q_k, p_k) of each row (n, d) of q and p: the energies of a run's output, on demand.
@@ -130,18 +187,19 @@ class PyIntegrator {
 
   // Steps to t_end; output at `t_eval` (ascending, in [t, t_end]) or else at the start, every
   // `every`-th step and t_end; with `events` (a sequence of (g, direction, terminal)), their zeros.
-  // Ctrl-C and progress(t) between chunks (long_run.hpp). Returns (t, q, p, energy or None,
-  // events or None, stopped by a terminal event).
-  py::tuple run(double t_end, const py::object& t_eval, long every, bool energy,
+  // Ctrl-C and progress(t) between chunks (long_run.hpp).
+  RunResult run(double t_end, const py::object& t_eval, long every, bool energy,
                 const py::object& events, const py::object& progress) {
-    partial_ = py::none();  // (an earlier failure's output is not this run's)
-    Output out{run_.q().size(), energy && bool(run_.system().potential), {}, {}, {}, {}};
+    partial_.reset();  // (an earlier failure's output is not this run's)
+    py::object keep;   // (t_eval converted, if it had to be)
+    const Eigen::Map<const Eigen::VectorXd> times = output_times(t_eval, keep);
+    const double steps = steps_to(t_end);
+    const bool release = releases_gil(steps);  // (for every chunk: decided once per run)
+    Output out(run_.q().size(), energy && bool(run_.system().potential),
+               expected_rows(steps, t_eval.is_none() ? -1 : times.size(), every));
     const auto add = [&](double t, const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
       out.add(run_, t, q, p);
     };
-    py::object keep;  // (t_eval converted, if it had to be)
-    const Eigen::Map<const Eigen::VectorXd> times = output_times(t_eval, keep);
-    out.reserve(expected_rows(t_end, t_eval.is_none() ? -1 : times.size(), every));
     if (!t_eval.is_none())  // (all of them before any step: the chunks see only their own)
       TimeGrid(run_.t(), run_.h()).require_output_times(t_end, times);
     // (on the heap: an std::optional<Events> in this frame was zeroed, 552 bytes, on every run)
@@ -152,15 +210,15 @@ class PyIntegrator {
       if (t_eval.is_none()) add(run_.t(), run_.q(), run_.p());
       Eigen::Index next = 0;  // the first output time after the last chunk
       const auto chunk = [&](double t_c, long every_c) {
-        if (t_eval.is_none()) return chunk_every(found, t_c, add, every_c);
+        if (t_eval.is_none()) return chunk_every(found, t_c, add, every_c, release);
         const Eigen::Index from = next;
         while (next < times.size() && (t_c == t_end || times[next] <= t_c)) ++next;
-        return chunk_times(found, t_c, times.segment(from, next - from), add);
+        return chunk_times(found, t_c, times.segment(from, next - from), add, release);
       };
       stopped = LongRun(progress).to(run_, t_end, t_eval.is_none() ? every : 1, chunk);
     } catch (const py::error_already_set& e) {  // (Ctrl-C: the last state joins the output,
       // after the t_eval times reached so far when there are output times)
-      if (e.matches(PyExc_KeyboardInterrupt) && (out.t.empty() || out.t.back() != run_.t()))
+      if (e.matches(PyExc_KeyboardInterrupt) && !out.ends_at(run_.t()))
         add(run_.t(), run_.q(), run_.p());
       partial_ = result(out, found, events, false);
       throw;
@@ -197,92 +255,122 @@ class PyIntegrator {
   py::dict statistics() const { return statistics_dict(run_.statistics()); }
 
   Integrator& get() { return run_; }
-  /// The output of the last run() that failed, up to its last completed step.
-  py::object partial() const { return partial_; }
+  /// The output of the last run() that failed, up to its last completed step, if one did.
+  const std::optional<RunResult>& partial() const { return partial_; }
 
  private:
   // One chunk of run(): to t_c with output every `every` steps (none for every = 0), or at
-  // `times`; true when a terminal event stopped it. Built-in potentials step without the GIL;
-  // events hold it.
+  // `times`; true when a terminal event stopped it. Without the GIL if `release`
+  // (releases_gil); events hold it.
   template <class Add>
-  bool chunk_every(const std::unique_ptr<Events>& found, double t_c, Add& add, long every) {
+  bool chunk_every(const std::unique_ptr<Events>& found, double t_c, Add& add, long every,
+                   bool release) {
     const auto none = [](double, const Eigen::VectorXd&, const Eigen::VectorXd&) {};
     if (found)
       return every ? found->integrate(run_, t_c, add, every)
                    : found->integrate(run_, t_c, none, kNever);
-    stepping([&] { every ? run_.integrate(t_c, add, every) : run_.integrate(t_c); });
+    stepping(release, [&] { every ? run_.integrate(t_c, add, every) : run_.integrate(t_c); });
     return false;
   }
   // (An observer interval no chunk reaches: none is called.)
   static constexpr long kNever = std::numeric_limits<long>::max();
   template <class Add>
   bool chunk_times(const std::unique_ptr<Events>& found, double t_c,
-                   const Eigen::Ref<const Eigen::VectorXd>& times, Add& add) {
+                   const Eigen::Ref<const Eigen::VectorXd>& times, Add& add, bool release) {
     if (found) return found->integrate(run_, t_c, times, add);
-    stepping([&] { run_.integrate(t_c, times, add); });
+    stepping(release, [&] { run_.integrate(t_c, times, add); });
     return false;
   }
 
   // About the output's rows: `times` (>= 0: output times), or the start, every `every`-th step
-  // and t_end (from (t_end - t) / h, which cannot fail, unlike the plan); at most a first chunk's
-  // steps (long_run.hpp): a run that will be interrupted does not reserve them all.
-  long expected_rows(double t_end, Eigen::Index times, long every) const {
-    const double rows =
-        times >= 0 ? double(times) : 2 + (t_end - run_.t()) / run_.h() / double(every);
+  // and t_end, about `steps` steps away (steps_to); at most a first chunk's steps (long_run.hpp):
+  // a run that will be interrupted does not reserve them all.
+  long expected_rows(double steps, Eigen::Index times, long every) const {
+    const double rows = times >= 0 ? double(times) : 2 + steps / double(every);
     return rows >= 0 ? long(std::min(rows, double(LongRun::kFirstChunk))) : 2;  // (NaN: 2)
   }
 
-  py::tuple result(Output& out, const std::unique_ptr<Events>& found, const py::object& events,
+  RunResult result(Output& out, const std::unique_ptr<Events>& found, const py::object& events,
                    bool stopped) {
     py::object hits = py::none();
     if (found) hits = hits_to_python(*found, py::len(events), run_.q().size());
-    return to_python(std::move(out), hits, stopped);
+    return std::move(out).to_python(std::move(hits), stopped);
   }
 
   // To t_end without output, in chunks (Ctrl-C between them).
   void step_to(double t_end, long every) {
     if (every < 1)
       throw Error("the observer interval must be >= 1 step; got " + std::to_string(every));
+    const bool release = releases_gil(steps_to(t_end));
     LongRun(py::none()).to(run_, t_end, 1, [&](double t_c, long) {
-      stepping([&] { run_.integrate(t_c); });
+      stepping(release, [&] { run_.integrate(t_c); });
       return false;
     });
   }
 
-  // Runs f without the GIL unless a callback is Python code.
+  // Whether a run of about `steps` steps goes without the GIL: not if a callback is Python code,
+  // nor below kHoldGil steps x dimension x stages. Releasing and retaking it costs ~300
+  // instructions, ~70 ns (callgrind; perf, a 1-step Duffing Strang erkn.solve: 1.11 -> 1.05 us),
+  // while such a run holds it for some microseconds (Duffing Strang: 15 ns a step).
+  bool releases_gil(double steps) const { return !calls_python_ && steps * step_work_ >= kHoldGil; }
+  static constexpr double kHoldGil = 1024;
+  // Runs f, without the GIL if `release`.
   template <class F>
-  void stepping(F&& f) {
-    if (calls_python_) return f();
-    py::gil_scoped_release release;
+  static void stepping(bool release, F&& f) {
+    if (!release) return f();
+    py::gil_scoped_release unlocked;
     f();
   }
+  // About the steps to t_c ((t_c - t) / h: an estimate, which cannot fail, unlike the plan).
+  double steps_to(double t_c) const { return (t_c - run_.t()) / run_.h(); }
 
   bool calls_python_;
+  double step_work_;  // dimension x stages (stepping)
   Integrator run_;
-  py::object partial_ = py::none();
+  std::optional<RunResult> partial_;
 };
 
 // The arguments erkn.solve's common call reads, beyond M and grad (positional).
 enum Slot { kQ0, kP0, kSpan, kH, kMethod, kEvery, kSlots };
 constexpr const char* kSlotNames[kSlots] = {"q0", "p0", "t_span", "h", "method", "every"};
 
-// A Solution's fields that make_solution sets, and the method it calls with events.
-enum Field { kT, kQ, kP, kEnergy, kRun, kName, kChoice, kStatus, kAddEvents, kFields };
-constexpr const char* kFieldNames[kFields] = {"t",      "q",      "p",      "_energy",    "_run",
-                                              "method", "choice", "status", "_add_events"};
+// A Solution's fields (its __slots__ but __dict__ and __weakref__), which make_solution sets.
+enum Field {
+  kT,
+  kQ,
+  kP,
+  kName,
+  kChoice,
+  kStatus,
+  kTEvents,
+  kQEvents,
+  kPEvents,
+  kYEvents,
+  kEnergy,
+  kRun,
+  kStats,
+  kFields
+};
+constexpr const char* kFieldNames[kFields] = {
+    "t",        "q",        "p",        "method",  "choice", "status", "t_events",
+    "q_events", "p_events", "y_events", "_energy", "_run",   "_stats"};
 
 // What erkn.solve (the entry, solve_entry) knows of the Python solve: its keyword parameters
 // (the names interned in its code object), each with the slot it fills or kSlots (one the
 // common call needs to be None), read when the entry is made; and what it takes from erkn's
 // namespace.
 struct SolveEntry {
-  py::dict globals;                                 // erkn's namespace
-  py::object checked_name;                          // "_solve_checked": looked up at each call
-  py::object solution, later, fallback;             // Solution, _LATER, _attach_partial
-  py::object default_method;                        // _DEFAULT_METHOD
-  py::tuple names;                                  // the Python solve's co_varnames
-  std::vector<std::pair<PyObject*, int>> keywords;  // (a name in `names`, its slot)
-  std::array<py::object, kFields> fields;           // their names, interned (make_solution)
+  py::dict globals;                                  // erkn's namespace
+  py::object checked_name;                           // "_solve_checked": looked up at each call
+  py::object solution, later, fallback;              // Solution, _LATER, _attach_partial
+  py::object default_method;                         // _DEFAULT_METHOD
+  py::tuple names;                                   // the Python solve's co_varnames
+  std::vector<std::pair<PyObject*, int>> keywords;   // (a name in `names`, its slot)
+  std::array<Py_ssize_t, kFields> offsets;           // the fields' slots in a Solution
+  py::object add_events;                             // "_add_events", interned
+  py::object zero = py::int_(0), one = py::int_(1);  // Solution.status
+  // (keyword_slots' cache: the last kwnames tuple and its names' slots)
+  mutable std::pair<py::object, std::vector<int>> last_keywords;
 };
 // (made by _erkn._solve_entry when erkn is imported; never destroyed: it holds Python objects)
 SolveEntry* solve_entry_state = nullptr;
@@ -292,28 +380,28 @@ const SolveEntry& solve_entry_made() {
 }
 
 // An erkn.Solution (its class: python/erkn/__init__.py) of the integrator `run` (run_capsule's),
-// `method` its name, from `out`, a run()'s tuple (t, q, p, energy, events, stopped): made here
-// rather than by a Python __init__ (~2.1k instructions of a 1-step solve's ~17k): t, q, p,
-// _energy (out's energies, or _LATER if `later`: computed on first access), _run and method are
-// set; choice, status and the events (Solution._add_events) only where they differ from the
-// class's defaults (no tol, not stopped, no events).
+// `method` its name, from a run()'s result `out`: made here rather than by a Python __init__
+// (~2.1k instructions of a 1-step solve's ~17k), each field stored in its slot (PyObject_SetAttr
+// cost ~140 instructions a field, ~840 of a 1-step solve's ~13k; callgrind): t, q, p, method,
+// choice, status (1: a terminal event stopped the run), _energy (out's energies, or _LATER if
+// `later`: computed on first access), _run; the events None, then set by Solution._add_events
+// if there are any; _stats None (read from the run on first access).
 py::object make_solution(const SolveEntry& e, py::handle run, py::handle method,
-                         const py::tuple& out, bool later, py::handle choice) {
+                         const RunResult& out, bool later, py::handle choice) {
   auto* const type = reinterpret_cast<PyTypeObject*>(e.solution.ptr());
   static auto* const no_arguments = new py::tuple();  // (never destroyed, as on_terminal's)
   const auto s =
       py::reinterpret_steal<py::object>(type->tp_new(type, no_arguments->ptr(), nullptr));
   if (!s) throw py::error_already_set();
-  const auto set = [&](Field field, py::handle value) {
-    if (PyObject_SetAttr(s.ptr(), e.fields[field].ptr(), value.ptr()) != 0)
-      throw py::error_already_set();
+  const auto set = [&](Field field, py::handle value) {  // (the slots start empty: NULL)
+    *reinterpret_cast<PyObject**>(reinterpret_cast<char*>(s.ptr()) + e.offsets[field]) =
+        value.inc_ref().ptr();
   };
-  const auto item = [&](Py_ssize_t k) { return py::handle(PyTuple_GET_ITEM(out.ptr(), k)); };
-  set(kT, item(0)), set(kQ, item(1)), set(kP, item(2));
-  set(kEnergy, later ? py::handle(e.later) : item(3)), set(kRun, run), set(kName, method);
-  if (!choice.is_none()) set(kChoice, choice);
-  if (item(5).ptr() == Py_True) set(kStatus, py::int_(1));
-  if (!item(4).is_none()) s.attr(e.fields[kAddEvents])(item(4));
+  set(kT, out.t), set(kQ, out.q), set(kP, out.p), set(kName, method), set(kChoice, choice);
+  set(kStatus, out.stopped ? e.one.ptr() : e.zero.ptr());
+  for (Field f : {kTEvents, kQEvents, kPEvents, kYEvents, kStats}) set(f, Py_None);
+  set(kEnergy, later ? e.later.ptr() : out.energy.ptr()), set(kRun, run);
+  if (!out.hits.is_none()) s.attr(e.add_events)(out.hits);
   return s;
 }
 
@@ -347,32 +435,33 @@ PyIntegrator& run_of(py::handle capsule) {
 // erkn.solve's construction and run() in one call, returning the Solution: each call through
 // pybind11 costs ~1.5k instructions (argument and self casts, type lookups), and solve made four
 // (the constructor, _run, _energy_can_wait, method) of a 1-step solve's ~56k (callgrind, Duffing,
-// Strang). The integrator (run_capsule) joins `holder` before it runs, so that a failed run's
+// Strang). The integrator (run_capsule) is put in `held` before it runs, so that a failed run's
 // output stays reachable (partial_solution). With `energy`, the energies are computed now only if
 // they cannot wait (Python callbacks). `method`: the registry's; `choice`: Solution.choice (None
 // without tol).
-py::object construct_and_run(py::list holder, const Method& method, const PySystem& system,
+py::object construct_and_run(py::object& held, const Method& method, const PySystem& system,
                              double h, const VectorArg& q0, const VectorArg& p0, double t0,
                              const Options& options, double t_end, const py::object& t_eval,
                              long every, bool energy, const py::object& events,
                              const py::object& progress, const py::object& choice) {
   auto owned = std::make_unique<PyIntegrator>(method, system, h, q0, p0, t0, options);
   PyIntegrator& run = *owned;
-  holder.append(run_capsule(std::move(owned)));
+  held = run_capsule(std::move(owned));
   const bool later = energy && run.energy_can_wait();
-  const py::tuple out = run.run(t_end, t_eval, every, energy && !later, events, progress);
-  return make_solution(solve_entry_made(), holder[0], name_of(method), out, later, choice);
+  const RunResult out = run.run(t_end, t_eval, every, energy && !later, events, progress);
+  return make_solution(solve_entry_made(), held, name_of(method), out, later, choice);
 }
 
 // The Solution of a failed run (`capsule`: its integrator) up to its last completed step, or None
 // if it failed before its run began.
 py::object partial_solution(py::handle capsule, py::handle choice) {
   PyIntegrator& run = run_of(capsule);
-  const py::object partial = run.partial();  // (its energies None: left for later, or no U)
-  if (partial.is_none()) return partial;
+  const std::optional<RunResult>& partial = run.partial();
+  if (!partial) return py::none();
   const std::string_view name = run.get().method().name();
-  return make_solution(solve_entry_made(), capsule, py::str(name.data(), name.size()),
-                       partial.cast<py::tuple>(), partial.cast<py::tuple>()[3].is_none(), choice);
+  // (its energies None: left for later, or no U)
+  return make_solution(solve_entry_made(), capsule, py::str(name.data(), name.size()), *partial,
+                       partial->energy.is_none(), choice);
 }
 
 // x's value if it is a Python float or int (not a bool; not an int beyond a double's range).
@@ -437,20 +526,37 @@ bool on_terminal() {
   return last->second;
 }
 
+// The slot of each name in `kwnames` (a vectorcall's keyword names): -1 if it is not a keyword of
+// solve's by identity (an unknown name, or one not interned), kSlots for one the common call needs
+// to be None. Kept for the last tuple asked: a call site passes the same one (its code's
+// constant) on every call, and searching solve's keywords for each name mispredicted (perf: ~30 %
+// of solve_entry's own time, ~1 % of a 1-step solve).
+const std::vector<int>& keyword_slots(const SolveEntry& e, PyObject* kwnames) {
+  auto& [last, slots] = e.last_keywords;
+  if (last.ptr() != kwnames) {
+    slots.clear();
+    for (Py_ssize_t k = 0; k < PyTuple_GET_SIZE(kwnames); ++k) {
+      PyObject* const name = PyTuple_GET_ITEM(kwnames, k);
+      const auto known = std::find_if(e.keywords.begin(), e.keywords.end(),
+                                      [&](const auto& kw) { return kw.first == name; });
+      slots.push_back(known == e.keywords.end() ? -1 : known->second);
+    }
+    last = py::reinterpret_borrow<py::object>(kwnames);  // (held: its address stays its own)
+  }
+  return slots;
+}
+
 // The call's keywords in their slots (kwnames: the vectorcall's names, their values after the
-// positional ones); false if one is not a keyword of solve's by identity (an unknown name, or
-// one not interned: solve's checked path then reports or takes it) or one the common call does
-// not read is not None.
+// positional ones); false if one is not a keyword of solve's by identity (solve's checked path
+// then reports or takes it) or one the common call does not read is not None.
 bool fill_slots(const SolveEntry& e, PyObject* const* values, PyObject* kwnames,
                 std::array<PyObject*, kSlots>& slots) {
-  const Py_ssize_t n = kwnames ? PyTuple_GET_SIZE(kwnames) : 0;
-  for (Py_ssize_t k = 0; k < n; ++k) {
-    PyObject* const name = PyTuple_GET_ITEM(kwnames, k);
-    const auto known = std::find_if(e.keywords.begin(), e.keywords.end(),
-                                    [&](const auto& kw) { return kw.first == name; });
-    if (known == e.keywords.end()) return false;
-    if (known->second < kSlots)
-      slots[size_t(known->second)] = values[k];
+  if (!kwnames) return true;
+  const std::vector<int>& known = keyword_slots(e, kwnames);
+  for (size_t k = 0; k < known.size(); ++k) {
+    if (known[k] < 0) return false;
+    if (known[k] < kSlots)
+      slots[size_t(known[k])] = values[k];
     else if (values[k] != Py_None)
       return false;
   }
@@ -478,7 +584,7 @@ const Method& method_named(std::string_view name) {
 // _every, _system's, _progress) leaves each argument as it is, so none is repeated here; every
 // value is checked where it is for any call (the System, the method's name, the Integrator).
 // Returns the Solution, or None for another form (the checked path's).
-py::object solve_builtin(const SolveEntry& e, py::list& holder, py::handle M, py::handle grad,
+py::object solve_builtin(const SolveEntry& e, py::object& held, py::handle M, py::handle grad,
                          const std::array<PyObject*, kSlots>& a) {
   if (!a[kQ0] || !a[kP0] || !a[kSpan] || !a[kH]) return py::none();
   const py::handle t_span = a[kSpan];
@@ -496,21 +602,27 @@ py::object solve_builtin(const SolveEntry& e, py::list& holder, py::handle M, py
       !interval || !(PyFloat_CheckExact(M.ptr()) || py::isinstance<Stiffness>(M)) || on_terminal())
     return py::none();
   const auto system = builtin_system(M, std::string(*name), {}, q->size());
-  return construct_and_run(holder, method_named(*method_name), *system, *step, *q, *p, *t0,
-                           Options(), *t1, py::none(), *interval, true, py::none(), py::none(),
-                           py::none());
+  return construct_and_run(held, method_named(*method_name), *system, *step, *q, *p, *t0, Options(),
+                           *t1, py::none(), *interval, true, py::none(), py::none(), py::none());
 }
 
-// With a Python error set and a run in `holder`: the error carries the run's output up to its
-// last completed step as its `solution` (solve's _attach_partial, the checked path's too).
-void attach_partial(const SolveEntry& e, const py::list& holder) {
-  if (holder.empty()) return;
+// With a Python error set and a run `held` (if one was built): the error carries the run's output
+// up to its last completed step as its `solution` (solve's _attach_partial, the checked path's
+// too, given [held]).
+void attach_partial(const SolveEntry& e, const py::object& held) {
+  if (!held) return;
   PyObject *type = nullptr, *value = nullptr, *trace = nullptr;
   PyErr_Fetch(&type, &value, &trace);
   PyErr_NormalizeException(&type, &value, &trace);
   if (trace) PyException_SetTraceback(value, trace);
-  PyObject* args[] = {holder.ptr(), Py_None, value};
-  PyObject* const done = PyObject_Vectorcall(e.fallback.ptr(), args, 3, nullptr);
+  PyObject* const holder = PyList_New(1);
+  PyObject* done = nullptr;
+  if (holder) {
+    PyList_SET_ITEM(holder, 0, held.inc_ref().ptr());
+    PyObject* args[] = {holder, Py_None, value};
+    done = PyObject_Vectorcall(e.fallback.ptr(), args, 3, nullptr);
+    Py_DECREF(holder);
+  }
   if (done)
     Py_DECREF(done);
   else
@@ -528,11 +640,11 @@ void attach_partial(const SolveEntry& e, const py::list& holder) {
 PyObject* solve_entry(PyObject*, PyObject* const* args, size_t nargsf, PyObject* kwnames) {
   const SolveEntry& e = *solve_entry_state;  // (made with the function itself)
   const Py_ssize_t n = PyVectorcall_NARGS(nargsf);
-  py::list holder;  // (the integrator, once built)
+  py::object held;  // (the integrator, once built)
   try {
     std::array<PyObject*, kSlots> slots{};
     if (n == 2 && fill_slots(e, args + n, kwnames, slots)) {
-      py::object out = solve_builtin(e, holder, args[0], args[1], slots);
+      py::object out = solve_builtin(e, held, args[0], args[1], slots);
       if (!out.is_none()) return out.release().ptr();
     }
     return PyObject_Vectorcall(e.globals[e.checked_name].ptr(), args, nargsf, kwnames);
@@ -546,8 +658,17 @@ PyObject* solve_entry(PyObject*, PyObject* const* args, size_t nargsf, PyObject*
             detail::get_internals().registered_exception_translators))
       PyErr_SetString(PyExc_SystemError, "erkn.solve: an exception no translator took");
   }
-  attach_partial(e, holder);
+  attach_partial(e, held);
   return nullptr;
+}
+
+// The offset in an instance of `cls` of its slot `name` (from its member descriptor).
+Py_ssize_t slot_offset(const py::object& cls, const char* name) {
+  const py::object d = cls.attr("__dict__").attr("get")(name);
+  if (Py_TYPE(d.ptr()) != &PyMemberDescr_Type ||
+      reinterpret_cast<PyMemberDescrObject*>(d.ptr())->d_member->type != T_OBJECT_EX)
+    throw Error(std::string("erkn.Solution has no slot ") + name);
+  return reinterpret_cast<PyMemberDescrObject*>(d.ptr())->d_member->offset;
 }
 
 // _erkn._solve_entry(checked, namespace, doc): erkn.solve, the entry (solve_entry) before the
@@ -557,17 +678,19 @@ PyObject* solve_entry(PyObject*, PyObject* const* args, size_t nargsf, PyObject*
 // one's state stays.)
 py::object make_solve_entry(const py::function& checked, const py::dict& globals,
                             const std::string& doc) {
-  auto* e = new SolveEntry{globals,
-                           py::str("_solve_checked"),
-                           globals["Solution"],
-                           globals["_LATER"],
-                           globals["_attach_partial"],
-                           globals["_DEFAULT_METHOD"],
-                           checked.attr("__code__").attr("co_varnames"),
-                           {},
-                           {}};
-  for (size_t k = 0; k < e->fields.size(); ++k)
-    e->fields[k] = py::reinterpret_steal<py::object>(PyUnicode_InternFromString(kFieldNames[k]));
+  auto* e =
+      new SolveEntry{globals,
+                     py::str("_solve_checked"),
+                     globals["Solution"],
+                     globals["_LATER"],
+                     globals["_attach_partial"],
+                     globals["_DEFAULT_METHOD"],
+                     checked.attr("__code__").attr("co_varnames"),
+                     {},
+                     {},
+                     py::reinterpret_steal<py::object>(PyUnicode_InternFromString("_add_events"))};
+  for (size_t k = 0; k < e->offsets.size(); ++k)
+    e->offsets[k] = slot_offset(e->solution, kFieldNames[k]);
   const py::object code = checked.attr("__code__");
   const auto positional = code.attr("co_argcount").cast<Py_ssize_t>();
   const auto keywords = code.attr("co_kwonlyargcount").cast<Py_ssize_t>();
@@ -598,8 +721,14 @@ void bind_integrator_class(py::module_& m) {
            "steps to t_end (off the grid: a last shorter step); observer(t, q, p) after every "
            "`every`-th step and at t_end, or at `times` (ascending, in [t, t_end]; between grid "
            "points by state_at, which leaves the trajectory unchanged)")
-      .def("_run", &PyIntegrator::run, py::arg("t_end"), py::arg("t_eval"), py::arg("every"),
-           py::arg("energy"), py::arg("events") = py::none(), py::arg("progress") = py::none())
+      .def(
+          "_run",
+          [](PyIntegrator& r, double t_end, const py::object& t_eval, long every, bool energy,
+             const py::object& events, const py::object& progress) {
+            return r.run(t_end, t_eval, every, energy, events, progress).as_tuple();
+          },
+          py::arg("t_end"), py::arg("t_eval"), py::arg("every"), py::arg("energy"),
+          py::arg("events") = py::none(), py::arg("progress") = py::none())
       .def("state_at", &PyIntegrator::state_at, py::arg("t"),
            "(q, p) at t in [t, t + h] by a step of size t - self.t; the integrator is unchanged")
       .def(
@@ -627,7 +756,11 @@ void bind_integrator_class(py::module_& m) {
                              "counters and wall_time, cpu_time (seconds in integrate and step)")
       .def_property_readonly(
           "_options", [](PyIntegrator& r) { return r.get().options(); }, "a copy")
-      .def_property_readonly("_partial", &PyIntegrator::partial)
+      .def_property_readonly("_partial",
+                             [](PyIntegrator& r) {
+                               const auto& partial = r.partial();
+                               return partial ? py::object(partial->as_tuple()) : py::none();
+                             })
       .def("_energies", &PyIntegrator::energies, py::arg("q"), py::arg("p"));
 }
 
@@ -643,8 +776,14 @@ void bind_solve_calls(py::module_& m) {
          const VectorArg& q0, const VectorArg& p0, double t0, const Options& options, double t_end,
          const py::object& t_eval, long every, bool energy, const py::object& events,
          const py::object& progress, const py::object& choice) {
-        return construct_and_run(std::move(holder), Method::by_name(method), system, h, q0, p0, t0,
-                                 options, t_end, t_eval, every, energy, events, progress, choice);
+        py::object held;
+        try {
+          return construct_and_run(held, Method::by_name(method), system, h, q0, p0, t0, options,
+                                   t_end, t_eval, every, energy, events, progress, choice);
+        } catch (...) {  // (a failed run: its integrator joins `holder`, for _attach_partial)
+          if (held) holder.append(held);
+          throw;
+        }
       },
       py::arg("holder"), py::arg("method"), py::arg("system"), py::arg("h"), py::arg("q0"),
       py::arg("p0"), py::arg("t0"), py::arg("options"), py::arg("t_end"), py::arg("t_eval"),

@@ -1,10 +1,12 @@
 # Long runs: Ctrl-C (SIGINT) stops erkn.solve cleanly with the output so far, progress(t) is
 # called between chunks, and chunking changes nothing in the trajectory or the output.
+import ctypes
 import os
 import signal
 import subprocess
 import sys
 import textwrap
+import threading
 import time
 
 import numpy as np
@@ -168,3 +170,40 @@ def test_chunked_step_and_integrate_are_one_call():
         c.step()
     assert np.array_equal(a.q, c.q) and np.array_equal(b.q, c.q) and a.t == b.t == c.t
     assert a.statistics["steps"] == 50000
+
+
+def longest_stall(work):
+    """(The longest time this thread waited for the GIL while `work` ran in another, the seconds
+    `work` takes alone.) Python runs here only while `work` does not hold the GIL. (The clock
+    starts before the thread: a worker holding the GIL from its start stalls start() itself.)"""
+    start = time.perf_counter()
+    work()
+    alone = time.perf_counter() - start
+    worker = threading.Thread(target=work)
+    last, gap = time.perf_counter(), 0.0
+    worker.start()
+    while worker.is_alive():
+        now = time.perf_counter()
+        gap, last = max(gap, now - last), now
+    worker.join()
+    return gap, alone
+
+
+def test_a_long_solve_with_a_builtin_potential_steps_without_the_gil():
+    # (Short runs keep it: below some microseconds of work releasing it costs more than it frees.)
+    def solve(t_end):
+        return lambda: erkn.solve(4.0, "sine", q0=np.full(8, 0.1), p0=np.zeros(8),
+                                  t_span=(0, t_end), h=0.01, method=method(), every=10**9)
+    t_end, alone = 1.0, 0.0
+    while alone < 0.1:  # a run long enough to see a stall
+        t_end *= 2
+        gap, alone = longest_stall(solve(t_end))
+    assert gap < 0.5 * alone, (gap, alone)
+
+
+def test_negative_control_a_call_holding_the_gil_stalls_this_thread():
+    libc = ctypes.PyDLL(None)  # (a PyDLL's calls keep the GIL, a CDLL's release it)
+    gap, alone = longest_stall(lambda: libc.usleep(200000))
+    assert gap > 0.5 * alone, (gap, alone)
+    gap, alone = longest_stall(lambda: ctypes.CDLL(None).usleep(200000))
+    assert gap < 0.5 * alone, (gap, alone)
