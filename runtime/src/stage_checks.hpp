@@ -7,6 +7,7 @@
 #include <bit>
 #include <complex>
 #include <cstdint>
+#include <cstring>
 
 #include "erkn/method.hpp"
 #include "erkn/system.hpp"
@@ -39,6 +40,29 @@ bool all_finite(const double* x, Eigen::Index n) {
 }
 inline bool all_finite(const std::complex<double>* x, Eigen::Index n) {
   return all_finite(reinterpret_cast<const double*>(x), 2 * n);
+}
+
+/// all_finite over a fixed-size array a, two entries at a time where its size is even: the
+/// fixed point's iterate, kept on the stack across the gradient call, was stored as one 16-byte
+/// value, and an 8-byte load of its upper half is not forwarded from that store (perf, P3: ~15 %
+/// of the samples on that load and its branch; the packed check: -3 % CPU per grad U at P3, A/B
+/// in one process). An odd size: all_finite.
+template <class A>
+[[gnu::always_inline]] inline bool all_finite_values(const A& a) {
+  constexpr int n = int(A::SizeAtCompileTime);
+  if constexpr (n % 2 != 0) {
+    return all_finite<n>(a.data(), n);
+  } else {
+    using V = double __attribute__((vector_size(16)));
+    using B = std::uint64_t __attribute__((vector_size(16)));
+    B bits{};
+    for (int k = 0; k < n; k += 2) {
+      V v;
+      std::memcpy(&v, a.data() + k, sizeof v);
+      bits |= (B)(v - v);
+    }
+    return (bits[0] | bits[1]) == 0;
+  }
 }
 
 /// The D entries of a callback's result x (g) as a fixed-size array, read entry by entry into

@@ -12,8 +12,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <limits>
 #include <new>
 #include <optional>
@@ -31,31 +29,6 @@
 #include "stepper_base.hpp"
 
 namespace erkn::detail {
-
-// True when the entries of a fixed-size array are all finite (stage_checks.hpp's nonfinite_bits),
-// two at a time where the size allows: the fixed point's iterate, kept on the stack across the
-// gradient call, was stored as one 16-byte value, and an 8-byte load of its upper half is not
-// forwarded from that store (perf, P3: ~15 % of the samples on that load and its branch; the
-// packed check: -3 % CPU per grad U at P3, A/B in one process).
-template <class A>
-[[gnu::always_inline]] inline bool all_finite_values(const A& a) {
-  constexpr int n = int(A::SizeAtCompileTime);
-  if constexpr (n % 2 == 0) {
-    using V = double __attribute__((vector_size(16)));
-    using B = std::uint64_t __attribute__((vector_size(16)));
-    B bits{};
-    for (int k = 0; k < n; k += 2) {
-      V v;
-      std::memcpy(&v, a.data() + k, sizeof v);
-      bits |= (B)(v - v);
-    }
-    return (bits[0] | bits[1]) == 0;
-  } else {
-    std::uint64_t bits = 0;
-    for (int k = 0; k < n; ++k) bits |= nonfinite_bits(a[k]);
-    return bits == 0;
-  }
-}
 
 template <class Space, class Coef>
 class StageSolver {
