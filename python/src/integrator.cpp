@@ -371,8 +371,17 @@ struct SolveEntry {
   py::object zero = py::int_(0), one = py::int_(1);  // Solution.status
   // (keyword_slots' cache: the last kwnames tuple and its names' slots)
   mutable std::pair<py::object, std::vector<int>> last_keywords;
+  // The function's name, flags and doc (its text signature and docstring), which CPython reads
+  // from here for as long as the function lives: each entry's own.
+  std::string doc;
+  PyMethodDef def{};
 };
-// (made by _erkn._solve_entry when erkn is imported; never destroyed: it holds Python objects)
+// The newest entry's state, which every entry and the other calls into C++ from erkn's Python
+// code (_construct_and_run, _partial_solution) take: a reload of erkn runs its __init__ again in
+// the same namespace and makes a new entry, and erkn.solve as the user held it before then
+// solves into the new Solution class, as the checked path does. (Made by _erkn._solve_entry at
+// each import or reload of erkn; never destroyed: it holds Python objects, and a call may be in
+// an older one's entry when a gradient reloads erkn.)
 SolveEntry* solve_entry_state = nullptr;
 const SolveEntry& solve_entry_made() {
   if (!solve_entry_state) throw Error("erkn.solve's entry is made when erkn is imported");
@@ -638,7 +647,7 @@ void attach_partial(const SolveEntry& e, const py::object& held) {
 // exceptions reach Python through pybind11's own translators, tried as its dispatcher tries them
 // (module-local ones first): erkn::Error as erkn.Error.
 PyObject* solve_entry(PyObject*, PyObject* const* args, size_t nargsf, PyObject* kwnames) {
-  const SolveEntry& e = *solve_entry_state;  // (made with the function itself)
+  const SolveEntry& e = *solve_entry_state;  // (the newest: made with the function itself)
   const Py_ssize_t n = PyVectorcall_NARGS(nargsf);
   py::object held;  // (the integrator, once built)
   try {
@@ -674,8 +683,7 @@ Py_ssize_t slot_offset(const py::object& cls, const char* name) {
 // _erkn._solve_entry(checked, namespace, doc): erkn.solve, the entry (solve_entry) before the
 // Python solve `checked` (its keyword parameters read from its code object), with `doc` (its
 // text signature and docstring); `namespace`: erkn's, where it finds _solve_checked, Solution,
-// _LATER, _attach_partial and _DEFAULT_METHOD. (A reload of erkn makes a new one; the last
-// one's state stays.)
+// _LATER, _attach_partial and _DEFAULT_METHOD.
 py::object make_solve_entry(const py::function& checked, const py::dict& globals,
                             const std::string& doc) {
   auto* e =
@@ -691,6 +699,7 @@ py::object make_solve_entry(const py::function& checked, const py::dict& globals
                      py::reinterpret_steal<py::object>(PyUnicode_InternFromString("_add_events"))};
   for (size_t k = 0; k < e->offsets.size(); ++k)
     e->offsets[k] = slot_offset(e->solution, kFieldNames[k]);
+  e->doc = doc;
   const py::object code = checked.attr("__code__");
   const auto positional = code.attr("co_argcount").cast<Py_ssize_t>();
   const auto keywords = code.attr("co_kwonlyargcount").cast<Py_ssize_t>();
@@ -700,12 +709,13 @@ py::object make_solve_entry(const py::function& checked, const py::dict& globals
     const auto slot = std::find(std::begin(kSlotNames), std::end(kSlotNames), name);
     e->keywords.emplace_back(names[size_t(k)].ptr(), int(slot - std::begin(kSlotNames)));
   }
+  e->def = {"solve", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&solve_entry)),
+            METH_FASTCALL | METH_KEYWORDS, e->doc.c_str()};
+  auto function = py::reinterpret_steal<py::object>(
+      PyCFunction_NewEx(&e->def, nullptr, py::str(globals["__name__"]).ptr()));
+  if (!function) throw py::error_already_set();
   solve_entry_state = e;
-  static PyMethodDef def{"solve",
-                         reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&solve_entry)),
-                         METH_FASTCALL | METH_KEYWORDS, (new std::string(doc))->c_str()};
-  return py::reinterpret_steal<py::object>(
-      PyCFunction_NewEx(&def, nullptr, py::str(globals["__name__"]).ptr()));
+  return function;
 }
 
 // erkn.Integrator's C++ side.
@@ -764,9 +774,9 @@ void bind_integrator_class(py::module_& m) {
       .def("_energies", &PyIntegrator::energies, py::arg("q"), py::arg("p"));
 }
 
-// erkn.solve's calls into C++: the entry (_solve_entry, made once by erkn's __init__), the
-// checked path's construction and run in one (_construct_and_run), and whether stderr is a
-// terminal (_on_terminal).
+// erkn.solve's calls into C++: the entry (_solve_entry, made by erkn's __init__ at each import or
+// reload), the checked path's construction and run in one (_construct_and_run), and whether stderr
+// is a terminal (_on_terminal).
 void bind_solve_calls(py::module_& m) {
   m.def("_solve_entry", &make_solve_entry, py::arg("checked"), py::arg("namespace"),
         py::arg("doc"));

@@ -270,6 +270,40 @@ def test_the_common_call_gives_what_its_arguments_in_other_forms_give(monkeypatc
             erkn.solve(9.0, "duffing", tolerance=None, **kw)
 
 
+# A reload of erkn runs its __init__ again, which makes a new erkn.solve (a C++ entry): each
+# entry has its own doc string, and every entry, the one the user held before too, solves into
+# the reloaded module's Solution class, on the common call's path and the checked one. In a fresh
+# interpreter, so this process's erkn stays as imported.
+RELOAD_SCRIPT = """
+import importlib, inspect, erkn, numpy as np
+first_solve, first_solution = erkn.solve, erkn.Solution
+doc = "solve" + str(inspect.signature(erkn._solve_checked)) + "\\n--\\n\\n" + erkn._solve_checked.__doc__
+other = erkn._erkn._solve_entry(erkn._solve_checked, vars(erkn), doc + "!")
+assert other.__doc__ == erkn._solve_checked.__doc__ + "!", "a second entry's own doc"
+assert first_solve.__doc__ == erkn._solve_checked.__doc__, "the first entry's doc kept"
+importlib.reload(erkn)
+assert erkn.solve is not first_solve and erkn.Solution is not first_solution  # (control)
+assert erkn.solve.__doc__ == erkn._solve_checked.__doc__
+assert inspect.signature(erkn.solve) == inspect.signature(erkn._solve_checked)
+common = dict(q0=np.array([0.3]), p0=np.array([1.0]), t_span=(0, 1.0), h=0.1)
+checked = dict(common, q0=[0.3], p0=[1.0])  # (a list: the checked path)
+sols = [f(9.0, "duffing", **kw) for f in (erkn.solve, first_solve) for kw in (common, checked)]
+assert all(type(s) is erkn.Solution for s in sols), "the reloaded module's class"
+assert all((s.q == sols[0].q).all() for s in sols)
+print("ok")
+"""
+
+
+def test_a_reload_of_erkn_makes_a_solve_with_its_own_doc_into_the_new_solution_class():
+    import os
+    import subprocess
+    import sys
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
+    run = subprocess.run([sys.executable, "-c", RELOAD_SCRIPT], capture_output=True, text=True,
+                         env=env)
+    assert run.returncode == 0 and run.stdout == "ok\n", run.stderr
+
+
 def _other_form(x):
     """x in a form solve's common call does not take (the same value)."""
     if isinstance(x, float):
