@@ -8,6 +8,8 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <numeric>
 #include <type_traits>
 #include <vector>
@@ -22,14 +24,24 @@ namespace erkn::detail {
 /// vectorise as an ArrayXd would), and one line more when that is a multiple of 4 KB. Arrays
 /// exactly 4 KB apart share their L1 sets and their 4 KB store-to-load aliasing: a pass over
 /// 8-12 of them at once then stalls (the issue measured a compensated Strang loop at N = 8192
-/// from 6.6 to 5.5 ms with the extra line).
+/// from 6.6 to 5.5 ms with the extra line). An array shorter than a line takes the power of two
+/// of Scalars at or above m (at least Eigen's alignment), so arrays share lines but none spans
+/// two: a line each made FlowCoefficients' block with a diagonal M of d <= 4 1152-1728 bytes for
+/// 6 explicit methods, beyond the 1032 glibc's per-thread cache serves, and every Integrator so
+/// constructed after small frees merged glibc's fastbins first (malloc_consolidate; perf, P3,
+/// construct + 20 steps amid a user's small frees: 1.8-2.5 % of the time, allocation_test.cpp).
 template <class Scalar>
 Eigen::Index aligned_stride(Eigen::Index m) {
   constexpr Eigen::Index line = 64, page = 4096;
   static_assert(line % EIGEN_MAX_ALIGN_BYTES == 0 && line % sizeof(Scalar) == 0);
   constexpr Eigen::Index unit = line / Eigen::Index(sizeof(Scalar));
+  if (m < unit) {
+    constexpr Eigen::Index aligned =
+        std::max<Eigen::Index>(1, EIGEN_MAX_ALIGN_BYTES / sizeof(Scalar));
+    return Eigen::Index(std::bit_ceil(std::uint64_t(std::max(m, aligned))));
+  }
   Eigen::Index stride = (m + unit - 1) / unit * unit;
-  if (m > 1 && stride * Eigen::Index(sizeof(Scalar)) % page == 0) stride += unit;
+  if (stride * Eigen::Index(sizeof(Scalar)) % page == 0) stride += unit;
   return stride;
 }
 
