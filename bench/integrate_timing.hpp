@@ -27,6 +27,13 @@
 // pages. So the heap is also kept (M_TRIM_THRESHOLD 1 GiB) and such buffers taken from it
 // (M_MMAP_THRESHOLD 32 MiB, glibc's maximum), as glibc's dynamic thresholds do in a warm
 // process: that cell 1.01 in a full run, every other ratio within 9 % of the run without.
+//
+// A sample's reps come from batches of runs (sample_reps), not from one timed run: a single run
+// of a microsecond contender sometimes took many times its cost (a stellar-orbit group's ~20 us
+// run timed at ~0.4 ms), so that group's samples were 0.2 ms of 10 runs rather than 4 ms, and its
+// ratio moved 25 % between two full runs (P3 SRKN11b, compensation off: 0.74, then 0.93; 3 of
+// 199 groups had samples under 2 ms in that run, none in the one before); in runs of the
+// stellar-orbit scene alone the implicit group's reps ranged 83-662 from process to process.
 #pragma once
 
 #include <malloc.h>
@@ -79,6 +86,24 @@ inline bool steady_malloc() {
 #endif
 }
 
+/// CPU seconds of n runs of `run`.
+inline double batch_seconds(const std::function<void()>& run, long n) {
+  const double start = thread_seconds();
+  for (long j = 0; j < n; ++j) run();
+  return thread_seconds() - start;
+}
+
+/// Runs per sample so that a sample of `run` takes at least min_sample: the run's cost from the
+/// faster of two batches of at least min_sample / 4 each (batch sizes doubled until then), so
+/// one slow run (an interrupt, a first touch) does not shorten every sample of the group.
+inline int sample_reps(const std::function<void()>& run, double min_sample) {
+  long n = 1;
+  double t = batch_seconds(run, n);
+  while (t < min_sample / 4) t = batch_seconds(run, n *= 2);
+  const double once = std::max(std::min(t, batch_seconds(run, n)) / double(n), 1e-9);
+  return std::max(1, int(std::ceil(min_sample / once)));
+}
+
 /// Groups of contenders timed together: add() every group, then run(). seconds[c][r] of a group
 /// is its contender c's CPU seconds per run in round r; round r samples every group in the order
 /// added, a group's contenders in the order rotated by r.
@@ -92,7 +117,7 @@ class Schedule {
   }
   /// Every contender runs once untimed first (warm-up: FFTW plans, caches), then `reps` runs per
   /// sample, reps chosen per group so that its contender 0's sample takes at least
-  /// plan.min_sample.
+  /// plan.min_sample (sample_reps).
   void run(const TimingPlan& plan) {
     for (Group& g : groups_) g.reps = warm_up(g.contenders, plan);
     for (Group& g : groups_)
@@ -112,10 +137,7 @@ class Schedule {
   };
   static int warm_up(const Contenders& contenders, const TimingPlan& plan) {
     for (const auto& run : contenders) run();
-    const double t0 = thread_seconds();
-    contenders[0]();
-    const double once = std::max(thread_seconds() - t0, 1e-9);
-    return std::max(1, int(std::ceil(plan.min_sample / once)));
+    return sample_reps(contenders[0], plan.min_sample);
   }
   static void sample(Group& g, size_t r) {
     const size_t k = g.contenders.size();

@@ -1,0 +1,46 @@
+// bench/integrate_timing.hpp's sample_reps: a sample's runs sized from the contender's cost, not
+// from one slow run; and with a contender slow on every run, sized from that (negative control).
+#include "integrate_timing.hpp"
+
+#include <gtest/gtest.h>
+
+namespace {
+
+/// Spins for `seconds` of the thread's CPU time.
+void spin(double seconds) {
+  const double start = bench::thread_seconds();
+  while (bench::thread_seconds() - start < seconds) {
+  }
+}
+
+constexpr double kRun = 20e-6, kSlow = 2e-3, kSample = 4e-3;  // a run, a slow run, a sample
+
+/// A contender of kRun per run whose call number `slow_call` (from 1) takes kSlow.
+std::function<void()> once_slow(int slow_call) {
+  return [calls = 0, slow_call]() mutable { spin(++calls == slow_call ? kSlow : kRun); };
+}
+
+TEST(SampleReps, OneSlowRunDoesNotShortenTheSamples) {
+  const int ideal = int(kSample / kRun);
+  for (int slow_call : {1, 2, 3, 5, 8}) {
+    const int reps = bench::sample_reps(once_slow(slow_call), kSample);
+    EXPECT_GE(reps, ideal / 2) << "slow call " << slow_call;
+    EXPECT_LE(reps, ideal + 1) << "slow call " << slow_call;  // spin overshoots, never undershoots
+  }
+}
+
+TEST(SampleReps, TheSlowRunIsThereAndOneTimedRunWouldHaveMetIt) {
+  // What the single timed run (the calibration before sample_reps) saw of the contender above.
+  auto run = once_slow(1);
+  const double start = bench::thread_seconds();
+  run();
+  EXPECT_GE(bench::thread_seconds() - start, kSlow);
+  EXPECT_LE(int(std::ceil(kSample / kSlow)), 2);
+}
+
+TEST(SampleReps, ContenderSlowOnEveryRunGetsFewReps) {
+  EXPECT_EQ(bench::sample_reps([] { spin(kSlow); }, kSample), 2);
+  EXPECT_EQ(bench::sample_reps([] { spin(2 * kSample); }, kSample), 1);
+}
+
+}  // namespace
