@@ -91,11 +91,22 @@ class StagePredictor {
   bool has_history() const { return history_ > 0; }
 
   /// out = stage i's predicted gradient (0 when no node is known yet).
-  void predict(int i, Map& out) {
+  template <class Out>
+  void predict(int i, Out& out) {
     if (use_[i] > 0)
       compute_into(out, [&](auto& value) { predict(i, use_[i], use_weights_[i], value); });
     else
       out.setZero();
+  }
+  /// With a fixed size: stage i's prediction without its newest node, rest = sum_{l >= 1} w_l
+  /// node_l (oldest first), and that node's weight w_0 (0 with no node); the caller adds w_0 times
+  /// the newest node last (StageSolver::start_fixed: for i > 0 it is this step's G_{i-1}).
+  template <class Out>
+  double predict_rest(int i, Out& rest) {
+    static_assert(kInPlace);
+    rest.setZero();
+    for (int l = use_[i] - 1; l >= 1; --l) rest += use_weights_[i][l] * node(i, l);
+    return use_[i] > 0 ? use_weights_[i][0] : 0.0;
   }
   /// Counts a step of stage i towards its next order check; true when it is due (adapt). Never
   /// due for a stage with fewer than two nodes (one-stage methods: adapt has no order to choose;
@@ -218,7 +229,8 @@ void StagePredictor<Space>::set_nodes(int i) {
   adapt_wait_[i] = adapt_interval_[i] = 1;
 }
 
-// Called after stage i is solved (G(i) known) with predict(i)'s result in `prediction`, when
+// Called after stage i is solved (G(i) known) with predict(i)'s result in `prediction` (with a
+// fixed size: unused, the prediction formed anew), when
 // adapt_due(i) (every adapt_interval steps): moves stage i's order n to whichever of n - 1, n, n +
 // 1 nodes would have given the solved stage the best guess, |h^2 abar_ii(V) (g_pred - g_i)|: high
 // degrees where the stage gradients are smooth on the scale of h, low ones where they oscillate
@@ -241,9 +253,10 @@ void StagePredictor<Space>::adapt(int i, const Abar& abar_ii, Map& prediction, M
   const std::array<int, 3> orders{n, n - 1, n + 1};
   std::array<Map*, 3> guesses{&prediction, &below, &above};
   std::array<double, 3> errors{};  // (squared: only compared)
+  // (With a fixed size `prediction` was not formed: start_fixed splits it; predicted here anew.)
   for (int k = 0; k < 3; ++k)
     if (orders[k] >= 1 && orders[k] <= available)
-      errors[k] = guess_error(i, k == 0 ? 0 : orders[k], abar_ii, *guesses[k]);
+      errors[k] = guess_error(i, k == 0 && !kInPlace ? 0 : orders[k], abar_ii, *guesses[k]);
   errors = space_.reduce(errors);
   double best = errors[0];
   int best_n = n;

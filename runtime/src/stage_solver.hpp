@@ -145,6 +145,8 @@ class StageSolver {
   [[gnu::noinline, gnu::cold]] void add_newton_counts(Statistics& stats);
   template <class State>
   Start start_stage(int i, const State& q_hat, const State& p_hat);
+  template <class State>
+  void start_fixed(int i, const State& q_hat, const State& p_hat, Start& s);
   // The fixed point's arrays: with a fixed D values (Work), else views of x_'s (the iterates,
   // the next, the force, g(Q_0) of the first iteration), G(i) and h^2 abar_ii, held in locals:
   // after each call of the user's gradient the compiler reloads what it reads through members.
@@ -372,7 +374,10 @@ template <class Space, class Coef>
 // Newton where the fixed point failed (from start's r_i), counted into newton_counts_.
 template <class Space, class Coef>
 void StageSolver<Space, Coef>::fall_back(int i, const Start& start) {
-  if constexpr (Space::kFixed) x_.r_hat = start.r_hat;  // (else start.r_hat views it)
+  if constexpr (Space::kFixed) {  // (else start.r_hat views it, and start_stage formed the guess)
+    x_.r_hat = start.r_hat;
+    predictor_.predict(i, x_.guess_hat);
+  }
   if (!newton_pending_) newton_counts_ = Statistics{}, newton_pending_ = true;
   Statistics& stats = newton_counts_;
   ++stats.newton_fallbacks;
@@ -403,8 +408,9 @@ void StageSolver<Space, Coef>::add_newton_counts(Statistics& stats) {
 
 // r_i = phi0(c_i^2 V) q + h c_i phi1(c_i^2 V) p - h^2 sum_{j<i} abar_ij g_j, and the starting
 // guess Q = r_i - h^2 abar_ii g_pred with g_pred extrapolated from the known stage gradients
-// (x_.guess_hat); x_.Q (physical) set, x_.r_hat and x_.Q_hat too with a dynamic D (with a fixed
-// D fall_back stores r_i and keep_iterate the iterate Newton-Krylov starts from).
+// (x_.guess_hat; with a fixed D split, start_fixed); x_.Q (physical) set, x_.r_hat and x_.Q_hat
+// too with a dynamic D (with a fixed D fall_back stores r_i and the guess, and keep_iterate the
+// iterate Newton-Krylov starts from).
 template <class Space, class Coef>
 template <class State>
 [[gnu::always_inline]] inline auto StageSolver<Space, Coef>::start_stage(int i, const State& q_hat,
@@ -423,12 +429,45 @@ template <class State>
     space_.to_physical_staged(x_.Q);
     return s;
   }
-  s.r_hat = co(k_.phi0c(i)) * q_hat + co(k_.hcphi1c(i)) * p_hat;
-  for (int j = 0; j < i; ++j) s.r_hat -= co(k_.abar(i, j)) * stored_force(G(j));
-  predictor_.predict(i, x_.guess_hat);
-  s.Q_hat = s.r_hat - s.abar_ii * x_.guess_hat;
+  if constexpr (Space::kFixed) {
+    start_fixed(i, q_hat, p_hat, s);
+  } else {
+    s.r_hat = co(k_.phi0c(i)) * q_hat + co(k_.hcphi1c(i)) * p_hat;
+    for (int j = 0; j < i; ++j) s.r_hat -= co(k_.abar(i, j)) * stored_force(G(j));
+    predictor_.predict(i, x_.guess_hat);
+    s.Q_hat = s.r_hat - s.abar_ii * x_.guess_hat;
+  }
   space_.to_physical(s.Q_hat, x_.Q);
   return s;
+}
+
+// start_stage with a fixed D: the same r_i, and Q_0 one multiply-subtract after the newest known
+// force G_{i-1} (i > 0), which enters both r_i and the guess (its first node, weight w_0):
+// r_i = base - h^2 abar_{i,i-1} G_{i-1}, Q_0 = (base - h^2 abar_ii rest) - h^2 (abar_{i,i-1} +
+// abar_ii w_0) G_{i-1}, with base and rest (the guess's other nodes) formed while G_{i-1} is
+// evaluated. (Q_0 is a guess: its rounding differs from r_i - h^2 abar_ii g_pred's, which waited
+// for G_{i-1} through r_i's last term and the whole prediction. The guess is not kept in
+// x_.guess_hat: fall_back and the predictor's adapt form it anew.)
+template <class Space, class Coef>
+template <class State>
+[[gnu::always_inline]] inline void StageSolver<Space, Coef>::start_fixed(int i, const State& q_hat,
+                                                                         const State& p_hat,
+                                                                         Start& s) {
+  const auto co = [](const auto& value) { return Space::co(value); };
+  s.r_hat = co(k_.phi0c(i)) * q_hat + co(k_.hcphi1c(i)) * p_hat;
+  for (int j = 0; j + 1 < i; ++j) s.r_hat -= co(k_.abar(i, j)) * stored_force(G(j));
+  if (i == 0) {  // (the newest node is the step before's: long known)
+    Work guess;
+    predictor_.predict(i, guess);
+    s.Q_hat = s.r_hat - s.abar_ii * guess;
+    return;
+  }
+  Work rest;
+  const double w0 = predictor_.predict_rest(i, rest);
+  const auto g = stored_force(G(i - 1));
+  const auto abar_newest = co(k_.abar(i, i - 1));
+  s.Q_hat = (s.r_hat - s.abar_ii * rest) - (abar_newest + s.abar_ii * w0) * g;
+  s.r_hat -= abar_newest * g;
 }
 
 }  // namespace erkn::detail
