@@ -108,6 +108,19 @@ class StagePredictor {
     for (int l = use_[i] - 1; l >= 1; --l) rest += use_weights_[i][l] * node(i, l);
     return use_[i] > 0 ? use_weights_[i][0] : 0.0;
   }
+  /// predict_rest for stage 0 of the next step, formed before advance() (StageSolver::carry):
+  /// its nodes, all of the steps before, read one step younger (this step's G(j) for the step
+  /// before's). Valid when the history is full (advance then changes no weight).
+  template <class Out>
+  double predict_rest_next(Out& rest) {
+    static_assert(kInPlace);
+    rest.setZero();
+    for (int l = use_[0] - 1; l >= 1; --l)
+      rest += use_weights_[0][l] * stored_force(space_.map(block_.data(), offset_[0][l] - s_));
+    return use_[0] > 0 ? use_weights_[0][0] : 0.0;
+  }
+  /// Whether the steps before are all known (advance changes no node's weight).
+  bool full_history() const { return history_ == kHistory; }
   /// Counts a step of stage i towards its next order check; true when it is due (adapt). Never
   /// due for a stage with fewer than two nodes (one-stage methods: adapt has no order to choose;
   /// its call was 4 % of P2's instructions for SERKN1s2(1), callgrind).

@@ -67,7 +67,12 @@ class StageSolver {
   /// After a successful step (its gradients start the next step's guesses).
   void advance() { predictor_.advance(); }
   /// Forgets the steps before (set_state).
-  void reset() { predictor_.reset(); }
+  void reset() {
+    predictor_.reset();
+    carried_for_ = -1;
+  }
+  template <class X, class B>
+  void carry(const X& q_part, const X& p_part, const B& h2bbar_last, const B& hb_last);
 
  private:
   // The fixed point's iterates, force and contraction measure: with a fixed D values, which the
@@ -287,6 +292,11 @@ class StageSolver {
   // The step being taken (for messages; solve's argument, kept by address: a copy loaded the
   // caller's separate stores as one wide load, which waits for them to retire).
   const StepPlace* at_ = nullptr;
+  // With a fixed D, the next step's first Q_0 of stage 0 (carry) and the step it is for (its
+  // number, 1-based; -1: none). A step that fails after carry leaves it for a step number that
+  // does not come: its retry has the same number (or set_state rolled the state back: reset).
+  std::conditional_t<Space::kFixed, typename Space::Array, bool> next_Q0_{};
+  long carried_for_ = -1;
   std::optional<NewtonWork> newton_;
   std::optional<KrylovWork> krylov_;
   // The counts of this step's Newton fallbacks (valid when newton_pending_; cleared by the
@@ -456,6 +466,10 @@ template <class State>
   const auto co = [](const auto& value) { return Space::co(value); };
   s.r_hat = co(k_.phi0c(i)) * q_hat + co(k_.hcphi1c(i)) * p_hat;
   for (int j = 0; j + 1 < i; ++j) s.r_hat -= co(k_.abar(i, j)) * stored_force(G(j));
+  if (i == 0 && carried_for_ == at_->step) {  // (formed by the step before: carry)
+    s.Q_hat = next_Q0_;
+    return;
+  }
   if (i == 0) {  // (the newest node is the step before's: long known)
     Work guess;
     predictor_.predict(i, guess);
@@ -468,6 +482,33 @@ template <class State>
   const auto abar_newest = co(k_.abar(i, i - 1));
   s.Q_hat = (s.r_hat - s.abar_ii * rest) - (abar_newest + s.abar_ii * w0) * g;
   s.r_hat -= abar_newest * g;
+}
+
+// With a fixed D, at the end of a step (before advance) whose new state is (q_part, p_part)
+// without the last stage's terms, -h^2 bbar_last G_last and -h b_last G_last: the next step's Q_0
+// of stage 0, one multiply-subtract after this step's last force G_last, as start_fixed forms Q_0
+// after G_{i-1}: Q_0 = phi0c_0 q_new + hcphi1c_0 p_new - h^2 abar_00 (rest + w_0 G_last), rest the
+// guess's other nodes, = (phi0c_0 q_part + hcphi1c_0 p_part - h^2 abar_00 rest) - (phi0c_0 h^2
+// bbar_last + hcphi1c_0 h b_last + h^2 abar_00 w_0) G_last. (A guess: q_new without the
+// compensated summation's error. Formed only with the history full, when advance changes no
+// weight, and for an implicit stage 0. Without it, the chain from G_last through the update, the
+// state's stores and r_0 to Q_0 was on the path of the next step's first gradient evaluation.)
+template <class Space, class Coef>
+template <class X, class B>
+[[gnu::always_inline]] inline void StageSolver<Space, Coef>::carry(const X& q_part, const X& p_part,
+                                                                   const B& h2bbar_last,
+                                                                   const B& hb_last) {
+  if constexpr (Space::kFixed) {
+    if (record_[0].explicit_stage || !predictor_.full_history()) return;
+    const auto co = [](const auto& value) { return Space::co(value); };
+    const auto phi0c = co(k_.phi0c(0)), hcphi1c = co(k_.hcphi1c(0)), abar = co(k_.abar(0, 0));
+    Work rest;
+    const double w0 = predictor_.predict_rest_next(rest);
+    const auto g = stored_force(G(s_ - 1));
+    next_Q0_ = (phi0c * q_part + hcphi1c * p_part - abar * rest) -
+               (phi0c * h2bbar_last + hcphi1c * hb_last + abar * w0) * g;
+    carried_for_ = at_->step + 1;
+  }
 }
 
 }  // namespace erkn::detail

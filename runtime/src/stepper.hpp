@@ -119,8 +119,11 @@ class Stepper final : public StepperBase {
     const auto co = [](const auto& value) { return Space::co(value); };
     const StepCoefficients<K>& k = k_;
     update_start(co(k.phi0m1()), co(k.hphi1()), co(k.mhMphi1()), q_hat_, p_hat_, dq, dp);
-    for (int i = 0; i < s_; ++i)
+    for (int i = 0; i + 1 < s_; ++i)
       update_stage(co(k.h2bbar(i)), co(k.hb(i)), stored_force(solver_.G(i)), dq, dp);
+    const int last = s_ - 1;  // (the next step's first guess formed before its terms: carry)
+    solver_.carry(q_hat_ + dq, p_hat_ + dp, co(k.h2bbar(last)), co(k.hb(last)));
+    update_stage(co(k.h2bbar(last)), co(k.hb(last)), stored_force(solver_.G(last)), dq, dp);
     require_finite_result(q_hat_ + dq, p_hat_ + dp, at);
     add(q_hat_, eq_hat_, dq);
     add(p_hat_, ep_hat_, dp);
