@@ -88,20 +88,24 @@ struct PlanCache {
 // grid, whose round-off differs: implicit runs then differ between processes in their results
 // and iteration counts (sine-Gordon N = 2048, h = 1/100, 100 steps: SERKN3s4(1) 1295 or 1368
 // gradient evaluations in runs of one binary). FFTW's remedy is wisdom, the plans recorded:
-// the file named by the environment variable ERKN_FFTW_WISDOM is imported before a process's
-// first plan, and every new plan is added to it (written to a file of the process, then renamed
+// the file named by the environment variable ERKN_FFTW_WISDOM is imported before each new plan
+// of a process, and every new plan is added to it (written to a file of the process, then renamed
 // over it, so concurrent processes never read a partial file). Processes sharing the file plan
 // alike, and plan in microseconds. (FFTW_ESTIMATE plans alike in every process too, but its
 // 1-D r2c + c2r pair took 2.0x the time of MEASURE's at N = 512, 1.25x at 2048 and 8192: a
 // stand-alone driver, medians of 7.) Unset: each process measures for itself.
-const char* wisdom_file() { return std::getenv("ERKN_FFTW_WISDOM"); }
+// (Set but empty counts as unset: it named no file, and the export left ".<pid>" files behind.)
+const char* wisdom_file() {
+  const char* file = std::getenv("ERKN_FFTW_WISDOM");
+  return file && *file ? file : nullptr;
+}
 
-void import_wisdom_once() {
-  static const bool imported = [] {
-    if (const char* file = wisdom_file()) fftw_import_wisdom_from_filename(file);
-    return true;
-  }();
-  (void)imported;
+// Before each new plan, not once per process: a process that imported the file before another
+// wrote a size would measure that size for itself and then replace the other's plan in the file
+// (python_solve_benchmark.py with a fresh file: erkn.solve and its C++ server exported different
+// N = 2048 plans in the first run, and so ran different transforms).
+void import_wisdom() {
+  if (const char* file = wisdom_file()) fftw_import_wisdom_from_filename(file);
 }
 
 void export_wisdom() {
@@ -120,7 +124,7 @@ Plans shared_plans(PlanKey key, Make&& make) {
   static PlanCache cache;
   std::lock_guard lock(planner_mutex());
   if (auto it = cache.plans.find(key); it != cache.plans.end()) return it->second;
-  import_wisdom_once();
+  import_wisdom();
   const Plans plans = make();
   if (!plans.forward || !plans.inverse) {
     if (plans.forward) fftw_destroy_plan(plans.forward);
