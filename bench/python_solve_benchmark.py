@@ -4,7 +4,7 @@ target <= 1.1), for every explicit registry method on Duffing (P2, "duffing") an
 N = 32 and 2048 ("sine"): the same M, initial data, h and steps, output only at t0 and t_end
 (every = steps). The C++ side runs in `erkn_integrate_benchmark --serve` (a child process that
 times the runs it is asked for, thread CPU time); the two are interleaved in rounds, each ratio
-the median over rounds of Python / C++ in that round. Three things make two runs agree
+the median over rounds of Python / C++ in that round. Four things make two runs agree
 (python_solve_benchmark's 75 cells, two runs at load 8-9: 75 within 10 %, the largest 6.4 %):
 - One CPU for both processes (the driver pins itself to the lowest CPU it may use before
   starting the server, which inherits that). On a shared machine the CPUs are not equally fast
@@ -17,6 +17,15 @@ the median over rounds of Python / C++ in that round. Three things make two runs
   (Duffing Strang 2.33 in one run, 1.27 in the next).
 - One FFTW wisdom file (ERKN_FFTW_WISDOM, as scripts/main.sh sets it), so both processes use
   the same plans; without one each measures its own, and the N = 2048 cells moved by 10 %.
+- The same glibc malloc thresholds in both processes (fixed, high). A run at N = 2048 grows the
+  heap by ~230 KB and frees it; with glibc's default thresholds whether that is trimmed and
+  faulted back in on every run depends on the process's history (a process that measured FFTW
+  plans had raised them, one that planned from wisdom had not; erkn.solve's runs in the
+  interpreter took 0.58 ms either way). The C++ server planning from wisdom took 1.7 ms per
+  Strang run against 0.6-0.8 after measuring, so the N = 2048 cells (Strang, SABA2, ABA1064)
+  read 0.47-0.83 on every run after the first with a fresh wisdom file; with these thresholds
+  0.99-1.08 in four runs (fresh and reused wisdom file), and all 25 N = 2048 cells of --short
+  0.99-1.05 in three runs from a fresh file (before: 0.64-1.07 in the first, 0.49-1.03 after).
 Appends a section to the Markdown file.
 
     PYTHONPATH=build/python python3 bench/python_solve_benchmark.py \\
@@ -24,6 +33,7 @@ Appends a section to the Markdown file.
 """
 
 import argparse
+import ctypes
 import os
 import statistics
 import subprocess
@@ -107,6 +117,26 @@ def measure(server, cells, rounds, min_sample):
     return [(statistics.median(x), statistics.median(c)) for x, c in zip(ratios, cxx)]
 
 
+# glibc's mallopt parameters and the thresholds set (bytes): nothing is trimmed from the heap's
+# top below 64 MiB, blocks below 32 MiB (glibc's largest mmap threshold) come from the heap.
+M_TRIM_THRESHOLD, M_MMAP_THRESHOLD = -1, -3
+TRIM_THRESHOLD, MMAP_THRESHOLD = 64 << 20, 32 << 20
+SAME_MALLOC = ("the same glibc malloc thresholds in both (trim 64 MiB, mmap 32 MiB: no run "
+               "trims the heap and faults it back)")
+
+
+def same_malloc_thresholds():
+    """Sets this process's malloc thresholds and returns the environment that gives the server
+    the same (GLIBC_TUNABLES), or None where there is no glibc mallopt."""
+    mallopt = getattr(ctypes.CDLL(None), "mallopt", None)
+    if mallopt is None or not (mallopt(M_TRIM_THRESHOLD, TRIM_THRESHOLD)
+                               and mallopt(M_MMAP_THRESHOLD, MMAP_THRESHOLD)):
+        return None
+    tunables = (f"glibc.malloc.trim_threshold={TRIM_THRESHOLD}:"
+                f"glibc.malloc.mmap_threshold={MMAP_THRESHOLD}")
+    return dict(os.environ, GLIBC_TUNABLES=tunables)
+
+
 def pin_to_one_cpu():
     """This process, and the server it starts (which inherits it), on its lowest allowed CPU
     (Linux; elsewhere the scheduler's choice, and the header says so)."""
@@ -124,8 +154,9 @@ def main():
     pin_to_one_cpu()
     explicit = [m["name"] for m in erkn.methods() if is_explicit(m["name"])]
     cells = [(scene, method) for scene in scenes(args.short) for method in explicit]
+    env = same_malloc_thresholds()
     server = subprocess.Popen([args.server, "--serve"], stdin=subprocess.PIPE,
-                              stdout=subprocess.PIPE, text=True)
+                              stdout=subprocess.PIPE, text=True, env=env)
     rows = []
     for (scene, method), (ratio, cxx) in zip(cells, measure(server, cells, rounds, min_sample)):
         rows.append((scene[0], method, scene[7], 1e3 * cxx, ratio))
@@ -133,10 +164,10 @@ def main():
     server.stdin.close()
     server.wait()
     if args.markdown:
-        write_markdown(args, rows, rounds, min_sample)
+        write_markdown(args, rows, rounds, min_sample, env is not None)
 
 
-def write_markdown(args, rows, rounds, min_sample):
+def write_markdown(args, rows, rounds, min_sample, same_malloc):
     met = sum(r[4] <= TARGET for r in rows)
     command = "python3 bench/python_solve_benchmark.py " + " ".join(sys.argv[1:])
     with open(args.markdown, "a") as f:
@@ -148,6 +179,7 @@ def write_markdown(args, rows, rounds, min_sample):
                 "(`erkn_integrate_benchmark --serve`), "
                 f"{PINNED if hasattr(os, 'sched_setaffinity') else 'not pinned'}; "
                 f"{WISDOM if os.environ.get('ERKN_FFTW_WISDOM') else OWN_PLANS}; "
+                f"{SAME_MALLOC if same_malloc else 'each process its own malloc thresholds'}; "
                 f"median over {rounds} rounds of Python / C++, a round one sample of each "
                 "side for every cell in turn (a cell's samples spread over the whole run), "
                 f"each sample at least {1e3 * min_sample:.0f} ms of C++ runs. "
