@@ -1,7 +1,5 @@
 # erkn.advise_step_size, erkn.hessian_bounds_at / hessian_bounds_along and erkn.Ensemble: the
 # C++ advisor and ensemble reached from Python, checked against direct runs.
-import threading
-import time
 
 import numpy as np
 import pytest
@@ -240,24 +238,13 @@ def test_ensemble_of_systems_one_per_trajectory():
                       h=0.01)
 
 
-def test_ensemble_with_builtin_potentials_releases_the_gil(chain):
+def test_ensemble_with_builtin_potentials_releases_the_gil(chain, longest_stall):
     M = chain[0]
     Q0, P0 = initial_data(4, 4)
     ens = erkn.Ensemble(M, "sine", q0=Q0, p0=P0, h=1e-3)
+    # Holding the GIL for the run would stall this thread for about `alone`.
     t_end, alone = 1.0, 0.0
     while alone < 0.1:  # a run long enough to see a stall (0.02 to 0.7 s per 5.0 measured)
         t_end *= 2
-        start = time.perf_counter()
-        ens.integrate(t_end, threads=1)
-        alone = time.perf_counter() - start
-    worker = threading.Thread(target=ens.integrate, args=(t_end, 1))
-    # Python runs here only while the ensemble does not hold the GIL: holding it for the run
-    # would stall this loop for about `alone`. (The clock starts before the thread: a worker
-    # holding the GIL from its start stalls start() itself, which the loop would not see.)
-    last, gap = time.perf_counter(), 0.0
-    worker.start()
-    while worker.is_alive():
-        now = time.perf_counter()
-        gap, last = max(gap, now - last), now
-    worker.join()
+        gap, alone = longest_stall(lambda: ens.integrate(t_end, threads=1))
     assert gap < 0.5 * alone, (gap, alone)

@@ -6,7 +6,6 @@ import signal
 import subprocess
 import sys
 import textwrap
-import threading
 import time
 
 import numpy as np
@@ -172,24 +171,7 @@ def test_chunked_step_and_integrate_are_one_call():
     assert a.statistics["steps"] == 50000
 
 
-def longest_stall(work):
-    """(The longest time this thread waited for the GIL while `work` ran in another, the seconds
-    `work` takes alone.) Python runs here only while `work` does not hold the GIL. (The clock
-    starts before the thread: a worker holding the GIL from its start stalls start() itself.)"""
-    start = time.perf_counter()
-    work()
-    alone = time.perf_counter() - start
-    worker = threading.Thread(target=work)
-    last, gap = time.perf_counter(), 0.0
-    worker.start()
-    while worker.is_alive():
-        now = time.perf_counter()
-        gap, last = max(gap, now - last), now
-    worker.join()
-    return gap, alone
-
-
-def test_a_long_solve_with_a_builtin_potential_steps_without_the_gil():
+def test_a_long_solve_with_a_builtin_potential_steps_without_the_gil(longest_stall):
     # (Short runs keep it: below some microseconds of work releasing it costs more than it frees.)
     def solve(t_end):
         return lambda: erkn.solve(4.0, "sine", q0=np.full(8, 0.1), p0=np.zeros(8),
@@ -201,7 +183,7 @@ def test_a_long_solve_with_a_builtin_potential_steps_without_the_gil():
     assert gap < 0.5 * alone, (gap, alone)
 
 
-def test_negative_control_a_call_holding_the_gil_stalls_this_thread():
+def test_negative_control_a_call_holding_the_gil_stalls_this_thread(longest_stall):
     libc = ctypes.PyDLL(None)  # (a PyDLL's calls keep the GIL, a CDLL's release it)
     gap, alone = longest_stall(lambda: libc.usleep(200000))
     assert gap > 0.5 * alone, (gap, alone)
