@@ -81,6 +81,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "block_pool.hpp"
 #include "erkn/error.hpp"
 #include "erkn/integrator.hpp"
 #include "explicit_passes.hpp"
@@ -154,9 +155,10 @@ class ExplicitStepper final : public StepperBase {
   // The state (q, p, eq, ep), the gradient of the current stage and the last stage's gradient of
   // the previous step; with a dynamic dimension also the state's second copy (4 arrays).
   static constexpr int kArrays = kFixed ? 6 : 10;
-  // Their storage: one allocation, or (fixed dimension) inside the stepper.
+  // Their storage: one block, kept for the process's next stepper when large (block_pool.hpp),
+  // or (fixed dimension) inside the stepper.
   using Storage =
-      std::conditional_t<kFixed, std::array<Scalar, kArrays * std::max(D, 1)>, Spectral>;
+      std::conditional_t<kFixed, std::array<Scalar, kArrays * std::max(D, 1)>, PooledArray<Scalar>>;
 
   /// One copy of the state in eigen coordinates: q, p and their summation errors; Values holds
   /// them (fixed dimension).
@@ -186,7 +188,7 @@ class ExplicitStepper final : public StepperBase {
       if constexpr (kFixed)
         return Storage{};
       else
-        return Spectral(kArrays * stride);
+        return Storage(kArrays * stride);
     }
     // Slot k (the second copy's slots 6..9 exist with a dynamic dimension only).
     Scalar* slot(int k) { return k < kArrays ? storage.data() + k * stride : nullptr; }
