@@ -33,7 +33,7 @@ template <class Space, class Coef>
 void StageSolver<Space, Coef>::newton(int i, Statistics& stats) {
   start_newton(i);
   NewtonWork& w = *newton_;
-  x_.Q_hat = x_.r_hat - k_.abar(i, i) * x_.guess_hat;
+  x_.Q_hat = first_iterate(x_.r_hat, k_.abar(i, i), x_.guess_hat);
   space_.inverse(x_.Q_hat, x_.Q);
   double delta_old = 0, residual = 0;
   int it = 1, stalls = 0;

@@ -17,11 +17,11 @@ void StageSolver<Space, Coef>::start_newton_krylov(int i) {
     for (Eigen::VectorXd* x : {&w.Qe, &w.ge}) x->resize(space_.dimension());
     w.gmres.emplace(space_.dimension(), kKrylovRestart);
   }
-  const auto sums = space_.reduce(
-      std::array{space_.squared_norm(x_.r_hat - k_.abar(i, i) * x_.guess_hat),
-                 space_.squared_norm(x_.Q_hat - (x_.r_hat - k_.abar(i, i) * x_.guess_hat))});
+  const auto sums = space_.reduce(std::array{
+      space_.squared_norm(first_iterate(x_.r_hat, k_.abar(i, i), x_.guess_hat)),
+      space_.squared_norm(x_.Q_hat - first_iterate(x_.r_hat, k_.abar(i, i), x_.guess_hat))});
   if (!(sums[1] <= kKeepIterate * kKeepIterate * sums[0]))
-    x_.Q_hat = x_.r_hat - k_.abar(i, i) * x_.guess_hat;
+    x_.Q_hat = first_iterate(x_.r_hat, k_.abar(i, i), x_.guess_hat);
   space_.inverse(x_.Q_hat, x_.Q);
 }
 

@@ -100,24 +100,24 @@ class StagePredictor {
   }
   /// With a fixed size: stage i's prediction without its newest node, rest = sum_{l >= 1} w_l
   /// node_l (oldest first), and that node's weight w_0 (0 with no node); the caller adds w_0 times
-  /// the newest node last (StageSolver::start_fixed: for i > 0 it is this step's G_{i-1}).
-  template <class Out>
-  double predict_rest(int i, Out& rest) {
+  /// the newest node last. The nodes read through at(offset) (offset: the node's array among the
+  /// steps' arrays, this step's stages first): stored() for the nodes as they are (for i > 0 the
+  /// newest is this step's G_{i-1}: StageSolver::start_fixed), next() for stage 0 of the next step
+  /// formed before advance() (StageSolver::carry; valid when the history is full, so advance then
+  /// changes no weight).
+  template <class Out, class At>
+  double predict_rest(int i, Out& rest, At&& at) const {
     static_assert(kInPlace);
     rest.setZero();
-    for (int l = use_[i] - 1; l >= 1; --l) rest += use_weights_[i][l] * node(i, l);
+    for (int l = use_[i] - 1; l >= 1; --l) rest += use_weights_[i][l] * at(offset_[i][l]);
     return use_[i] > 0 ? use_weights_[i][0] : 0.0;
   }
-  /// predict_rest for stage 0 of the next step, formed before advance() (StageSolver::carry):
-  /// its nodes, all of the steps before, read one step younger (this step's G(j) for the step
-  /// before's). Valid when the history is full (advance then changes no weight).
-  template <class Out>
-  double predict_rest_next(Out& rest) {
-    static_assert(kInPlace);
-    rest.setZero();
-    for (int l = use_[0] - 1; l >= 1; --l)
-      rest += use_weights_[0][l] * stored_force(space_.map(block_.data(), offset_[0][l] - s_));
-    return use_[0] > 0 ? use_weights_[0][0] : 0.0;
+  /// predict_rest's readers: the node at an offset, or (next) the node one step younger.
+  auto stored() {
+    return [this](int offset) { return stored_force(space_.map(block_.data(), offset)); };
+  }
+  auto next() {
+    return [this](int offset) { return stored_force(space_.map(block_.data(), offset - s_)); };
   }
   /// Whether the steps before are all known (advance changes no node's weight).
   bool full_history() const { return history_ == kHistory; }

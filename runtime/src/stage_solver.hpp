@@ -194,6 +194,12 @@ class StageSolver {
   static bool measures_contraction(double delta_first);
   void record_contraction(int i, double first2, Change c, double delta_first, double measure2);
   static double square(double x) { return x * x; }
+  // A stage's starting iterate Q_0 = r_i - h^2 abar_ii g_pred (every path's: start_stage,
+  // start_fixed's stage 0, Newton's start).
+  template <class R, class A, class P>
+  static auto first_iterate(const R& r_hat, const A& abar_ii, const P& guess) {
+    return r_hat - abar_ii * guess;
+  }
 
   // stage_newton.hpp
   void newton(int i, Statistics& stats);
@@ -445,7 +451,7 @@ template <class State>
     s.r_hat = co(k_.phi0c(i)) * q_hat + co(k_.hcphi1c(i)) * p_hat;
     for (int j = 0; j < i; ++j) s.r_hat -= co(k_.abar(i, j)) * stored_force(G(j));
     predictor_.predict(i, x_.guess_hat);
-    s.Q_hat = s.r_hat - s.abar_ii * x_.guess_hat;
+    s.Q_hat = first_iterate(s.r_hat, s.abar_ii, x_.guess_hat);
   }
   space_.to_physical(s.Q_hat, x_.Q);
   return s;
@@ -473,11 +479,11 @@ template <class State>
   if (i == 0) {  // (the newest node is the step before's: long known)
     Work guess;
     predictor_.predict(i, guess);
-    s.Q_hat = s.r_hat - s.abar_ii * guess;
+    s.Q_hat = first_iterate(s.r_hat, s.abar_ii, guess);
     return;
   }
   Work rest;
-  const double w0 = predictor_.predict_rest(i, rest);
+  const double w0 = predictor_.predict_rest(i, rest, predictor_.stored());
   const auto g = stored_force(G(i - 1));
   const auto abar_newest = co(k_.abar(i, i - 1));
   s.Q_hat = (s.r_hat - s.abar_ii * rest) - (abar_newest + s.abar_ii * w0) * g;
@@ -503,7 +509,7 @@ template <class X, class B>
     const auto co = [](const auto& value) { return Space::co(value); };
     const auto phi0c = co(k_.phi0c(0)), hcphi1c = co(k_.hcphi1c(0)), abar = co(k_.abar(0, 0));
     Work rest;
-    const double w0 = predictor_.predict_rest_next(rest);
+    const double w0 = predictor_.predict_rest(0, rest, predictor_.next());
     const auto g = stored_force(G(s_ - 1));
     next_Q0_ = (phi0c * q_part + hcphi1c * p_part - abar * rest) -
                (phi0c * h2bbar_last + hcphi1c * hb_last + abar * w0) * g;
