@@ -48,12 +48,20 @@ void TimeGrid::refuse_unresolved(double h, double t0, double t_end) {
 
 void TimeGrid::require_output_times(double t_end,
                                     const Eigen::Ref<const Eigen::VectorXd>& times) const {
-  // (Every time's test, the first failure looked for only then: with a branch out of the loop per
-  // time it was 35 instructions per output time; callgrind, Duffing with 20 output times.)
+  // Every time admissible, tested as: the first and the last admissible, and each time >= the
+  // one before (false for NaN). That is the same: a finite time between two finite ones is
+  // finite, and the windows' edges t0 - window(m0, tau) and t_end + window(m1, tau) move by at
+  // most 4 eps |dtau| as tau moves by dtau, so no time after the first crosses the lower one and
+  // none before the last the upper one. (The first failure is looked for only then. Callgrind,
+  // Duffing Strang with 20 output times: admissible on every time was 28 instructions per output
+  // time, this 6.)
+  const Eigen::Index n = times.size();
+  if (n == 0) return;
   const double t0 = t(), m0 = std::max(std::abs(t0), h_), m1 = std::max(std::abs(t_end), h_);
-  bool all = true;
-  double prev = -std::numeric_limits<double>::infinity();
-  for (const double tau : times) all &= admissible(tau, prev, t0, t_end, m0, m1), prev = tau;
+  const double none = -std::numeric_limits<double>::infinity();
+  bool all = admissible(times[0], none, t0, t_end, m0, m1) &
+             admissible(times[n - 1], none, t0, t_end, m0, m1);
+  for (Eigen::Index k = 1; k < n; ++k) all &= times[k] >= times[k - 1];
   if (!all) [[unlikely]]
     refuse_output_times(t_end, times);
 }

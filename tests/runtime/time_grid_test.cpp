@@ -4,6 +4,7 @@
 // leaves the grid as it was. Random t0 and h over many magnitudes (fixed seed).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <erkn/erkn.hpp>
 #include <erkn/problems.hpp>
@@ -165,6 +166,44 @@ TEST(TimeGrid, OutputTimesAreCheckedAsDefinedAndTheFirstBadOneIsNamed) {
         EXPECT_CONTAINS(error_of([&] { g.require_output_times(t_end, times); }),
                         "output time " + std::to_string(j) + " =");
       }
+  }
+}
+
+// A list of times is accepted exactly when each of its times would be alone: the ascending lists
+// made of the times one ulp apart across both windows' edges (every sub-list, so first, last and
+// middle times all meet both edges) are accepted or refused as the definition applied to every
+// time says. (require_output_times tests the first and last in full and the rest for order only.)
+// Negative control: one time out of order among accepted ones is refused, and named.
+TEST(TimeGrid, AListOfTimesIsJudgedAsEachOfItsTimesAlone) {
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const TimeGrid& g : grids()) {
+    const double t = g.t(), h = g.h(), t_end = t + 7 * h;
+    const auto window = [h](double a, double b) {
+      return 4 * kEps * std::max({std::abs(a), std::abs(b), h});
+    };
+    const auto defined = [&](double tau) {
+      return std::isfinite(tau) && tau >= t - window(t, tau) && tau <= t_end + window(t_end, tau);
+    };
+    std::vector<double> sweep;  // (ascending: 4 ulps around each edge)
+    for (double edge : {t - window(t, t), t_end + window(t_end, t_end)}) {
+      double tau = std::nextafter(std::nextafter(edge, -inf), -inf);
+      for (int k = 0; k < 4; ++k, tau = std::nextafter(tau, inf)) sweep.push_back(tau);
+    }
+    int accepted = 0, refused = 0;
+    for (size_t first = 0; first < sweep.size(); ++first)
+      for (size_t last = first; last < sweep.size(); ++last) {
+        const Eigen::VectorXd times =
+            Eigen::Map<const Eigen::VectorXd>(sweep.data() + first, Eigen::Index(last - first + 1));
+        const bool ok = error_of([&] { g.require_output_times(t_end, times); }).empty();
+        EXPECT_EQ(ok, std::all_of(times.begin(), times.end(), defined))
+            << "t = " << t << ", h = " << h << ", times " << times.transpose();
+        ++(ok ? accepted : refused);
+      }
+    EXPECT_GT(accepted, 0);
+    EXPECT_GT(refused, 0);
+    Eigen::VectorXd swapped = Eigen::VectorXd::LinSpaced(5, t, t_end);
+    std::swap(swapped[2], swapped[3]);
+    EXPECT_CONTAINS(error_of([&] { g.require_output_times(t_end, swapped); }), "output time 3 =");
   }
 }
 
