@@ -190,7 +190,7 @@ void add_scene(FloorScene s, Gradient g, const Settings& settings, Schedule& sch
         runs.push_back([sc, m] { sc->floor(m, sc->callback(), Variant::extras); });
     }
   }
-  schedule.add(std::move(runs), [=, &out](const Schedule::Seconds& t) {
+  schedule.add(std::move(runs), [=, &out](const Schedule::Seconds& t, const RoundStates&) {
     const auto expl = per_grad_median(t, ev, 0, peers_from);
     const auto peers = per_grad_median(t, ev, peers_from, implicit_from);
     out.explicit_s = median(expl), out.peer_s = median(peers);

@@ -12,6 +12,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "integrate_timing.hpp"
@@ -54,23 +55,39 @@ inline std::vector<Scene> scenes(bool short_mode) {
 /// erkn through System::gradient also the peer through the same std::function (callback_peer:
 /// its time over the inlined peer's) and erkn's plain and default runs over that peer's (NaN in
 /// the rows with the gradient compiled in).
+/// states: the host's state in each of the cell's rounds; peer_slow_fast: the peer's median
+/// time in slow rounds over that in fast rounds (NaN unless both occur).
 struct Cell {
   std::string scene, method;
   long steps = 0;
   double peer_ms = 0, plain = 0, deflt = 0, output = 0;
   double callback_peer = NAN, plain_cb = NAN, deflt_cb = NAN;
+  RoundStates states;
+  double peer_slow_fast = NAN;
 };
-/// One implicit method's CPU per grad U against the explicit path's on a scene.
+/// One implicit method's CPU per grad U against the explicit path's on a scene; the ratio's
+/// median also over the fast and over the slow rounds alone (NaN where none), and the explicit
+/// path's median time in slow rounds over that in fast rounds.
 struct ImplicitCell {
   std::string scene, method;
   double us_per_grad = 0, explicit_us_per_grad = 0, ratio = 0;
+  double ratio_fast = NAN, ratio_slow = NAN;
+  RoundStates states;
+  double explicit_slow_fast = NAN;
 };
 struct Results {
   std::vector<Cell> cells;
   std::vector<ImplicitCell> implicit_cells;
   bool pinned = false;         // the timing thread on one CPU
   bool malloc_steady = false;  // glibc malloc without fastbins, trimming, mmap (steady_malloc)
+  StateSplit host;             // the host's states in this run (host_state.hpp)
 };
+
+/// Median of x over slow rounds / median over fast rounds (NaN unless both occur).
+inline double slow_over_fast(const std::vector<double>& x, const RoundStates& s) {
+  const auto [fast, slow] = median_by_state(x, s);
+  return slow / fast;
+}
 
 /// integrate(t_end) and read the final state of a run just constructed; returns the gradient
 /// evaluations.
@@ -163,15 +180,17 @@ void add_cell(std::shared_ptr<Runs> sc, const erkn::Method& m, bool templated, S
       [sc, m] { sc->peer(m, sc->g, sc->s.outputs()); }, erkn_output};
   if (!templated)
     contenders.push_back([sc, m] { sc->peer(m, specialist::VectorCallback{sc->sys.gradient}, 1); });
-  schedule.add(std::move(contenders), [&out, index](const Schedule::Seconds& t) {
-    Cell& c = out.cells[index];
-    c.peer_ms = 1e3 * median(t[0]);
-    c.plain = median_ratio(t[1], t[0]), c.deflt = median_ratio(t[2], t[0]);
-    c.output = median_ratio(t[4], t[3]);
-    if (t.size() > 5)
-      c.callback_peer = median_ratio(t[5], t[0]), c.plain_cb = median_ratio(t[1], t[5]),
-      c.deflt_cb = median_ratio(t[2], t[5]);
-  });
+  schedule.add(std::move(contenders),
+               [&out, index](const Schedule::Seconds& t, const RoundStates& states) {
+                 Cell& c = out.cells[index];
+                 c.states = states, c.peer_slow_fast = slow_over_fast(t[0], states);
+                 c.peer_ms = 1e3 * median(t[0]);
+                 c.plain = median_ratio(t[1], t[0]), c.deflt = median_ratio(t[2], t[0]);
+                 c.output = median_ratio(t[4], t[3]);
+                 if (t.size() > 5)
+                   c.callback_peer = median_ratio(t[5], t[0]),
+                   c.plain_cb = median_ratio(t[1], t[5]), c.deflt_cb = median_ratio(t[2], t[5]);
+               });
 }
 
 /// Every explicit method with a peer: erkn with the problems library's System (System::gradient,
@@ -197,10 +216,11 @@ void add_scene(const Scene& s, Basis basis, Gradient g, const Config& cfg, Sched
 
 /// The implicit cells of a scene from every registry method's seconds per run (defaults,
 /// construct + integrate) and gradient evaluations per run: each implicit method's CPU per grad U
-/// against the median over the explicit methods in the same round.
+/// against the median over the explicit methods in the same round, over all rounds and over the
+/// rounds of each state.
 inline void implicit_ratios(const Scene& s, const std::vector<erkn::Method>& methods,
                             const std::vector<double>& evaluations, Schedule::Seconds t,
-                            Results& out) {
+                            const RoundStates& states, Results& out) {
   std::vector<double> explicit_ref(t[0].size());  // per round
   for (size_t r = 0; r < explicit_ref.size(); ++r) {
     std::vector<double> per_grad;
@@ -211,8 +231,13 @@ inline void implicit_ratios(const Scene& s, const std::vector<erkn::Method>& met
   for (size_t i = 0; i < methods.size(); ++i) {
     if (methods[i].is_explicit()) continue;
     for (double& x : t[i]) x /= evaluations[i];
-    out.implicit_cells.push_back({s.label, std::string(methods[i].name()), 1e6 * median(t[i]),
-                                  1e6 * median(explicit_ref), median_ratio(t[i], explicit_ref)});
+    std::vector<double> ratio;
+    for (size_t r = 0; r < t[i].size(); ++r) ratio.push_back(t[i][r] / explicit_ref[r]);
+    ImplicitCell c{s.label, std::string(methods[i].name()), 1e6 * median(t[i]),
+                   1e6 * median(explicit_ref), median(ratio)};
+    std::tie(c.ratio_fast, c.ratio_slow) = median_by_state(ratio, states);
+    c.states = states, c.explicit_slow_fast = slow_over_fast(explicit_ref, states);
+    out.implicit_cells.push_back(std::move(c));
   }
 }
 
@@ -231,14 +256,42 @@ inline void add_implicit(const Scene& s, Schedule& schedule, Results& out) {
     evaluations.push_back(double(erkn_run(m, sc->sys, s, {}, sc->sink)));
     runs.push_back([sc, m, s] { erkn_run(m, sc->sys, s, {}, sc->sink); });
   }
-  schedule.add(std::move(runs), [s, methods, evaluations, &out](const Schedule::Seconds& t) {
-    implicit_ratios(s, methods, evaluations, t, out);
+  schedule.add(std::move(runs), [s, methods, evaluations, &out](const Schedule::Seconds& t,
+                                                                const RoundStates& states) {
+    implicit_ratios(s, methods, evaluations, t, states, out);
   });
 }
 
+/// The host state probe (host_state.hpp): the explicit path's CPU ns per grad U, the median over
+/// every explicit registry method with plain kicks (unprocessed) of one run each on Duffing (P2,
+/// erkn's defaults, construct + 200 steps); ~0.3 ms per reading.
+struct ExplicitPathProbe {
+  Scene s{"probe", erkn::problems::duffing(), 1.0 / 100, 200};
+  erkn::System sys = erkn::problems::system(s.problem);
+  std::vector<erkn::Method> methods = plain_explicit();
+  volatile double sink = 0;
+
+  static std::vector<erkn::Method> plain_explicit() {
+    std::vector<erkn::Method> out;
+    for (const erkn::Method& m : erkn::Method::all())
+      if (m.is_explicit() && !m.has_modified_kicks() && !m.is_processed()) out.push_back(m);
+    return out;
+  }
+  double read() {
+    std::vector<double> ns;
+    for (const erkn::Method& m : methods) {
+      const double start = thread_seconds();
+      const long grads = erkn_run(m, sys, s, {}, sink);
+      ns.push_back(1e9 * (thread_seconds() - start) / double(grads));
+    }
+    return median(ns);
+  }
+};
+
 /// Every scene: the identity basis for scalar and diagonal M, FFTW r2c/c2r otherwise; all cells
 /// timed in one Schedule (a cell's rounds spread over the whole run), the thread on one CPU,
-/// malloc steady (integrate_timing.hpp: steady_malloc).
+/// malloc steady (integrate_timing.hpp: steady_malloc), the host's state probed before every
+/// sample (host_state.hpp).
 inline Results measure_all(const Config& cfg) {
   using Kind = erkn::problems::LinearPart::Kind;
   Results out;
@@ -258,7 +311,8 @@ inline Results measure_all(const Config& cfg) {
     if (s.problem.dim() <= 32 && cfg.method.empty()) add_implicit(s, schedule, out);
   }
   std::fprintf(stderr, "%zu cells, %d rounds\n", out.cells.size(), cfg.plan().rounds);
-  schedule.run(cfg.plan());
+  ExplicitPathProbe probe;
+  out.host = schedule.run(cfg.plan(), [&probe] { return probe.read(); });
   return out;
 }
 

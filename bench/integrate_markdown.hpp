@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "integrate_report.hpp"
 #include "integrate_steps.hpp"
@@ -39,6 +41,47 @@ struct MetCounts {
            std::to_string(n[1]) + ")";
   }
 };
+
+/// A table's rounds in the slow state: "s / n rounds (p %)", and in them the median over cells
+/// of `slow_fast` (a reference time in slow rounds over fast ones), where both states occur.
+struct StateShare {
+  size_t slow = 0, rounds = 0;
+  std::vector<double> slow_fast;
+  void add(const RoundStates& s, double ratio) {
+    slow += s.slow_rounds(), rounds += s.slow.size();
+    if (!std::isnan(ratio)) slow_fast.push_back(ratio);
+  }
+  std::string text(const char* what) const {
+    std::string out = "Rounds in the slow state: " + std::to_string(slow) + " / " +
+                      std::to_string(rounds) + " (" +
+                      fixed(rounds ? 100.0 * double(slow) / double(rounds) : 0.0, 0) + " %)";
+    if (!slow_fast.empty())
+      out += "; " + std::string(what) + " took " + fixed(median(slow_fast), 2) +
+             "x as long in slow rounds as in fast ones (median over the " +
+             std::to_string(slow_fast.size()) + " cells with both)";
+    return out + ".\n\n";
+  }
+};
+
+/// The host's state in this run (host_state.hpp; issue 17).
+inline void markdown_state(std::ofstream& f, const Results& r) {
+  f << "## The host's state\n\n"
+    << "Each virtual CPU of this host switches between a fast and a slow state (seconds to over "
+    << "80 s; issue 17) that slows latency- and memory-bound code most: erkn's implicit stage "
+    << "1.2-1.5x, the explicit path 1.1-1.3x, so an implicit cell (a ratio of the two) and the "
+    << "run-to-run spread read differently with the state. Before every sample (a cell's visit "
+    << "in a round) the benchmark reads a probe on the CPU it is pinned to (bench/host_state.hpp: "
+    << "the explicit path's CPU per grad U, the median over the explicit methods with plain "
+    << "kicks of one run each on Duffing, ~0.3 ms; each reading smoothed with its "
+    << 2 * kProbeNeighbours << " neighbours in time) and splits the run's readings in two states "
+    << "where they fall in two groups at least " << fixed(100 * (kMinStateGap - 1), 0)
+    << " % apart. This run: " << describe(r.host) << "."
+    << (r.host.two_states ? ""
+                          : " A run in one state cannot tell which: the run-to-run section "
+                            "compares the readings of two runs.")
+    << " The verdicts (met / NOT met) are on the median over all rounds, whatever their state; "
+    << "the state is information, no sample is dropped.\n\n";
+}
 
 inline void markdown_header(std::ofstream& f, const Results& r, const Config& cfg) {
   int implicit = 0;
@@ -79,8 +122,38 @@ inline void markdown_header(std::ofstream& f, const Results& r, const Config& cf
     << r.implicit_cells.size() << ".\n\n";
 }
 
+/// "ratio (n)" of one state's rounds, or "-" where the cell had none.
+inline std::string in_state(double ratio, size_t rounds) {
+  return rounds ? fixed(ratio) + " (" + std::to_string(rounds) + ")" : "-";
+}
+
+/// The implicit cells: the median over all rounds (judged), and over each state's rounds.
+inline void markdown_implicit(std::ofstream& f, const Results& r) {
+  StateShare share;
+  for (const ImplicitCell& c : r.implicit_cells) share.add(c.states, c.explicit_slow_fast);
+  f << "\n## Implicit methods: CPU per grad U against the explicit path's\n\n"
+    << "Construct + integrate with erkn's defaults, CPU time / gradient evaluations; the explicit "
+    << "path's is the median over the explicit methods in the same round. The ratio (judged) is "
+    << "the median over all rounds; beside it the median over the rounds in the fast state and "
+    << "over those in the slow state (their count in brackets; a scene's methods share "
+    << "rounds).\n\n"
+    << share.text("the explicit path's runs")
+    << "| scene | method | us per grad U | explicit path's | ratio | | fast rounds | "
+    << "slow rounds |\n|---|---|--:|--:|--:|---|--:|--:|\n";
+  for (const ImplicitCell& c : r.implicit_cells) {
+    const size_t slow = c.states.slow_rounds(), fast = c.states.slow.size() - slow;
+    f << "| " << c.scene << " | " << c.method << " | " << fixed(c.us_per_grad, 4) << " | "
+      << fixed(c.explicit_us_per_grad, 4) << " | " << fixed(c.ratio) << " | "
+      << verdict(c.ratio, kImplicitTarget) << " | " << in_state(c.ratio_fast, fast) << " | "
+      << in_state(c.ratio_slow, slow) << " |\n";
+  }
+}
+
 inline void markdown_cells(std::ofstream& f, const Results& r) {
+  StateShare share;
+  for (const Cell& c : r.cells) share.add(c.states, c.peer_slow_fast);
   f << "## integrate: erkn / specialist's loop\n\n"
+    << share.text("the peer's runs")
     << "| scene | method | steps | peer ms per run | compensation off | | defaults | | "
     << "output times | |\n|---|---|--:|--:|--:|---|--:|---|--:|---|\n";
   for (const Cell& c : r.cells)
@@ -88,15 +161,7 @@ inline void markdown_cells(std::ofstream& f, const Results& r) {
       << " | " << fixed(c.plain) << " | " << verdict(c.plain, kPlainTarget) << " | "
       << fixed(c.deflt) << " | " << verdict(c.deflt, kDefaultTarget) << " | " << fixed(c.output)
       << " | " << verdict(c.output, kDefaultTarget) << " |\n";
-  f << "\n## Implicit methods: CPU per grad U against the explicit path's\n\n"
-    << "Construct + integrate with erkn's defaults, CPU time / gradient evaluations; the explicit "
-    << "path's is the median over the explicit methods in the same round.\n\n"
-    << "| scene | method | us per grad U | explicit path's | ratio | |\n"
-    << "|---|---|--:|--:|--:|---|\n";
-  for (const ImplicitCell& c : r.implicit_cells)
-    f << "| " << c.scene << " | " << c.method << " | " << fixed(c.us_per_grad, 4) << " | "
-      << fixed(c.explicit_us_per_grad, 4) << " | " << fixed(c.ratio) << " | "
-      << verdict(c.ratio, kImplicitTarget) << " |\n";
+  markdown_implicit(f, r);
 }
 
 /// What bounds a callback row's compensation-off cell: met (erkn <= the inlined peer), the
@@ -115,6 +180,9 @@ inline void markdown_callback(std::ofstream& f, const Results& r) {
     missed += c.plain > kPlainTarget,
         by_call += callback_bound(c) == std::string("the opaque call");
   }
+  StateShare share;
+  for (const Cell& c : r.cells)
+    if (!std::isnan(c.callback_peer)) share.add(c.states, c.peer_slow_fast);
   f << "\n## Through System::gradient: the opaque call and erkn\n\n"
     << "The rows through System::gradient again, against the specialist's loop with its gradient "
     << "through the same std::function (a copy of the System's, called on the peer's arrays kept "
@@ -125,7 +193,9 @@ inline void markdown_callback(std::ofstream& f, const Results& r) {
     << missed << " cells not met against the inlined peer, " << by_call
     << " are bounded by the opaque call (a peer that must call it is as slow or slower), the "
     << "others by erkn. Defaults (<= " << kDefaultTarget << "): " << deflt << " / " << rows
-    << ".\n\n| scene | method | peer through the callback / inlined | erkn compensation off / "
+    << ".\n\n"
+    << share.text("the inlined peer's runs")
+    << "| scene | method | peer through the callback / inlined | erkn compensation off / "
     << "peer through the callback | defaults / peer through the callback | off's bound |\n"
     << "|---|---|--:|--:|--:|---|\n";
   for (const Cell& c : r.cells)
@@ -134,23 +204,85 @@ inline void markdown_callback(std::ofstream& f, const Results& r) {
         << fixed(c.plain_cb) << " | " << fixed(c.deflt_cb) << " | " << callback_bound(c) << " |\n";
 }
 
-/// Per cell |r - r_before| / r_before against the csv of an earlier run.
-inline void markdown_spread(std::ofstream& f, const Config& cfg, const std::string& now_csv) {
-  const std::map<std::string, double> before = read_csv(cfg.compare), now = read_csv(now_csv);
-  std::vector<std::pair<double, std::string>> spread;
+/// Both runs' probe readings pooled (each group's once: its cells' rows repeat them) and split:
+/// the two runs' states on one scale, so two runs each in one state are told apart too.
+inline StateSplit pooled_split(const std::map<std::string, CsvRatio>& a,
+                               const std::map<std::string, CsvRatio>& b) {
+  std::set<std::vector<double>> groups;
+  for (const auto* run : {&a, &b})
+    for (const auto& entry : *run)
+      if (!entry.second.probe.empty()) groups.insert(entry.second.probe);
+  std::vector<double> all;
+  for (const auto& g : groups) all.insert(all.end(), g.begin(), g.end());
+  return split_states(all);
+}
+
+/// A ratio of two runs: |now / before - 1| and each run's slow rounds (-1: no readings).
+struct Spread {
+  double spread;
+  std::string key;
+  long slow_before, slow_now;
+  bool states_differ() const { return slow_before >= 0 && slow_before != slow_now; }
+};
+
+inline long slow_rounds(const CsvRatio& v, const StateSplit& s) {
+  if (v.probe.empty()) return -1;
+  return long(
+      std::count_if(v.probe.begin(), v.probe.end(), [&](double x) { return s.is_slow(x); }));
+}
+
+/// The ratios of both runs, largest spread first.
+inline std::vector<Spread> spreads(const std::map<std::string, CsvRatio>& before,
+                                   const std::map<std::string, CsvRatio>& now,
+                                   const StateSplit& pooled) {
+  std::vector<Spread> out;
   for (const auto& [key, value] : now)
-    if (before.count(key)) spread.push_back({std::abs(value / before.at(key) - 1), key});
-  std::sort(spread.rbegin(), spread.rend());
-  long within = 0;
-  for (const auto& s : spread) within += s.first <= kSpreadTarget;
+    if (before.count(key))
+      out.push_back({std::abs(value.ratio / before.at(key).ratio - 1), key,
+                     slow_rounds(before.at(key), pooled), slow_rounds(value, pooled)});
+  std::sort(out.begin(), out.end(),
+            [](const Spread& a, const Spread& b) { return a.spread > b.spread; });
+  return out;
+}
+
+/// "w / n" of the ratios within the target among those whose states differed (or not).
+inline std::string within(const std::vector<Spread>& all, bool differ) {
+  long n = 0, w = 0;
+  for (const Spread& s : all)
+    if (s.slow_before >= 0 && s.states_differ() == differ) ++n, w += s.spread <= kSpreadTarget;
+  return std::to_string(w) + " / " + std::to_string(n);
+}
+
+/// Per cell |r - r_before| / r_before against the csv of an earlier run, and whether the two
+/// runs' rounds of it were in different states.
+inline void markdown_spread(std::ofstream& f, const Config& cfg, const std::string& now_csv) {
+  const auto before = read_csv(cfg.compare), now = read_csv(now_csv);
+  const StateSplit pooled = pooled_split(before, now);
+  const std::vector<Spread> spread = spreads(before, now, pooled);
+  long outside = 0;
+  for (const Spread& s : spread) outside += s.spread > kSpreadTarget;
   f << "\n## Run-to-run spread\n\nAgainst the previous run (`" << cfg.compare << "`), per ratio "
-    << "|this / previous - 1|: " << within << " / " << spread.size() << " within "
-    << fixed(100 * kSpreadTarget, 0) << " % (target: all); largest "
-    << fixed(spread.empty() ? 0.0 : 100 * spread.front().first, 1) << " %, median "
-    << fixed(spread.empty() ? 0.0 : 100 * spread[spread.size() / 2].first, 1) << " %.";
-  f << " The ten largest:\n\n| ratio (kind, scene, method) | spread |\n|---|--:|\n";
-  for (size_t i = 0; i < std::min<size_t>(10, spread.size()); ++i)
-    f << "| " << spread[i].second << " | " << fixed(100 * spread[i].first, 1) << " % |\n";
+    << "|this / previous - 1|: " << spread.size() - size_t(outside) << " / " << spread.size()
+    << " within " << fixed(100 * kSpreadTarget, 0) << " % (target: all); largest "
+    << fixed(spread.empty() ? 0.0 : 100 * spread.front().spread, 1) << " %, median "
+    << fixed(spread.empty() ? 0.0 : 100 * spread[spread.size() / 2].spread, 1) << " %. "
+    << "The host's state in both runs (their probe readings pooled and split as above): "
+    << describe(pooled) << "; a ratio's states differed when its number of slow rounds did. "
+    << "Within " << fixed(100 * kSpreadTarget, 0) << " %: " << within(spread, false)
+    << " of the ratios whose rounds were in the same states in both runs, " << within(spread, true)
+    << " of those whose states differed. Every ratio outside " << fixed(100 * kSpreadTarget, 0)
+    << " % (at least the ten largest):\n\n"
+    << "| ratio (kind, scene, method) | spread | slow rounds, previous | slow rounds, this | "
+    << "states differed |\n|---|--:|--:|--:|---|\n";
+  for (size_t i = 0; i < spread.size() && (i < 10 || spread[i].spread > kSpreadTarget); ++i) {
+    const Spread& s = spread[i];
+    f << "| " << s.key << " | " << fixed(100 * s.spread, 1) << " % | "
+      << (s.slow_before < 0 ? "-" : std::to_string(s.slow_before)) << " | " << s.slow_now << " | "
+      << (s.slow_before < 0   ? "unknown"
+          : s.states_differ() ? "yes"
+                              : "no")
+      << " |\n";
+  }
 }
 
 inline void markdown_steps(std::ofstream& f, const StepsCheck& s) {
@@ -172,6 +304,7 @@ inline void markdown_steps(std::ofstream& f, const StepsCheck& s) {
 inline void write_markdown(const Results& r, const StepsCheck* steps, const Config& cfg) {
   std::ofstream f(cfg.markdown);
   markdown_header(f, r, cfg);
+  markdown_state(f, r);
   markdown_cells(f, r);
   markdown_callback(f, r);
   if (steps) markdown_steps(f, *steps);

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "integrate_cells.hpp"
 
@@ -22,49 +23,98 @@ inline const char* verdict(double ratio, double target) {
   return ratio <= target ? "met" : "NOT met";
 }
 
+/// "two states: fast N, slow N ns per grad U (above N: slow)" or "one state: N ns per grad U".
+inline std::string describe(const StateSplit& s) {
+  char buf[160];
+  if (s.two_states)
+    std::snprintf(
+        buf, sizeof buf,
+        "two states: fast %.2f, slow %.2f ns per grad U of the explicit path (above %.2f: slow)",
+        s.fast, s.slow, s.threshold);
+  else
+    std::snprintf(buf, sizeof buf, "one state: %.2f ns per grad U of the explicit path", s.fast);
+  return buf;
+}
+
 inline void print_text(const Results& r, const Config&, FILE* f) {
-  std::fprintf(f, "%-22s %-9s %5s %9s | %6s %6s %6s\n", "scene", "method", "steps", "peer ms",
-               "plain", "dflt", "output");
+  std::fprintf(f, "host state probe: %s\n", describe(r.host).c_str());
+  std::fprintf(f, "%-22s %-9s %5s %9s | %6s %6s %6s | %5s\n", "scene", "method", "steps", "peer ms",
+               "plain", "dflt", "output", "slow");
   for (const Cell& c : r.cells) {
-    std::fprintf(f, "%-22s %-9s %5ld %9.3f | %6.3f %6.3f %6.3f", c.scene.c_str(), c.method.c_str(),
-                 c.steps, c.peer_ms, c.plain, c.deflt, c.output);
+    std::fprintf(f, "%-22s %-9s %5ld %9.3f | %6.3f %6.3f %6.3f | %zu/%zu", c.scene.c_str(),
+                 c.method.c_str(), c.steps, c.peer_ms, c.plain, c.deflt, c.output,
+                 c.states.slow_rounds(), c.states.slow.size());
     if (!std::isnan(c.callback_peer))  // (peer through the callback / inlined; erkn / it)
       std::fprintf(f, " | callback peer %6.3f, erkn / it %6.3f %6.3f", c.callback_peer, c.plain_cb,
                    c.deflt_cb);
     std::fprintf(f, "\n");
   }
   for (const ImplicitCell& c : r.implicit_cells)
-    std::fprintf(f, "%-22s %-14s %8.4f us/grad (explicit %8.4f) ratio %6.3f\n", c.scene.c_str(),
-                 c.method.c_str(), c.us_per_grad, c.explicit_us_per_grad, c.ratio);
+    std::fprintf(f,
+                 "%-22s %-14s %8.4f us/grad (explicit %8.4f) ratio %6.3f, fast rounds %6.3f, "
+                 "slow rounds %6.3f (%zu/%zu)\n",
+                 c.scene.c_str(), c.method.c_str(), c.us_per_grad, c.explicit_us_per_grad, c.ratio,
+                 c.ratio_fast, c.ratio_slow, c.states.slow_rounds(), c.states.slow.size());
 }
 
-/// One line per ratio: kind,scene,method,value (kind: plain, default, output, implicit; rows
-/// through System::gradient also callback_peer, plain_vs_callback_peer, default_vs_callback_peer).
+/// The probe's readings of a cell's rounds, space-separated (the csv's last field).
+inline std::string readings(const RoundStates& s) {
+  std::ostringstream out;
+  out.precision(4);
+  for (size_t r = 0; r < s.probe.size(); ++r) out << (r ? " " : "") << s.probe[r];
+  return out.str();
+}
+
+/// One line per ratio: kind,scene,method,value,probe (kind: plain, default, output, implicit; rows
+/// through System::gradient also callback_peer, plain_vs_callback_peer, default_vs_callback_peer;
+/// probe: the host state probe's reading in each of the cell's rounds, ns per grad U).
 inline void write_csv(const Results& r, const std::string& path) {
   std::ofstream f(path);
-  f << "kind,scene,method,ratio\n";
+  f << "kind,scene,method,ratio,probe_ns_per_round\n";
+  auto row = [&f](const char* kind, const std::string& scene, const std::string& method,
+                  double ratio, const RoundStates& s) {
+    f << kind << ',' << scene << ',' << method << ',' << ratio << ',' << readings(s) << '\n';
+  };
   for (const Cell& c : r.cells) {
-    f << "plain," << c.scene << ',' << c.method << ',' << c.plain << '\n';
-    f << "default," << c.scene << ',' << c.method << ',' << c.deflt << '\n';
-    f << "output," << c.scene << ',' << c.method << ',' << c.output << '\n';
+    row("plain", c.scene, c.method, c.plain, c.states);
+    row("default", c.scene, c.method, c.deflt, c.states);
+    row("output", c.scene, c.method, c.output, c.states);
     if (std::isnan(c.callback_peer)) continue;
-    f << "callback_peer," << c.scene << ',' << c.method << ',' << c.callback_peer << '\n';
-    f << "plain_vs_callback_peer," << c.scene << ',' << c.method << ',' << c.plain_cb << '\n';
-    f << "default_vs_callback_peer," << c.scene << ',' << c.method << ',' << c.deflt_cb << '\n';
+    row("callback_peer", c.scene, c.method, c.callback_peer, c.states);
+    row("plain_vs_callback_peer", c.scene, c.method, c.plain_cb, c.states);
+    row("default_vs_callback_peer", c.scene, c.method, c.deflt_cb, c.states);
   }
   for (const ImplicitCell& c : r.implicit_cells)
-    f << "implicit," << c.scene << ',' << c.method << ',' << c.ratio << '\n';
+    row("implicit", c.scene, c.method, c.ratio, c.states);
 }
 
-/// kind,scene,method -> ratio from a csv written by write_csv (empty if there is none).
-inline std::map<std::string, double> read_csv(const std::string& path) {
-  std::map<std::string, double> out;
+/// A ratio of a csv and the probe's readings in its rounds (none in a csv from before the probe).
+struct CsvRatio {
+  double ratio = NAN;
+  std::vector<double> probe;
+};
+
+/// kind,scene,method -> ratio and readings from a csv written by write_csv (empty if there is
+/// none; a csv without the probe column, from before it, gives ratios without readings).
+inline std::map<std::string, CsvRatio> read_csv(const std::string& path) {
+  std::map<std::string, CsvRatio> out;
   std::ifstream f(path);
   std::string line;
   std::getline(f, line);
+  const bool probed = line.find(",probe") != std::string::npos;
   while (std::getline(f, line)) {
+    CsvRatio value;
+    if (probed) {  // (scene and method may hold commas: the numbers are read from the right)
+      const size_t comma = line.rfind(',');
+      if (comma == std::string::npos) continue;
+      std::istringstream list(line.substr(comma + 1));
+      for (double x; list >> x;) value.probe.push_back(x);
+      line.resize(comma);
+    }
     const size_t comma = line.rfind(',');
-    if (comma != std::string::npos) out[line.substr(0, comma)] = std::stod(line.substr(comma + 1));
+    if (comma == std::string::npos) continue;
+    value.ratio = std::stod(line.substr(comma + 1));
+    out[line.substr(0, comma)] = value;
   }
   return out;
 }

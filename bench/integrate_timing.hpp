@@ -42,18 +42,13 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <utility>
 #include <vector>
 
+#include "host_state.hpp"
 #include "thread_seconds.hpp"
 
 namespace bench {
-
-inline double median(std::vector<double> x) {
-  if (x.empty()) return NAN;
-  std::sort(x.begin(), x.end());
-  const size_t n = x.size();
-  return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
-}
 
 struct TimingPlan {
   int rounds = 7;            // interleaved rounds
@@ -104,6 +99,28 @@ inline int sample_reps(const std::function<void()>& run, double min_sample) {
   return std::max(1, int(std::ceil(min_sample / once)));
 }
 
+/// A group's rounds in the host's states (host_state.hpp): per round the probe's reading before
+/// its sample (the neighbour median) and whether the run's split calls it slow;
+/// empty when the schedule ran without a probe.
+struct RoundStates {
+  std::vector<double> probe;
+  std::vector<bool> slow;
+  size_t slow_rounds() const { return size_t(std::count(slow.begin(), slow.end(), true)); }
+};
+
+/// The medians of x[r] over a group's fast rounds and over its slow rounds (NaN where none).
+inline std::pair<double, double> median_by_state(const std::vector<double>& x,
+                                                 const RoundStates& s) {
+  std::vector<double> fast, slow;
+  for (size_t r = 0; r < s.slow.size(); ++r) (s.slow[r] ? slow : fast).push_back(x[r]);
+  return {median(fast), median(slow)};
+}
+
+/// Readings of the probe taken within this many places of each other in time are smoothed
+/// together (neighbour_median): 2 * 2 + 1 = 5 readings span 0.1-1 s of a run, states last 3 s
+/// and more.
+inline constexpr size_t kProbeNeighbours = 2;
+
 /// Groups of contenders timed together: add() every group, then run(). seconds[c][r] of a group
 /// is its contender c's CPU seconds per run in round r; round r samples every group in the order
 /// added, a group's contenders in the order rotated by r.
@@ -111,30 +128,52 @@ class Schedule {
  public:
   using Contenders = std::vector<std::function<void()>>;
   using Seconds = std::vector<std::vector<double>>;
-  /// `done` receives the group's seconds once every round has run.
-  void add(Contenders contenders, std::function<void(const Seconds&)> done) {
-    groups_.push_back({std::move(contenders), std::move(done), 0, {}});
+  using Done = std::function<void(const Seconds&, const RoundStates&)>;
+  /// `done` receives the group's seconds and states once every round has run.
+  void add(Contenders contenders, Done done) {
+    groups_.push_back({std::move(contenders), std::move(done), 0, {}, {}});
   }
   /// Every contender runs once untimed first (warm-up: FFTW plans, caches), then `reps` runs per
   /// sample, reps chosen per group so that its contender 0's sample takes at least
-  /// plan.min_sample (sample_reps).
-  void run(const TimingPlan& plan) {
+  /// plan.min_sample (sample_reps). With a probe (returning a reading of the host's state, e.g.
+  /// integrate_cells.hpp's ExplicitPathProbe::read), it is read before every group's sample and
+  /// the run's states split from the readings (returned; one state without a probe).
+  StateSplit run(const TimingPlan& plan, const std::function<double()>& probe = {}) {
     for (Group& g : groups_) g.reps = warm_up(g.contenders, plan);
     for (Group& g : groups_)
       g.seconds.assign(g.contenders.size(), std::vector<double>(size_t(plan.rounds)));
+    std::vector<double> readings;  // in time order: round-major
     for (int r = 0; r < plan.rounds; ++r)
-      for (Group& g : groups_) sample(g, size_t(r));
-    for (Group& g : groups_) g.done(g.seconds);
+      for (Group& g : groups_) {
+        if (probe) readings.push_back(probe());
+        sample(g, size_t(r));
+      }
+    const StateSplit split = label(readings);
+    for (Group& g : groups_) g.done(g.seconds, g.states);
     groups_.clear();
+    return split;
   }
 
  private:
   struct Group {
     Contenders contenders;
-    std::function<void(const Seconds&)> done;
+    Done done;
     int reps;
     Seconds seconds;
+    RoundStates states;
   };
+  /// Each group's RoundStates from the readings (round-major), smoothed over neighbours in time.
+  StateSplit label(const std::vector<double>& readings) {
+    if (readings.empty()) return {};
+    const std::vector<double> smooth = neighbour_median(readings, kProbeNeighbours);
+    const StateSplit split = split_states(smooth);
+    for (size_t i = 0; i < smooth.size(); ++i) {
+      RoundStates& s = groups_[i % groups_.size()].states;
+      s.probe.push_back(smooth[i]);
+      s.slow.push_back(split.is_slow(smooth[i]));
+    }
+    return split;
+  }
   static int warm_up(const Contenders& contenders, const TimingPlan& plan) {
     for (const auto& run : contenders) run();
     return sample_reps(contenders[0], plan.min_sample);
@@ -156,7 +195,7 @@ inline std::vector<std::vector<double>> time_rounds(
     const std::vector<std::function<void()>>& contenders, const TimingPlan& plan) {
   std::vector<std::vector<double>> seconds;
   Schedule schedule;
-  schedule.add(contenders, [&](const Schedule::Seconds& s) { seconds = s; });
+  schedule.add(contenders, [&](const Schedule::Seconds& s, const RoundStates&) { seconds = s; });
   schedule.run(plan);
   return seconds;
 }
