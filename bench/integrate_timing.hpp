@@ -90,12 +90,19 @@ inline double batch_seconds(const std::function<void()>& run, long n) {
 
 /// Runs per sample so that a sample of `run` takes at least min_sample: the run's cost from the
 /// faster of two batches of at least min_sample / 4 each (batch sizes doubled until then), so
-/// one slow run (an interrupt, a first touch) does not shorten every sample of the group.
+/// one slow run (an interrupt, a first touch) does not shorten every sample of the group. The
+/// second batch starts at the first's size and grows too: after a slow run in the first batch
+/// that size is small (a single 20 us run as the second batch misjudged the test's contender
+/// 1 time in 20 under load).
 inline int sample_reps(const std::function<void()>& run, double min_sample) {
+  const auto per_run = [&](long& n) {  // seconds per run of one batch, n doubled as needed
+    double t = batch_seconds(run, n);
+    while (t < min_sample / 4) t = batch_seconds(run, n *= 2);
+    return t / double(n);
+  };
   long n = 1;
-  double t = batch_seconds(run, n);
-  while (t < min_sample / 4) t = batch_seconds(run, n *= 2);
-  const double once = std::max(std::min(t, batch_seconds(run, n)) / double(n), 1e-9);
+  const double first = per_run(n);
+  const double once = std::max(std::min(first, per_run(n)), 1e-9);
   return std::max(1, int(std::ceil(min_sample / once)));
 }
 
