@@ -131,30 +131,45 @@ TEST(TimeGrid, RefusalsNameTheProblemAndLeaveTheGridUnchanged) {
   EXPECT_TRUE(TimeGrid(1e20, 1e6).resolved());
 }
 
+// require_output_times' definition written out: a time is accepted when it is finite and within
+// [t, t_end] up to 4 eps max(|t|, |time|, h) and 4 eps max(|t_end|, |time|, h); `edge_sweep` gives
+// `count` times one ulp apart around each window's edge, ascending.
+struct OutputWindow {
+  double t, h, t_end;
+  explicit OutputWindow(const TimeGrid& g) : t(g.t()), h(g.h()), t_end(g.t() + 7 * g.h()) {}
+  double window(double a, double b) const {
+    return 4 * kEps * std::max({std::abs(a), std::abs(b), h});
+  }
+  bool defined(double tau) const {
+    return std::isfinite(tau) && tau >= t - window(t, tau) && tau <= t_end + window(t_end, tau);
+  }
+  std::vector<double> edge_sweep(int count) const {
+    const double inf = std::numeric_limits<double>::infinity();
+    std::vector<double> out;
+    for (double edge : {t - window(t, t), t_end + window(t_end, t_end)}) {
+      double tau = std::nextafter(std::nextafter(edge, -inf), -inf);
+      for (int k = 0; k < count; ++k, tau = std::nextafter(tau, inf)) out.push_back(tau);
+    }
+    return out;
+  }
+};
+
 // require_output_times accepts exactly the times its definition does (finite, ascending, within
 // [t, t_end] up to 4 eps max(|t|, |time|, h) and 4 eps max(|t_end|, |time|, h), the windows
-// written out here), at and one ulp beyond each window's edge, and names the first time that
-// fails when several do, whatever fails after it.
+// written out in OutputWindow), at and one ulp beyond each window's edge, and names the first time
+// that fails when several do, whatever fails after it.
 TEST(TimeGrid, OutputTimesAreCheckedAsDefinedAndTheFirstBadOneIsNamed) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
   for (const TimeGrid& g : grids()) {
-    const double t = g.t(), h = g.h(), t_end = t + 7 * h;
-    const auto window = [h](double a, double b) {
-      return 4 * kEps * std::max({std::abs(a), std::abs(b), h});
-    };
-    const auto defined = [&](double tau) {
-      return std::isfinite(tau) && tau >= t - window(t, tau) && tau <= t_end + window(t_end, tau);
-    };
+    const OutputWindow w(g);
+    const double t = w.t, h = w.h, t_end = w.t_end;
     int accepted = 0, refused = 0;
-    for (double edge : {t - window(t, t), t_end + window(t_end, t_end)}) {
-      double tau = std::nextafter(std::nextafter(edge, -inf), -inf);
-      for (int k = 0; k < 5; ++k, tau = std::nextafter(tau, inf)) {
-        const Eigen::VectorXd one = Eigen::VectorXd::Constant(1, tau);
-        const bool ok = error_of([&] { g.require_output_times(t_end, one); }).empty();
-        EXPECT_EQ(ok, defined(tau)) << "t = " << t << ", h = " << h << ", time " << tau;
-        ++(ok ? accepted : refused);
-      }
+    for (double tau : w.edge_sweep(5)) {
+      const Eigen::VectorXd one = Eigen::VectorXd::Constant(1, tau);
+      const bool ok = error_of([&] { g.require_output_times(t_end, one); }).empty();
+      EXPECT_EQ(ok, w.defined(tau)) << "t = " << t << ", h = " << h << ", time " << tau;
+      ++(ok ? accepted : refused);
     }
     EXPECT_GT(accepted, 0);  // (both outcomes met at the edges: the sweep crosses them)
     EXPECT_GT(refused, 0);
@@ -175,27 +190,18 @@ TEST(TimeGrid, OutputTimesAreCheckedAsDefinedAndTheFirstBadOneIsNamed) {
 // time says. (require_output_times tests the first and last in full and the rest for order only.)
 // Negative control: one time out of order among accepted ones is refused, and named.
 TEST(TimeGrid, AListOfTimesIsJudgedAsEachOfItsTimesAlone) {
-  const double inf = std::numeric_limits<double>::infinity();
   for (const TimeGrid& g : grids()) {
-    const double t = g.t(), h = g.h(), t_end = t + 7 * h;
-    const auto window = [h](double a, double b) {
-      return 4 * kEps * std::max({std::abs(a), std::abs(b), h});
-    };
-    const auto defined = [&](double tau) {
-      return std::isfinite(tau) && tau >= t - window(t, tau) && tau <= t_end + window(t_end, tau);
-    };
-    std::vector<double> sweep;  // (ascending: 4 ulps around each edge)
-    for (double edge : {t - window(t, t), t_end + window(t_end, t_end)}) {
-      double tau = std::nextafter(std::nextafter(edge, -inf), -inf);
-      for (int k = 0; k < 4; ++k, tau = std::nextafter(tau, inf)) sweep.push_back(tau);
-    }
+    const OutputWindow w(g);
+    const double t = w.t, h = w.h, t_end = w.t_end;
+    const std::vector<double> sweep = w.edge_sweep(4);
     int accepted = 0, refused = 0;
     for (size_t first = 0; first < sweep.size(); ++first)
       for (size_t last = first; last < sweep.size(); ++last) {
         const Eigen::VectorXd times =
             Eigen::Map<const Eigen::VectorXd>(sweep.data() + first, Eigen::Index(last - first + 1));
         const bool ok = error_of([&] { g.require_output_times(t_end, times); }).empty();
-        EXPECT_EQ(ok, std::all_of(times.begin(), times.end(), defined))
+        EXPECT_EQ(
+            ok, std::all_of(times.begin(), times.end(), [&](double tau) { return w.defined(tau); }))
             << "t = " << t << ", h = " << h << ", times " << times.transpose();
         ++(ok ? accepted : refused);
       }
