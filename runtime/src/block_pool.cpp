@@ -28,14 +28,14 @@ struct Pool {
   std::vector<std::pair<std::size_t, void*>> free;  // (bytes, block)
   std::vector<std::size_t> seen;                    // the sizes given back once
   std::size_t bytes = 0;
-  ~Pool() {
-    for (auto& block : free) std::free(block.second);
-  }
 };
 
+// Never destroyed: an Integrator that outlives the process's static destructors (one held by a
+// static object built before the pool) still gives its block back to a live pool; the blocks kept
+// at exit go with the process.
 Pool& pool() {
-  static Pool p;
-  return p;
+  static Pool* p = new Pool;
+  return *p;
 }
 
 }  // namespace
