@@ -22,6 +22,9 @@ namespace {
 // (an ensemble's threads), not of every size a process ever used.
 constexpr std::size_t kKeptBlocks = 16;
 constexpr std::size_t kKeptBytes = std::size_t(256) << 20;
+// At most this many sizes are remembered as given back once; the oldest is forgotten for a new one
+// (a size given back again after that is freed once more: glibc relearns it, nothing is lost).
+constexpr std::size_t kSeenSizes = 64;
 
 struct Pool {
   std::mutex mutex;
@@ -65,6 +68,7 @@ void give_block(void* block, std::size_t bytes) noexcept {
     std::lock_guard lock(p.mutex);
     try {  // (no room for an entry: the block is freed)
       if (std::find(p.seen.begin(), p.seen.end(), bytes) == p.seen.end()) {
+        if (p.seen.size() == kSeenSizes) p.seen.erase(p.seen.begin());
         p.seen.push_back(bytes);  // (the first of its size: freed, see above)
       } else if (p.free.size() < kKeptBlocks && p.bytes + bytes <= kKeptBytes) {
         p.free.emplace_back(bytes, block);
