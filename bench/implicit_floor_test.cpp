@@ -17,10 +17,7 @@ using namespace bench;
 using floor::FloorRuns;
 using floor::Variant;
 
-// The agreement with erkn's final state: both converge every stage to 1e-14 (relative), so the
-// states differ by what the steps accumulate of that (measured <= 1.7e-10 at |p| ~ 10, RKN4s6
-// on P2); 1e-8 relative leaves room, and every control (1e-2 in U) misses it by more than 50x.
-constexpr double kAgree = 1e-8;
+using floor::kAgree;  // (the agreement with erkn's final state)
 
 template <int D, class G>
 void check_scene(FloorRuns<D, G>& r, const G& wrong) {
@@ -29,17 +26,16 @@ void check_scene(FloorRuns<D, G>& r, const G& wrong) {
     SCOPED_TRACE(std::string(m.name()) + " on " + r.s.label);
     Eigen::VectorXd qe, pe, qf, pf, qc, pc, qx, px, qw, pw;
     const long e = r.erkn(m, &qe, &pe), f = r.floor(m, r.g, Variant::plain, &qf, &pf);
-    const double scale = std::max(qe.cwiseAbs().maxCoeff(), pe.cwiseAbs().maxCoeff());
-    EXPECT_LE(floor::state_diff(qe, pe, qf, pf), kAgree * scale);
+    EXPECT_LE(floor::relative_diff(qe, pe, qf, pf), kAgree);
     EXPECT_NEAR(double(f), double(e), 0.1 * double(e));
     EXPECT_EQ(r.floor(m, r.callback(), Variant::plain, &qc, &pc), f);
     EXPECT_EQ(floor::state_diff(qf, pf, qc, pc), 0.0);     // (the same arithmetic)
     for (Variant v : {Variant::extras, Variant::carry}) {  // (compensated and checked; carry)
       EXPECT_NEAR(double(r.floor(m, r.callback(), v, &qx, &px)), double(e), 0.1 * double(e));
-      EXPECT_LE(floor::state_diff(qe, pe, qx, px), kAgree * scale);
+      EXPECT_LE(floor::relative_diff(qe, pe, qx, px), kAgree);
     }
     r.floor(m, wrong, Variant::plain, &qw, &pw);  // negative control
-    EXPECT_GT(floor::state_diff(qe, pe, qw, pw), kAgree * scale);
+    EXPECT_GT(floor::relative_diff(qe, pe, qw, pw), kAgree);
   }
 }
 

@@ -15,6 +15,7 @@
 #include <tuple>
 #include <vector>
 
+#include "integrate_floor.hpp"
 #include "integrate_timing.hpp"
 #include "scenes.hpp"
 
@@ -67,13 +68,15 @@ struct Cell {
 };
 /// One implicit method's CPU per grad U against the explicit path's on a scene; the ratio's
 /// median also over the fast and over the slow rounds alone (NaN where none), and the explicit
-/// path's median time in slow rounds over that in fast rounds.
+/// path's median time in slow rounds over that in fast rounds; the floor's columns
+/// (integrate_floor.hpp).
 struct ImplicitCell {
   std::string scene, method;
   double us_per_grad = 0, explicit_us_per_grad = 0, ratio = 0;
   double ratio_fast = NAN, ratio_slow = NAN;
   RoundStates states;
   double explicit_slow_fast = NAN;
+  FloorColumns floor;
 };
 struct Results {
   std::vector<Cell> cells;
@@ -121,19 +124,11 @@ struct SceneRuns {
   Eigen::VectorXd times = output_times(s);
   volatile double sink = 0;  // what the runs and observers read, so no output is optimised away
 
-  static erkn::System without_gradient(erkn::System sys) {
-    sys.gradient = nullptr;
-    return sys;
-  }
   /// erkn's Integrator for a run (constructed within the timed run): through System::gradient,
   /// or with the peer's functor compiled in (erkn::make_integrator).
   erkn::Integrator make(const erkn::Method& m, bool templated, const erkn::Options& o) const {
     if (!templated) return erkn::Integrator(m, sys, s.h, s.problem.q0, s.problem.p0, o);
-    const auto compiled = [g = g](const auto& q, auto& out) {  // (the peer's functor, on arrays)
-      auto a = out.array();
-      g(q.array(), a);
-    };
-    return erkn::make_integrator(m, bare, compiled, s.h, s.problem.q0, s.problem.p0, o);
+    return erkn::make_integrator(m, bare, on_vectors(g), s.h, s.problem.q0, s.problem.p0, o);
   }
   /// The peer's run of m with `gradient` (g inlined, or VectorCallback on System::gradient),
   /// transforming back after each of `segments` equal parts (one: the final state only).
@@ -217,10 +212,10 @@ void add_scene(const Scene& s, Basis basis, Gradient g, const Config& cfg, Sched
 /// The implicit cells of a scene from every registry method's seconds per run (defaults,
 /// construct + integrate) and gradient evaluations per run: each implicit method's CPU per grad U
 /// against the median over the explicit methods in the same round, over all rounds and over the
-/// rounds of each state.
+/// rounds of each state; and the floor's columns (none: not timed).
 inline void implicit_ratios(const Scene& s, const std::vector<erkn::Method>& methods,
-                            const std::vector<double>& evaluations, Schedule::Seconds t,
-                            const RoundStates& states, Results& out) {
+                            const std::vector<double>& evaluations, const Schedule::Seconds& t,
+                            const RoundStates& states, const FloorGroup* floor, Results& out) {
   std::vector<double> explicit_ref(t[0].size());  // per round
   for (size_t r = 0; r < explicit_ref.size(); ++r) {
     std::vector<double> per_grad;
@@ -228,22 +223,27 @@ inline void implicit_ratios(const Scene& s, const std::vector<erkn::Method>& met
       if (methods[i].is_explicit()) per_grad.push_back(t[i][r] / evaluations[i]);
     explicit_ref[r] = median(per_grad);
   }
+  size_t k = 0;  // implicit methods so far
   for (size_t i = 0; i < methods.size(); ++i) {
     if (methods[i].is_explicit()) continue;
-    for (double& x : t[i]) x /= evaluations[i];
-    std::vector<double> ratio;
-    for (size_t r = 0; r < t[i].size(); ++r) ratio.push_back(t[i][r] / explicit_ref[r]);
-    ImplicitCell c{s.label, std::string(methods[i].name()), 1e6 * median(t[i]),
+    std::vector<double> grad = t[i], ratio;
+    for (double& x : grad) x /= evaluations[i];
+    for (size_t r = 0; r < grad.size(); ++r) ratio.push_back(grad[r] / explicit_ref[r]);
+    ImplicitCell c{s.label, std::string(methods[i].name()), 1e6 * median(grad),
                    1e6 * median(explicit_ref), median(ratio)};
     std::tie(c.ratio_fast, c.ratio_slow) = median_by_state(ratio, states);
     c.states = states, c.explicit_slow_fast = slow_over_fast(explicit_ref, states);
+    if (floor) c.floor = floor->columns(k, t, grad, explicit_ref);
+    ++k;
     out.implicit_cells.push_back(std::move(c));
   }
 }
 
 /// CPU per grad U of every registry method with erkn's defaults (construct + integrate) on a
-/// scene, one group of the schedule; its implicit cells are appended when the schedule has run.
-inline void add_implicit(const Scene& s, Schedule& schedule, Results& out) {
+/// scene, one group of the schedule, with the floor's contenders (null: not timed); its implicit
+/// cells are appended when the schedule has run.
+inline void add_implicit(const Scene& s, std::shared_ptr<FloorGroup> floor, Schedule& schedule,
+                         Results& out) {
   struct Runs {
     erkn::System sys;
     volatile double sink = 0;
@@ -256,9 +256,10 @@ inline void add_implicit(const Scene& s, Schedule& schedule, Results& out) {
     evaluations.push_back(double(erkn_run(m, sc->sys, s, {}, sc->sink)));
     runs.push_back([sc, m, s] { erkn_run(m, sc->sys, s, {}, sc->sink); });
   }
-  schedule.add(std::move(runs), [s, methods, evaluations, &out](const Schedule::Seconds& t,
-                                                                const RoundStates& states) {
-    implicit_ratios(s, methods, evaluations, t, states, out);
+  if (floor) floor->add(methods, runs);
+  schedule.add(std::move(runs), [s, methods, evaluations, floor, &out](const Schedule::Seconds& t,
+                                                                       const RoundStates& states) {
+    implicit_ratios(s, methods, evaluations, t, states, floor.get(), out);
   });
 }
 
@@ -301,14 +302,18 @@ inline Results measure_all(const Config& cfg) {
   for (const Scene& s : scenes(cfg.short_mode)) {
     if (s.label.find(cfg.scene) == std::string::npos) continue;
     const Kind kind = s.problem.M.kind;
+    const floor::FloorScene fs{s.label, s.problem, s.h, s.steps};
+    std::shared_ptr<FloorGroup> floor;  // (the floor loop: scalar and diagonal M, D = 1, 2)
     if (kind == Kind::scalar) {
       add_scene(s, identity_basis<1>(s.problem.M, 1), DuffingGradient{}, cfg, schedule, out);
+      floor = std::make_shared<FloorGroupOf<1, DuffingGradient>>(fs, DuffingGradient{});
     } else if (kind == Kind::diagonal) {
       add_scene(s, identity_basis<2>(s.problem.M, 2), StellarGradient{}, cfg, schedule, out);
+      floor = std::make_shared<FloorGroupOf<2, StellarGradient>>(fs, StellarGradient{});
     } else {
       add_scene(s, fourier_basis(s.problem.M), SineGordonGradient{}, cfg, schedule, out);
     }
-    if (s.problem.dim() <= 32 && cfg.method.empty()) add_implicit(s, schedule, out);
+    if (s.problem.dim() <= 32 && cfg.method.empty()) add_implicit(s, floor, schedule, out);
   }
   std::fprintf(stderr, "%zu cells, %d rounds\n", out.cells.size(), cfg.plan().rounds);
   ExplicitPathProbe probe;

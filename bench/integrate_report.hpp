@@ -23,6 +23,30 @@ inline const char* verdict(double ratio, double target) {
   return ratio <= target ? "met" : "NOT met";
 }
 
+/// What bounds an implicit cell: met (erkn's ratio <= kImplicitTarget); where not, the method
+/// through the callback (the specialist's floor loop through the same System::gradient is itself
+/// above the target) or erkn (it is not); unknown where the floor was not timed or disagreed.
+inline const char* implicit_bound(const ImplicitCell& c) {
+  if (c.ratio <= kImplicitTarget) return "met";
+  if (c.floor.status == FloorColumns::Status::not_timed) return "floor not timed";
+  if (c.floor.status == FloorColumns::Status::disagrees) return "floor disagrees";
+  return c.floor.floor > kImplicitTarget ? "the method through the callback" : "erkn";
+}
+
+/// The implicit cells by bound: not met, and of those bounded by the method through the callback,
+/// by erkn, unknown.
+struct ImplicitBounds {
+  int cells = 0, met = 0, missed = 0, by_method = 0, by_erkn = 0, unknown = 0;
+  explicit ImplicitBounds(const std::vector<ImplicitCell>& all) {
+    for (const ImplicitCell& c : all) {
+      const std::string bound = implicit_bound(c);
+      ++cells, met += bound == "met", missed += bound != "met";
+      by_method += bound == "the method through the callback", by_erkn += bound == "erkn";
+    }
+    unknown = missed - by_method - by_erkn;
+  }
+};
+
 /// "two states: fast N, slow N ns per grad U (above N: slow)" or "one state: N ns per grad U".
 inline std::string describe(const StateSplit& s) {
   char buf[160];
@@ -52,9 +76,12 @@ inline void print_text(const Results& r, const Config&, FILE* f) {
   for (const ImplicitCell& c : r.implicit_cells)
     std::fprintf(f,
                  "%-22s %-14s %8.4f us/grad (explicit %8.4f) ratio %6.3f, fast rounds %6.3f, "
-                 "slow rounds %6.3f (%zu/%zu)\n",
+                 "slow rounds %6.3f (%zu/%zu) | floor %6.3f, erkn / floor %6.3f, inlined %6.3f, "
+                 "diff %.1e: %s\n",
                  c.scene.c_str(), c.method.c_str(), c.us_per_grad, c.explicit_us_per_grad, c.ratio,
-                 c.ratio_fast, c.ratio_slow, c.states.slow_rounds(), c.states.slow.size());
+                 c.ratio_fast, c.ratio_slow, c.states.slow_rounds(), c.states.slow.size(),
+                 c.floor.floor, c.floor.erkn_floor, c.floor.inlined, c.floor.diff,
+                 implicit_bound(c));
 }
 
 /// The probe's readings of a cell's rounds, space-separated (the csv's last field).
@@ -67,6 +94,7 @@ inline std::string readings(const RoundStates& s) {
 
 /// One line per ratio: kind,scene,method,value,probe (kind: plain, default, output, implicit; rows
 /// through System::gradient also callback_peer, plain_vs_callback_peer, default_vs_callback_peer;
+/// implicit cells with a floor also implicit_floor, implicit_vs_floor, implicit_floor_inlined;
 /// probe: the host state probe's reading in each of the cell's rounds, ns per grad U).
 inline void write_csv(const Results& r, const std::string& path) {
   std::ofstream f(path);
@@ -84,8 +112,13 @@ inline void write_csv(const Results& r, const std::string& path) {
     row("plain_vs_callback_peer", c.scene, c.method, c.plain_cb, c.states);
     row("default_vs_callback_peer", c.scene, c.method, c.deflt_cb, c.states);
   }
-  for (const ImplicitCell& c : r.implicit_cells)
+  for (const ImplicitCell& c : r.implicit_cells) {
     row("implicit", c.scene, c.method, c.ratio, c.states);
+    if (c.floor.status != FloorColumns::Status::timed) continue;
+    row("implicit_floor", c.scene, c.method, c.floor.floor, c.states);
+    row("implicit_vs_floor", c.scene, c.method, c.floor.erkn_floor, c.states);
+    row("implicit_floor_inlined", c.scene, c.method, c.floor.inlined, c.states);
+  }
 }
 
 /// A ratio of a csv and the probe's readings in its rounds (none in a csv from before the probe).

@@ -36,6 +36,21 @@ struct StellarGradient {
   }
 };
 
+/// A peer's gradient functor (on arrays) as erkn::make_integrator calls a compiled-in gradient (on
+/// vectors).
+template <class Gradient>
+auto on_vectors(Gradient g) {
+  return [g](const auto& q, auto& out) {
+    auto a = out.array();
+    g(q.array(), a);
+  };
+}
+/// sys without its gradient: make_integrator's System, whose functor is the gradient.
+inline erkn::System without_gradient(erkn::System sys) {
+  sys.gradient = nullptr;
+  return sys;
+}
+
 /// The specialist's basis of a problem's M: the identity (scalar, diagonal; D fixed) or FFTW r2c
 /// (circulant, periodic 2-D grid).
 template <int D>
