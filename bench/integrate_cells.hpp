@@ -226,9 +226,9 @@ inline void implicit_ratios(const Scene& s, const std::vector<erkn::Method>& met
   size_t k = 0;  // implicit methods so far
   for (size_t i = 0; i < methods.size(); ++i) {
     if (methods[i].is_explicit()) continue;
-    std::vector<double> grad = t[i], ratio;
+    std::vector<double> grad = t[i];
     for (double& x : grad) x /= evaluations[i];
-    for (size_t r = 0; r < grad.size(); ++r) ratio.push_back(grad[r] / explicit_ref[r]);
+    const std::vector<double> ratio = ratios(grad, explicit_ref);
     ImplicitCell c{s.label, std::string(methods[i].name()), 1e6 * median(grad),
                    1e6 * median(explicit_ref), median(ratio)};
     std::tie(c.ratio_fast, c.ratio_slow) = median_by_state(ratio, states);

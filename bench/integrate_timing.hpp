@@ -207,11 +207,16 @@ inline std::vector<std::vector<double>> time_rounds(
   return seconds;
 }
 
-/// The median over rounds of a[r] / b[r].
-inline double median_ratio(const std::vector<double>& a, const std::vector<double>& b) {
+/// Per round, a[r] / b[r].
+inline std::vector<double> ratios(const std::vector<double>& a, const std::vector<double>& b) {
   std::vector<double> r;
   for (size_t i = 0; i < a.size(); ++i) r.push_back(a[i] / b[i]);
-  return median(r);
+  return r;
+}
+
+/// The median over rounds of a[r] / b[r].
+inline double median_ratio(const std::vector<double>& a, const std::vector<double>& b) {
+  return median(ratios(a, b));
 }
 
 }  // namespace bench
