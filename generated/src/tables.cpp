@@ -66,11 +66,13 @@ constexpr int generalized_order[] = {2, 2, 4, 6, 8};
 constexpr double generalized_error_constant[] = {0.125, 0.833333, 1.37328, 1.98894, 2.99696};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.5, 1.0};
-  double C[2], S[2];
-  for (int k = 0; k < 2; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[2]{}, S[2]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  C[1] = std::cos(w[1] * x);
   b[0] = 1.0 * C[0];
   bbar[0] = 0.5 * S[0];
   abar[0] = 1.0 * C[1];
@@ -126,14 +128,15 @@ constexpr int generalized_order[] = {2, 2, 4, 6, 8};
 constexpr double generalized_error_constant[] = {0.125, 0.333333, 0.313692, 0.239319, 0.184562};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.5};
-  double C[1], S[1];
-  for (int k = 0; k < 1; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[1]{}, S[1]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
   b[0] = 1.0 * C[0];
   bbar[0] = 0.5 * S[0];
-  abar[0] = 0.5 * S[0];
+  abar[0] = bbar[0];  // (abar11 = bbar1)
 }
 
 }  // namespace SERKN1s2_2
@@ -234,16 +237,27 @@ constexpr int generalized_order[] = {3, 3, 4, 6, 8};
 constexpr double generalized_error_constant[] = {0.00279487, 0.00277572, 0.00325726, 0.00391984, 0.0027873};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.22222222222222221, 0.35555555555555557, 0.57777777777777772, 0.80000000000000004, 1.0};
-  double C[5], S[5];
-  for (int k = 0; k < 5; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
-  // The quotients cancel near their poles: evaluated in long double.
+  double C[5]{}, S[5]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  S[2] = sinc(w[2] * x);
+  C[3] = std::cos(w[3] * x);
+  S[3] = sinc(w[3] * x);
+  // The quotients cancel near their poles: evaluated in long double, where one is.
   constexpr long double wl[] = {0.222222222222222222219L, 0.355555555555555555545L, 0.577777777777777777765L, 0.800000000000000000011L, 1L};
-  const long double V = v, X = std::sqrt(V);
-  long double CL[5], SL[5];
-  for (int k = 0; k < 5; ++k) CL[k] = std::cos(wl[k] * X), SL[k] = sincl(wl[k] * X);
+  const long double V = v;
+  long double CL[5]{}, SL[5]{};
+  if (!(v < 0.125)) {
+    const long double X = std::sqrt(V);
+    CL[0] = std::cos(wl[0] * X);
+    SL[1] = sincl(wl[1] * X);
+    CL[3] = std::cos(wl[3] * X);
+    SL[3] = sincl(wl[3] * X);
+    SL[4] = sincl(wl[4] * X);
+  }
   b[0] = 0.48076923076923078 * C[3];
   b[1] = 0.51923076923076927 * C[0];
   bbar[0] = 0.38461538461538464 * S[3];
@@ -255,12 +269,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
         (1L * V * CL[0] + 0.925925925925925925918L * V * CL[3]));
   }
   abar[1] = 0.27777777777777779 * S[2];
-  if (v < 0.125) {  // abar22: 0/0-prone, Taylor series
-    abar[2] = horner(series + 150, v);
-  } else {
-    abar[2] = double((-1.92592592592592592592L * SL[4] + 1.92592592592592592592L - 0.0854700854700854700859L * V * SL[1] - 0.192307692307692307688L * V * SL[3]) /
-        (1L * V * CL[0] + 0.925925925925925925918L * V * CL[3]));
-  }
+  abar[2] = abar[0];  // (abar22 = abar11)
 }
 
 }  // namespace SERKN2s3
@@ -361,16 +370,28 @@ constexpr int generalized_order[] = {4, 4, 4, 6, 8};
 constexpr double generalized_error_constant[] = {0.00838781, 0.00894594, 0.00196419, 0.00294823, 0.00232961};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.21132486540518711, 0.57735026918962573, 0.78867513459481287, 1.1547005383792515};
-  double C[4], S[4];
-  for (int k = 0; k < 4; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
-  // The quotients cancel near their poles: evaluated in long double.
+  double C[4]{}, S[4]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  S[1] = sinc(w[1] * x);
+  C[2] = std::cos(w[2] * x);
+  S[2] = sinc(w[2] * x);
+  // The quotients cancel near their poles: evaluated in long double, where one is.
   constexpr long double wl[] = {0.211324865405187117747L, 0.577350269189625764507L, 0.78867513459481288228L, 1.15470053837925152901L};
-  const long double V = v, X = std::sqrt(V);
-  long double CL[4], SL[4];
-  for (int k = 0; k < 4; ++k) CL[k] = std::cos(wl[k] * X), SL[k] = sincl(wl[k] * X);
+  const long double V = v;
+  long double CL[4]{}, SL[4]{};
+  if (!(v < 0.5)) {
+    const long double X = std::sqrt(V);
+    CL[0] = std::cos(wl[0] * X);
+    SL[0] = sincl(wl[0] * X);
+    SL[1] = sincl(wl[1] * X);
+    CL[2] = std::cos(wl[2] * X);
+    SL[2] = sincl(wl[2] * X);
+    CL[3] = std::cos(wl[3] * X);
+  }
   b[0] = 0.5 * C[2];
   b[1] = 0.5 * C[0];
   bbar[0] = 0.39433756729740643 * S[2];
@@ -540,16 +561,50 @@ constexpr int generalized_order[] = {6, 4, 5, 6, 8};
 constexpr double generalized_error_constant[] = {0.000539225, 0.0083346, 0.00010267, 7.62521e-05, 0.00018083};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.11270166537925831, 0.22540333075851662, 0.2745966692414834, 0.3872983346207417, 0.5, 0.6127016653792583, 0.66189500386222511, 0.7745966692414834, 0.8872983346207417, 1.0, 1.0491933384829668, 1.2745966692414834, 1.3872983346207417, 1.6618950038622251, 1.7745966692414834, 2.0491933384829668};
-  double C[16], S[16];
-  for (int k = 0; k < 16; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
-  // The quotients cancel near their poles: evaluated in long double.
+  double C[16]{}, S[16]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  S[3] = sinc(w[3] * x);
+  C[4] = std::cos(w[4] * x);
+  S[4] = sinc(w[4] * x);
+  S[7] = sinc(w[7] * x);
+  C[8] = std::cos(w[8] * x);
+  S[8] = sinc(w[8] * x);
+  // The quotients cancel near their poles: evaluated in long double, where one is.
   constexpr long double wl[] = {0.112701665379258311481L, 0.225403330758516622963L, 0.274596669241483377037L, 0.387298334620741688505L, 0.5L, 0.612701665379258311468L, 0.661895003862225065542L, 0.77459666924148337701L, 0.887298334620741688532L, 1L, 1.04919333848296675402L, 1.27459666924148337706L, 1.38729833462074168848L, 1.66189500386222506554L, 1.77459666924148337706L, 2.04919333848296675413L};
-  const long double V = v, X = std::sqrt(V);
-  long double CL[16], SL[16];
-  for (int k = 0; k < 16; ++k) CL[k] = std::cos(wl[k] * X), SL[k] = sincl(wl[k] * X);
+  const long double V = v;
+  long double CL[16]{}, SL[16]{};
+  if (!(v < 4.0)) {
+    const long double X = std::sqrt(V);
+    CL[0] = std::cos(wl[0] * X);
+    CL[1] = std::cos(wl[1] * X);
+    SL[1] = sincl(wl[1] * X);
+    CL[2] = std::cos(wl[2] * X);
+    SL[2] = sincl(wl[2] * X);
+    CL[3] = std::cos(wl[3] * X);
+    SL[3] = sincl(wl[3] * X);
+    SL[4] = sincl(wl[4] * X);
+    CL[5] = std::cos(wl[5] * X);
+    SL[5] = sincl(wl[5] * X);
+    CL[6] = std::cos(wl[6] * X);
+    CL[7] = std::cos(wl[7] * X);
+    SL[7] = sincl(wl[7] * X);
+    CL[8] = std::cos(wl[8] * X);
+    CL[9] = std::cos(wl[9] * X);
+    SL[9] = sincl(wl[9] * X);
+    CL[10] = std::cos(wl[10] * X);
+    CL[11] = std::cos(wl[11] * X);
+    SL[11] = sincl(wl[11] * X);
+    CL[12] = std::cos(wl[12] * X);
+    SL[12] = sincl(wl[12] * X);
+    CL[13] = std::cos(wl[13] * X);
+    CL[14] = std::cos(wl[14] * X);
+    SL[14] = sincl(wl[14] * X);
+    CL[15] = std::cos(wl[15] * X);
+  }
   b[0] = 0.27777777777777779 * C[8];
   b[1] = 0.44444444444444442 * C[4];
   b[2] = 0.27777777777777779 * C[0];
@@ -729,16 +784,46 @@ constexpr int generalized_order[] = {6, 4, 5, 6, 8};
 constexpr double generalized_error_constant[] = {0.000539225, 0.0612821, 0.0443846, 0.0162159, 0.0150694};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.11270166537925831, 0.22540333075851662, 0.2745966692414834, 0.3872983346207417, 0.5, 0.6127016653792583, 0.7745966692414834, 0.8872983346207417, 1.0, 1.0491933384829668, 1.2745966692414834, 1.3872983346207417, 1.7745966692414834, 2.0491933384829668};
-  double C[14], S[14];
-  for (int k = 0; k < 14; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
-  // The quotients cancel near their poles: evaluated in long double.
+  double C[14]{}, S[14]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  S[3] = sinc(w[3] * x);
+  C[4] = std::cos(w[4] * x);
+  S[4] = sinc(w[4] * x);
+  S[6] = sinc(w[6] * x);
+  C[7] = std::cos(w[7] * x);
+  S[7] = sinc(w[7] * x);
+  // The quotients cancel near their poles: evaluated in long double, where one is.
   constexpr long double wl[] = {0.112701665379258311481L, 0.225403330758516622963L, 0.274596669241483377037L, 0.387298334620741688505L, 0.5L, 0.612701665379258311468L, 0.77459666924148337701L, 0.887298334620741688532L, 1L, 1.04919333848296675402L, 1.27459666924148337706L, 1.38729833462074168848L, 1.77459666924148337706L, 2.04919333848296675413L};
-  const long double V = v, X = std::sqrt(V);
-  long double CL[14], SL[14];
-  for (int k = 0; k < 14; ++k) CL[k] = std::cos(wl[k] * X), SL[k] = sincl(wl[k] * X);
+  const long double V = v;
+  long double CL[14]{}, SL[14]{};
+  if (!(v < 4.0)) {
+    const long double X = std::sqrt(V);
+    CL[1] = std::cos(wl[1] * X);
+    SL[1] = sincl(wl[1] * X);
+    CL[2] = std::cos(wl[2] * X);
+    SL[2] = sincl(wl[2] * X);
+    CL[3] = std::cos(wl[3] * X);
+    SL[3] = sincl(wl[3] * X);
+    SL[4] = sincl(wl[4] * X);
+    CL[5] = std::cos(wl[5] * X);
+    SL[5] = sincl(wl[5] * X);
+    CL[6] = std::cos(wl[6] * X);
+    SL[6] = sincl(wl[6] * X);
+    CL[8] = std::cos(wl[8] * X);
+    SL[8] = sincl(wl[8] * X);
+    CL[9] = std::cos(wl[9] * X);
+    CL[10] = std::cos(wl[10] * X);
+    SL[10] = sincl(wl[10] * X);
+    CL[11] = std::cos(wl[11] * X);
+    SL[11] = sincl(wl[11] * X);
+    CL[12] = std::cos(wl[12] * X);
+    SL[12] = sincl(wl[12] * X);
+    CL[13] = std::cos(wl[13] * X);
+  }
   b[0] = 0.27777777777777779 * C[0];
   b[1] = 0.27777777777777779 * C[7];
   b[2] = 0.44444444444444442 * C[4];
@@ -818,11 +903,12 @@ constexpr int generalized_order[] = {2, 2, 4, 6, 8};
 constexpr double generalized_error_constant[] = {0.125, 0.166667, 0.0506897, 0.0181436, 0.007063};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.5};
-  double C[1], S[1];
-  for (int k = 0; k < 1; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[1]{}, S[1]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
   b[0] = 1.0 * C[0];
   bbar[0] = 0.5 * S[0];
   abar[0] = 0.0;
@@ -968,11 +1054,18 @@ constexpr int generalized_order[] = {4, 4, 4, 6, 8};
 constexpr double generalized_error_constant[] = {0.0149928, 0.0612442, 0.147332, 0.0257368, 0.0153137};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.17560359597982883, 0.32439640402017117, 0.35120719195965766, 0.5, 0.67560359597982877};
-  double C[5], S[5];
-  for (int k = 0; k < 5; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[5]{}, S[5]{};
+  S[0] = sinc(w[0] * x);
+  C[1] = std::cos(w[1] * x);
+  S[1] = sinc(w[1] * x);
+  S[2] = sinc(w[2] * x);
+  C[3] = std::cos(w[3] * x);
+  S[3] = sinc(w[3] * x);
+  C[4] = std::cos(w[4] * x);
+  S[4] = sinc(w[4] * x);
   b[0] = 1.3512071919596575 * C[1];
   b[1] = -1.7024143839193153 * C[3];
   b[2] = 1.3512071919596575 * C[4];
@@ -981,10 +1074,10 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   bbar[2] = 0.91288043780175154 * S[4];
   abar[0] = 0.0;
   abar[1] = -0.23727684182192271 * S[0];
-  abar[2] = 0.0;
+  abar[2] = abar[0];  // (abar22 = abar11)
   abar[3] = -0.47455368364384543 * S[2];
   abar[4] = 0.29895008766401665 * S[0];
-  abar[5] = 0.0;
+  abar[5] = abar[0];  // (abar33 = abar11)
 }
 
 }  // namespace Yoshida4
@@ -1077,18 +1170,22 @@ constexpr int generalized_order[] = {4, 2, 4, 6, 8};
 constexpr double generalized_error_constant[] = {0.00838781, 0.0223291, 0.0117851, 0.0066552, 0.00370364};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.21132486540518711, 0.57735026918962573, 0.78867513459481287};
-  double C[3], S[3];
-  for (int k = 0; k < 3; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[3]{}, S[3]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  S[1] = sinc(w[1] * x);
+  C[2] = std::cos(w[2] * x);
+  S[2] = sinc(w[2] * x);
   b[0] = 0.5 * C[2];
   b[1] = 0.5 * C[0];
   bbar[0] = 0.39433756729740643 * S[2];
   bbar[1] = 0.10566243270259355 * S[0];
   abar[0] = 0.0;
   abar[1] = 0.28867513459481287 * S[1];
-  abar[2] = 0.0;
+  abar[2] = abar[0];  // (abar22 = abar11)
 }
 
 }  // namespace SABA2
@@ -1231,11 +1328,18 @@ constexpr int generalized_order[] = {6, 2, 4, 6, 8};
 constexpr double generalized_error_constant[] = {0.000539225, 0.0112692, 0.00451035, 0.0016654, 0.000816559};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.11270166537925831, 0.3872983346207417, 0.5, 0.7745966692414834, 0.8872983346207417};
-  double C[5], S[5];
-  for (int k = 0; k < 5; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[5]{}, S[5]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  S[1] = sinc(w[1] * x);
+  C[2] = std::cos(w[2] * x);
+  S[2] = sinc(w[2] * x);
+  S[3] = sinc(w[3] * x);
+  C[4] = std::cos(w[4] * x);
+  S[4] = sinc(w[4] * x);
   b[0] = 0.27777777777777779 * C[4];
   b[1] = 0.44444444444444442 * C[2];
   b[2] = 0.27777777777777779 * C[0];
@@ -1244,10 +1348,10 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   bbar[2] = 0.031306018160905086 * S[0];
   abar[0] = 0.0;
   abar[1] = 0.10758287072798381 * S[1];
-  abar[2] = 0.0;
+  abar[2] = abar[0];  // (abar22 = abar11)
   abar[3] = 0.21516574145596762 * S[3];
   abar[4] = 0.17213259316477408 * S[1];
-  abar[5] = 0.0;
+  abar[5] = abar[0];  // (abar33 = abar11)
 }
 
 }  // namespace SABA3
@@ -1450,11 +1554,22 @@ constexpr int generalized_order[] = {8, 2, 4, 6, 8};
 constexpr double generalized_error_constant[] = {3.42365e-05, 0.00679355, 0.00278531, 0.000983265, 0.000376687};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.069431844202973714, 0.26057763400459816, 0.33000947820757187, 0.33998104358485626, 0.60055867758945447, 0.66999052179242813, 0.86113631159405257, 0.93056815579702634};
-  double C[8], S[8];
-  for (int k = 0; k < 8; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[8]{}, S[8]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  S[1] = sinc(w[1] * x);
+  C[2] = std::cos(w[2] * x);
+  S[2] = sinc(w[2] * x);
+  S[3] = sinc(w[3] * x);
+  S[4] = sinc(w[4] * x);
+  C[5] = std::cos(w[5] * x);
+  S[5] = sinc(w[5] * x);
+  S[6] = sinc(w[6] * x);
+  C[7] = std::cos(w[7] * x);
+  S[7] = sinc(w[7] * x);
   b[0] = 0.17392742256872692 * C[7];
   b[1] = 0.32607257743127305 * C[5];
   b[2] = 0.32607257743127305 * C[2];
@@ -1465,14 +1580,14 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   bbar[3] = 0.012076101706416622 * S[0];
   abar[0] = 0.0;
   abar[1] = 0.045321596261476811 * S[1];
-  abar[2] = 0.0;
+  abar[2] = abar[0];  // (abar22 = abar11)
   abar[3] = 0.10445362289441687 * S[4];
   abar[4] = 0.11085849515948806 * S[3];
-  abar[5] = 0.0;
+  abar[5] = abar[0];  // (abar33 = abar11)
   abar[6] = 0.14977521915589367 * S[6];
   abar[7] = 0.19582571590031034 * S[4];
   abar[8] = 0.084967220740822261 * S[1];
-  abar[9] = 0.0;
+  abar[9] = abar[0];  // (abar44 = abar11)
 }
 
 }  // namespace SABA4
@@ -1915,11 +2030,28 @@ constexpr int generalized_order[] = {4, 4, 4, 6, 8};
 constexpr double generalized_error_constant[] = {5.17534e-05, 2.30953e-05, 2.19197e-05, 7.65698e-05, 0.000228391};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.095470580079622128, 0.14982837710464902, 0.24529895718427117, 0.25470104281572886, 0.35017162289535098, 0.5, 0.50940208563145772, 0.60487266571107978, 0.70034324579070195, 0.75470104281572881, 0.85017162289535098, 1.0};
-  double C[12], S[12];
-  for (int k = 0; k < 12; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[12]{}, S[12]{};
+  S[0] = sinc(w[0] * x);
+  C[1] = std::cos(w[1] * x);
+  S[1] = sinc(w[1] * x);
+  C[2] = std::cos(w[2] * x);
+  S[2] = sinc(w[2] * x);
+  S[3] = sinc(w[3] * x);
+  S[4] = sinc(w[4] * x);
+  C[5] = std::cos(w[5] * x);
+  S[5] = sinc(w[5] * x);
+  S[6] = sinc(w[6] * x);
+  S[7] = sinc(w[7] * x);
+  S[8] = sinc(w[8] * x);
+  C[9] = std::cos(w[9] * x);
+  S[9] = sinc(w[9] * x);
+  C[10] = std::cos(w[10] * x);
+  S[10] = sinc(w[10] * x);
+  C[11] = std::cos(w[11] * x);
+  S[11] = sinc(w[11] * x);
   b[0] = 0.08298440641740501 * C[11];
   b[1] = 0.39630980149836803 * C[9];
   b[2] = -0.039056304922348448 * C[1];
@@ -1934,34 +2066,34 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   bbar[4] = -0.033204562140128666 * S[10];
   bbar[5] = 0.097214381029455191 * S[2];
   bbar[6] = 0.0;
-  abar[0] = 0.0;
+  abar[0] = bbar[6];  // (abar11 = bbar7)
   abar[1] = 0.020355988356745187 * S[2];
-  abar[2] = 0.0;
+  abar[2] = bbar[6];  // (abar22 = bbar7)
   abar[3] = 0.070550987478892602 * S[10];
   abar[4] = 0.23971696607974677 * S[7];
-  abar[5] = 0.0;
+  abar[5] = bbar[6];  // (abar33 = bbar7)
   abar[6] = 0.041492203208702505 * S[5];
   abar[7] = 0.10094051971972884 * S[3];
   abar[8] = 0.013676409678954442 * S[4];
-  abar[9] = 0.0;
+  abar[9] = bbar[6];  // (abar44 = bbar7)
   abar[10] = 0.012433418938512415 * S[1];
   abar[11] = -0.037835926640289098 * S[0];
   abar[12] = 0.027352819357908884 * S[8];
   abar[13] = -0.041853980992843799 * S[4];
-  abar[14] = 0.0;
+  abar[14] = bbar[6];  // (abar55 = bbar7)
   abar[15] = 0.06262841806065983 * S[9];
   abar[16] = 0.20188103943945768 * S[6];
   abar[17] = 0.0037287280867032077 * S[0];
   abar[18] = 0.030442936856858997 * S[3];
   abar[19] = -0.023624091271205676 * S[7];
-  abar[20] = 0.0;
-  abar[21] = 0.08298440641740501 * S[11];
-  abar[22] = 0.29909542046891285 * S[9];
-  abar[23] = -0.0058517427822197838 * S[1];
-  abar[24] = 0.059762097006575386 * S[5];
-  abar[25] = -0.033204562140128666 * S[10];
-  abar[26] = 0.097214381029455191 * S[2];
-  abar[27] = 0.0;
+  abar[20] = bbar[6];  // (abar66 = bbar7)
+  abar[21] = bbar[0];  // (abar71 = bbar1)
+  abar[22] = bbar[1];  // (abar72 = bbar2)
+  abar[23] = bbar[2];  // (abar73 = bbar3)
+  abar[24] = bbar[3];  // (abar74 = bbar4)
+  abar[25] = bbar[4];  // (abar75 = bbar5)
+  abar[26] = bbar[5];  // (abar76 = bbar6)
+  abar[27] = bbar[6];  // (abar77 = bbar7)
 }
 
 }  // namespace SRKN6b
@@ -2404,11 +2536,36 @@ constexpr int generalized_order[] = {8, 6, 4, 6, 8};
 constexpr double generalized_error_constant[] = {3.35136e-05, 6.46051e-05, 9.63668e-05, 6.85434e-05, 5.69808e-05};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.071133426498223115, 0.09516795727409888, 0.14598547068254122, 0.16630138377232198, 0.18771314554513679, 0.2411534279566401, 0.31228685445486321, 0.33369861622767799, 0.37542629109027359, 0.42886657350177687, 0.5, 0.52141176177281479, 0.61657971904691367, 0.66739723245535598, 0.68771314554513674, 0.76256518972945486, 0.83369861622767805, 0.85773314700355374, 0.92886657350177693};
-  double C[19], S[19];
-  for (int k = 0; k < 19; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[19]{}, S[19]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  S[1] = sinc(w[1] * x);
+  S[2] = sinc(w[2] * x);
+  C[3] = std::cos(w[3] * x);
+  S[3] = sinc(w[3] * x);
+  S[4] = sinc(w[4] * x);
+  S[5] = sinc(w[5] * x);
+  C[6] = std::cos(w[6] * x);
+  S[6] = sinc(w[6] * x);
+  S[7] = sinc(w[7] * x);
+  S[8] = sinc(w[8] * x);
+  S[9] = sinc(w[9] * x);
+  C[10] = std::cos(w[10] * x);
+  S[10] = sinc(w[10] * x);
+  S[11] = sinc(w[11] * x);
+  S[12] = sinc(w[12] * x);
+  S[13] = sinc(w[13] * x);
+  C[14] = std::cos(w[14] * x);
+  S[14] = sinc(w[14] * x);
+  S[15] = sinc(w[15] * x);
+  C[16] = std::cos(w[16] * x);
+  S[16] = sinc(w[16] * x);
+  S[17] = sinc(w[17] * x);
+  C[18] = std::cos(w[18] * x);
+  S[18] = sinc(w[18] * x);
   b[0] = 0.18308368747219722 * C[18];
   b[1] = 0.31078285989857485 * C[14];
   b[2] = -0.0265646185119588 * C[3];
@@ -2425,32 +2582,32 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   bbar[6] = 0.013023370025827194 * S[0];
   abar[0] = 0.0;
   abar[1] = 0.044151258836862523 * S[5];
-  abar[2] = 0.0;
+  abar[2] = abar[0];  // (abar22 = abar11)
   abar[3] = 0.1396132468736043 * S[15];
   abar[4] = 0.16204583850850979 * S[11];
-  abar[5] = 0.0;
+  abar[5] = abar[0];  // (abar33 = abar11)
   abar[6] = 0.078518473710271416 * S[9];
   abar[7] = 0.058338028213075037 * S[4];
   abar[8] = 0.0088645764380568103 * S[7];
-  abar[9] = 0.0;
+  abar[9] = abar[0];  // (abar44 = abar11)
   abar[10] = 0.017423700546938536 * S[1];
   abar[11] = -0.045369782082359721 * S[2];
   abar[12] = 0.017729152876113621 * S[13];
   abar[13] = -0.021822602186256354 * S[7];
-  abar[14] = 0.0;
+  abar[14] = abar[0];  // (abar55 = abar11)
   abar[15] = 0.11288568858368031 * S[12];
   abar[16] = 0.11667605642615007 * S[8];
   abar[17] = 0.0038780483369704535 * S[2];
   abar[18] = 0.012275715574341635 * S[4];
   abar[19] = -0.013851104539143167 * S[11];
-  abar[20] = 0.0;
+  abar[20] = abar[0];  // (abar66 = abar11)
   abar[21] = 0.15703694742054283 * S[17];
   abar[22] = 0.19162240844085962 * S[12];
   abar[23] = -0.0025281004795488313 * S[1];
   abar[24] = 0.028046219460876157 * S[9];
   abar[25] = -0.020257253355662454 * S[15];
   abar[26] = 0.074946352014709547 * S[5];
-  abar[27] = 0.0;
+  abar[27] = abar[0];  // (abar77 = abar11)
 }
 
 }  // namespace ABA864
@@ -2993,11 +3150,42 @@ constexpr int generalized_order[] = {10, 6, 4, 6, 8, 10};
 constexpr double generalized_error_constant[] = {5.50066e-07, 3.1119e-05, 7.40347e-05, 4.63321e-05, 3.057e-05, 1.89982e-05};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.010323826455719299, 0.038094497422412193, 0.13497488966119445, 0.14529871611691375, 0.17306938708360664, 0.18339321353932594, 0.20762769572554124, 0.21795152218126054, 0.21795818147026561, 0.35292641184245499, 0.39102090926486721, 0.42558587719580687, 0.43590970365152615, 0.57088459331272057, 0.60897909073513279, 0.63321357292134806, 0.64353739937706744, 0.65386122583278672, 0.77851228903826186, 0.78883611549398114, 0.81660678646067408, 0.82693061291639336, 0.92381100515517556, 0.96190550257758778};
-  double C[24], S[24];
-  for (int k = 0; k < 24; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[24]{}, S[24]{};
+  S[0] = sinc(w[0] * x);
+  C[1] = std::cos(w[1] * x);
+  S[1] = sinc(w[1] * x);
+  S[2] = sinc(w[2] * x);
+  S[3] = sinc(w[3] * x);
+  C[4] = std::cos(w[4] * x);
+  S[4] = sinc(w[4] * x);
+  C[5] = std::cos(w[5] * x);
+  S[5] = sinc(w[5] * x);
+  S[6] = sinc(w[6] * x);
+  S[7] = sinc(w[7] * x);
+  S[8] = sinc(w[8] * x);
+  S[9] = sinc(w[9] * x);
+  C[10] = std::cos(w[10] * x);
+  S[10] = sinc(w[10] * x);
+  S[11] = sinc(w[11] * x);
+  S[12] = sinc(w[12] * x);
+  S[13] = sinc(w[13] * x);
+  C[14] = std::cos(w[14] * x);
+  S[14] = sinc(w[14] * x);
+  S[15] = sinc(w[15] * x);
+  S[16] = sinc(w[16] * x);
+  S[17] = sinc(w[17] * x);
+  S[18] = sinc(w[18] * x);
+  S[19] = sinc(w[19] * x);
+  C[20] = std::cos(w[20] * x);
+  S[20] = sinc(w[20] * x);
+  C[21] = std::cos(w[21] * x);
+  S[21] = sinc(w[21] * x);
+  S[22] = sinc(w[22] * x);
+  C[23] = std::cos(w[23] * x);
+  S[23] = sinc(w[23] * x);
   b[0] = 0.095858880837075208 * C[23];
   b[1] = 0.20444615314299877 * C[20];
   b[2] = 0.21707034797899111 * C[14];
@@ -3016,32 +3204,32 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   bbar[7] = 0.0036516958889632792 * S[1];
   abar[0] = 0.0;
   abar[1] = 0.013928172314031255 * S[3];
-  abar[2] = 0.0;
+  abar[2] = abar[0];  // (abar22 = abar11)
   abar[3] = 0.033831130857062422 * S[9];
   abar[4] = 0.042448683677031959 * S[6];
-  abar[5] = 0.0;
+  abar[5] = abar[0];  // (abar33 = abar11)
   abar[6] = 0.075616947195118842 * S[19];
   abar[7] = 0.1315687457062911 * S[16];
   abar[8] = 0.094623071059055666 * S[12];
-  abar[9] = 0.0;
+  abar[9] = abar[0];  // (abar44 = abar11)
   abar[10] = 0.012938541864029814 * S[2];
   abar[11] = -0.0021106666045877303 * S[0];
   abar[12] = -0.047310812762437024 * S[7];
   abar[13] = 0.011361088547067189 * S[17];
-  abar[14] = 0.0;
+  abar[14] = abar[0];  // (abar55 = abar11)
   abar[15] = 0.05472435820208623 * S[13];
   abar[16] = 0.087009395424671399 * S[11];
   abar[17] = 0.047312258296618649 * S[8];
   abar[18] = 0.0037869909464590501 * S[7];
   abar[19] = -0.0075740976006081389 * S[12];
-  abar[20] = 0.0;
+  abar[20] = abar[0];  // (abar66 = abar11)
   abar[21] = 0.074627316745117397 * S[18];
   abar[22] = 0.12945807910170337 * S[15];
   abar[23] = 0.09238207445783797 * S[11];
   abar[24] = 0.00017938042794722402 * S[0];
   abar[25] = -0.011181708119119964 * S[16];
   abar[26] = 0.045069816161219321 * S[6];
-  abar[27] = 0.0;
+  abar[27] = abar[0];  // (abar77 = abar11)
   abar[28] = 0.088555489059148645 * S[22];
   abar[29] = 0.15916384266842301 * S[18];
   abar[30] = 0.12392211732623708 * S[13];
@@ -3049,7 +3237,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[32] = -0.013706328809813107 * S[19];
   abar[33] = 0.076609859029618435 * S[9];
   abar[34] = 0.029705763566719653 * S[3];
-  abar[35] = 0.0;
+  abar[35] = abar[0];  // (abar88 = abar11)
 }
 
 }  // namespace ABA1064
@@ -3592,11 +3780,42 @@ constexpr int generalized_order[] = {8, 6, 4, 6, 8};
 constexpr double generalized_error_constant[] = {3.38586e-05, 5.54098e-05, 0.00036751, 0.000204194, 0.000123632};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.0095447197017450077, 0.068102356516583723, 0.075072649572165626, 0.084617369273910628, 0.16651866944819269, 0.17606338914993769, 0.23462102596477641, 0.24416574566652141, 0.25113603872210333, 0.31923839523868702, 0.3615232095226259, 0.43659585909479154, 0.44614057879653657, 0.51166850866695712, 0.52121322836870221, 0.53075794807044718, 0.61265924824472928, 0.68076160476131298, 0.68773189781689481, 0.6972766175186399, 0.75583425433347862, 0.76537897403522359, 0.86379528696683261, 0.9318976434834163};
-  double C[24], S[24];
-  for (int k = 0; k < 24; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[24]{}, S[24]{};
+  S[0] = sinc(w[0] * x);
+  C[1] = std::cos(w[1] * x);
+  S[1] = sinc(w[1] * x);
+  S[2] = sinc(w[2] * x);
+  S[3] = sinc(w[3] * x);
+  S[4] = sinc(w[4] * x);
+  S[5] = sinc(w[5] * x);
+  C[6] = std::cos(w[6] * x);
+  S[6] = sinc(w[6] * x);
+  C[7] = std::cos(w[7] * x);
+  S[7] = sinc(w[7] * x);
+  S[8] = sinc(w[8] * x);
+  C[9] = std::cos(w[9] * x);
+  S[9] = sinc(w[9] * x);
+  S[10] = sinc(w[10] * x);
+  S[11] = sinc(w[11] * x);
+  S[12] = sinc(w[12] * x);
+  S[13] = sinc(w[13] * x);
+  S[14] = sinc(w[14] * x);
+  S[15] = sinc(w[15] * x);
+  S[16] = sinc(w[16] * x);
+  C[17] = std::cos(w[17] * x);
+  S[17] = sinc(w[17] * x);
+  S[18] = sinc(w[18] * x);
+  S[19] = sinc(w[19] * x);
+  C[20] = std::cos(w[20] * x);
+  S[20] = sinc(w[20] * x);
+  C[21] = std::cos(w[21] * x);
+  S[21] = sinc(w[21] * x);
+  S[22] = sinc(w[22] * x);
+  C[23] = std::cos(w[23] * x);
+  S[23] = sinc(w[23] * x);
   b[0] = 0.16844325936189544 * C[23];
   b[1] = 0.42431771737426771 * C[17];
   b[2] = -0.58581096946817568 * C[20];
@@ -3615,32 +3834,32 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   bbar[7] = 0.011471382901879183 * S[1];
   abar[0] = 0.0;
   abar[1] = 0.042302172905586272 * S[8];
-  abar[2] = 0.0;
+  abar[2] = abar[0];  // (abar22 = abar11)
   abar[3] = 0.029656691122717287 * S[5];
   abar[4] = -0.031854655303699617 * S[2];
-  abar[5] = 0.0;
+  abar[5] = abar[0];  // (abar33 = abar11)
   abar[6] = 0.028048947426459657 * S[4];
   abar[7] = -0.035904648980521259 * S[3];
   abar[8] = 0.00559140150178124 * S[0];
-  abar[9] = 0.0;
+  abar[9] = abar[0];  // (abar44 = abar11)
   abar[10] = 0.11745154613167744 * S[19];
   abar[11] = 0.18930535202298102 * S[12];
   abar[12] = -0.30533242661030707 * S[14];
   abar[13] = 0.26169020243859187 * S[15];
-  abar[14] = 0.0;
+  abar[14] = abar[0];  // (abar55 = abar11)
   abar[15] = 0.11584380243541981 * S[18];
   abar[16] = 0.18525535834615936 * S[11];
   abar[17] = -0.29974102510852585 * S[13];
   abar[18] = 0.25698417845901739 * S[14];
   abar[19] = -0.0047060239795744729 * S[0];
-  abar[20] = 0.0;
+  abar[20] = abar[0];  // (abar66 = abar11)
   abar[21] = 0.10319832065255082 * S[16];
   abar[22] = 0.15340070304245976 * S[10];
   abar[23] = -0.25576264348211086 * S[11];
   abar[24] = 0.21996960913308819 * S[12];
   abar[25] = -0.041720593305503657 * S[3];
   abar[26] = 0.043978381626414972 * S[2];
-  abar[27] = 0.0;
+  abar[27] = abar[0];  // (abar77 = abar11)
   abar[28] = 0.1455004935581371 * S[22];
   abar[29] = 0.25996217374343833 * S[16];
   abar[30] = -0.40288088979430353 * S[18];
@@ -3648,7 +3867,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[32] = 0.082102028761175797 * S[4];
   abar[33] = -0.10313986468577768 * S[5];
   abar[34] = 0.10656147070097859 * S[8];
-  abar[35] = 0.0;
+  abar[35] = abar[0];  // (abar88 = abar11)
 }
 
 }  // namespace ABAH864
@@ -4691,11 +4910,57 @@ constexpr int generalized_order[] = {6, 6, 6, 6, 8};
 constexpr double generalized_error_constant[] = {7.74595e-06, 2.50326e-06, 5.74964e-07, 1.36734e-07, 9.97049e-07};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.016172100891564577, 0.040402600058336832, 0.082827175887934104, 0.11087711173385223, 0.12322977594627094, 0.1270492126254168, 0.16350458517414154, 0.17243285250834142, 0.18860495339990599, 0.20477705429147058, 0.24633176106207566, 0.2743816969079938, 0.28673436112041251, 0.29055379779955837, 0.29948206513375825, 0.31565416602532281, 0.35720887279592789, 0.37338097368749246, 0.39761147285426474, 0.4137835737458293, 0.42653127775917504, 0.46298665030789976, 0.47915875119946433, 0.54581382619583385, 0.56198592708739847, 0.5862164262541707, 0.59003586293331656, 0.60238852714573532, 0.67286303882125065, 0.71326563887958749, 0.75354044810745813, 0.83636762399539222, 0.87677022405372906, 0.91919479988332631, 0.95959739994166315, 1.0};
-  double C[36], S[36];
-  for (int k = 0; k < 36; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[36]{}, S[36]{};
+  S[0] = sinc(w[0] * x);
+  C[1] = std::cos(w[1] * x);
+  S[1] = sinc(w[1] * x);
+  S[2] = sinc(w[2] * x);
+  S[3] = sinc(w[3] * x);
+  C[4] = std::cos(w[4] * x);
+  S[4] = sinc(w[4] * x);
+  S[5] = sinc(w[5] * x);
+  S[6] = sinc(w[6] * x);
+  S[7] = sinc(w[7] * x);
+  S[8] = sinc(w[8] * x);
+  S[9] = sinc(w[9] * x);
+  S[10] = sinc(w[10] * x);
+  S[11] = sinc(w[11] * x);
+  C[12] = std::cos(w[12] * x);
+  S[12] = sinc(w[12] * x);
+  S[13] = sinc(w[13] * x);
+  S[14] = sinc(w[14] * x);
+  S[15] = sinc(w[15] * x);
+  S[16] = sinc(w[16] * x);
+  S[17] = sinc(w[17] * x);
+  C[18] = std::cos(w[18] * x);
+  S[18] = sinc(w[18] * x);
+  C[19] = std::cos(w[19] * x);
+  S[19] = sinc(w[19] * x);
+  S[20] = sinc(w[20] * x);
+  S[21] = sinc(w[21] * x);
+  S[22] = sinc(w[22] * x);
+  S[23] = sinc(w[23] * x);
+  S[24] = sinc(w[24] * x);
+  C[25] = std::cos(w[25] * x);
+  S[25] = sinc(w[25] * x);
+  S[26] = sinc(w[26] * x);
+  C[27] = std::cos(w[27] * x);
+  S[27] = sinc(w[27] * x);
+  S[28] = sinc(w[28] * x);
+  C[29] = std::cos(w[29] * x);
+  S[29] = sinc(w[29] * x);
+  S[30] = sinc(w[30] * x);
+  S[31] = sinc(w[31] * x);
+  C[32] = std::cos(w[32] * x);
+  S[32] = sinc(w[32] * x);
+  S[33] = sinc(w[33] * x);
+  C[34] = std::cos(w[34] * x);
+  S[34] = sinc(w[34] * x);
+  C[35] = std::cos(w[35] * x);
+  S[35] = sinc(w[35] * x);
   b[0] = 0.041464998518262734 * C[35];
   b[1] = 0.19812867191806641 * C[32];
   b[2] = -0.040006192104152793 * C[25];
@@ -4720,34 +4985,34 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   bbar[9] = -0.016553905140818521 * S[19];
   bbar[10] = 0.024415351848995546 * S[4];
   bbar[11] = 0.0;
-  abar[0] = 0.0;
+  abar[0] = bbar[11];  // (abar11 = bbar12)
   abar[1] = 0.0051097224770179726 * S[4];
-  abar[2] = 0.0;
+  abar[2] = bbar[11];  // (abar22 = bbar12)
   abar[3] = 0.017157535272252271 * S[19];
   abar[4] = 0.057567038078776903 * S[13];
-  abar[5] = 0.0;
+  abar[5] = bbar[11];  // (abar33 = bbar12)
   abar[6] = 0.011889439858992915 * S[12];
   abar[7] = 0.032394946313067038 * S[6];
   abar[8] = 0.0050827552069737788 * S[5];
-  abar[9] = 0.0;
+  abar[9] = bbar[11];  // (abar44 = bbar12)
   abar[10] = 0.0016752937515528985 * S[1];
   abar[11] = -0.016410438357400477 * S[2];
   abar[12] = 0.014937550961377442 * S[17];
   abar[13] = -0.018537446479946092 * S[10];
-  abar[14] = 0.0;
+  abar[14] = bbar[11];  // (abar55 = bbar12)
   abar[15] = 0.016486959132746348 * S[18];
   abar[16] = 0.054362881207006233 * S[11];
   abar[17] = 0.00064698417499567309 * S[0];
   abar[18] = 0.0083439444258238907 * S[3];
   abar[19] = -0.0041119697248610922 * S[16];
-  abar[20] = 0.0;
+  abar[20] = bbar[11];  // (abar66 = bbar12)
   abar[21] = 0.024978039385516383 * S[27];
   abar[22] = 0.094935087013069089 * S[22];
   abar[23] = -0.0075453659975114242 * S[8];
   abar[24] = 0.023754233654798094 * S[15];
   abar[25] = -0.0064692377316774175 * S[24];
   abar[26] = 0.048464570037251624 * S[9];
-  abar[27] = 0.0;
+  abar[27] = bbar[11];  // (abar77 = bbar12)
   abar[28] = 0.03978970476670983 * S[34];
   abar[29] = 0.16570840657747579 * S[31];
   abar[30] = -0.021835932783893192 * S[23];
@@ -4755,7 +5020,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[32] = -0.010581207456538511 * S[33];
   abar[33] = 0.13300516709508828 * S[24];
   abar[34] = 0.084540597057836661 * S[16];
-  abar[35] = 0.0;
+  abar[35] = bbar[11];  // (abar88 = bbar12)
   abar[36] = 0.029575558659269818 * S[29];
   abar[37] = 0.11690302190700828 * S[26];
   abar[38] = -0.01198113702948953 * S[14];
@@ -4764,7 +5029,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[41] = 0.074705847731894579 * S[15];
   abar[42] = 0.026241277694642951 * S[3];
   abar[43] = 0.0028356203356058366 * S[10];
-  abar[44] = 0.0;
+  abar[44] = bbar[11];  // (abar99 = bbar12)
   abar[45] = 0.024307463246010463 * S[25];
   abar[46] = 0.09173093014129842 * S[21];
   abar[47] = -0.0068983818225157511 * S[7];
@@ -4774,7 +5039,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[51] = -0.0038274499016532479 * S[0];
   abar[52] = 0.0042981330436303415 * S[17];
   abar[53] = -0.0095609594524412658 * S[5];
-  abar[54] = 0.0;
+  abar[54] = bbar[11];  // (abar1010 = bbar12)
   abar[55] = 0.036355276041244756 * S[32];
   abar[56] = 0.14929796822007532 * S[30];
   abar[57] = -0.01852233287387605 * S[21];
@@ -4785,19 +5050,19 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[62] = 0.00095345571060745577 * S[2];
   abar[63] = 0.012304371485931262 * S[6];
   abar[64] = -0.011623951051360298 * S[13];
-  abar[65] = 0.0;
-  abar[66] = 0.041464998518262734 * S[35];
-  abar[67] = 0.17371332006907086 * S[32];
-  abar[68] = -0.023452286963334269 * S[25];
-  abar[69] = 0.053676081191101184 * S[29];
-  abar[70] = -0.011046297438613127 * S[34];
-  abar[71] = 0.14256724741209131 * S[27];
-  abar[72] = 0.094102677374839683 * S[18];
-  abar[73] = -0.00046508998207461653 * S[1];
-  abar[74] = 0.021577903110479205 * S[12];
-  abar[75] = -0.016553905140818521 * S[19];
-  abar[76] = 0.024415351848995546 * S[4];
-  abar[77] = 0.0;
+  abar[65] = bbar[11];  // (abar1111 = bbar12)
+  abar[66] = bbar[0];  // (abar121 = bbar1)
+  abar[67] = bbar[1];  // (abar122 = bbar2)
+  abar[68] = bbar[2];  // (abar123 = bbar3)
+  abar[69] = bbar[3];  // (abar124 = bbar4)
+  abar[70] = bbar[4];  // (abar125 = bbar5)
+  abar[71] = bbar[5];  // (abar126 = bbar6)
+  abar[72] = bbar[6];  // (abar127 = bbar7)
+  abar[73] = bbar[7];  // (abar128 = bbar8)
+  abar[74] = bbar[8];  // (abar129 = bbar9)
+  abar[75] = bbar[9];  // (abar1210 = bbar10)
+  abar[76] = bbar[10];  // (abar1211 = bbar11)
+  abar[77] = bbar[11];  // (abar1212 = bbar12)
 }
 
 }  // namespace SRKN11b
@@ -6150,11 +6415,87 @@ constexpr int generalized_order[] = {6, 6, 6, 6, 8};
 constexpr double generalized_error_constant[] = {2.9532e-06, 4.17928e-07, 1.09123e-07, 1.19551e-07, 5.70295e-07};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.0087942431285102565, 0.023726759147872693, 0.025867888266558565, 0.032521002276382951, 0.03785931984061059, 0.076767744835878546, 0.097623457241031164, 0.10263563310243712, 0.10641770036954143, 0.11462706467648914, 0.13014445951741413, 0.1404949529430477, 0.14226306450413087, 0.15822905528747275, 0.16598982365200354, 0.17478406678051381, 0.18409694355403131, 0.18971658279987624, 0.19851082592838651, 0.20730506905689675, 0.25585251252850388, 0.26086468838990984, 0.26464675565701418, 0.272407524021545, 0.2817204007950625, 0.28837351480488688, 0.29051464392357274, 0.29613428316941764, 0.29872400823052048, 0.30492852629792794, 0.31424140307144544, 0.358488145630941, 0.36728238875945129, 0.391009147907324, 0.39634746547155164, 0.4025519835389591, 0.40514170860006188, 0.42886846774793458, 0.43063657930901772, 0.45436333845689042, 0.45650446757557628, 0.46315758158540066, 0.48023122672344898, 0.48902546985195922, 0.53327221241145484, 0.55699897155932754, 0.56078103882643182, 0.56579321468783783, 0.57113153225206548, 0.58664892709299044, 0.59485829139993818, 0.60365253452844836, 0.663416671928869, 0.70127599176947952, 0.7190100941139046, 0.7448779823804631, 0.77074587064702171, 0.82164572721634166, 0.84751361548290027, 0.8595050470569523, 0.8853729353235108, 0.92428136031877883, 0.96214068015938936};
-  double C[63], S[63];
-  for (int k = 0; k < 63; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[63]{}, S[63]{};
+  S[0] = sinc(w[0] * x);
+  S[1] = sinc(w[1] * x);
+  S[2] = sinc(w[2] * x);
+  S[3] = sinc(w[3] * x);
+  C[4] = std::cos(w[4] * x);
+  S[4] = sinc(w[4] * x);
+  S[5] = sinc(w[5] * x);
+  S[6] = sinc(w[6] * x);
+  S[7] = sinc(w[7] * x);
+  S[8] = sinc(w[8] * x);
+  C[9] = std::cos(w[9] * x);
+  S[9] = sinc(w[9] * x);
+  S[10] = sinc(w[10] * x);
+  C[11] = std::cos(w[11] * x);
+  S[11] = sinc(w[11] * x);
+  S[12] = sinc(w[12] * x);
+  S[13] = sinc(w[13] * x);
+  S[14] = sinc(w[14] * x);
+  S[15] = sinc(w[15] * x);
+  S[16] = sinc(w[16] * x);
+  S[17] = sinc(w[17] * x);
+  S[18] = sinc(w[18] * x);
+  S[19] = sinc(w[19] * x);
+  S[20] = sinc(w[20] * x);
+  S[21] = sinc(w[21] * x);
+  S[22] = sinc(w[22] * x);
+  S[23] = sinc(w[23] * x);
+  S[24] = sinc(w[24] * x);
+  S[25] = sinc(w[25] * x);
+  S[26] = sinc(w[26] * x);
+  S[27] = sinc(w[27] * x);
+  C[28] = std::cos(w[28] * x);
+  S[28] = sinc(w[28] * x);
+  S[29] = sinc(w[29] * x);
+  S[30] = sinc(w[30] * x);
+  S[31] = sinc(w[31] * x);
+  S[32] = sinc(w[32] * x);
+  S[33] = sinc(w[33] * x);
+  C[34] = std::cos(w[34] * x);
+  S[34] = sinc(w[34] * x);
+  S[35] = sinc(w[35] * x);
+  C[36] = std::cos(w[36] * x);
+  S[36] = sinc(w[36] * x);
+  C[37] = std::cos(w[37] * x);
+  S[37] = sinc(w[37] * x);
+  S[38] = sinc(w[38] * x);
+  S[39] = sinc(w[39] * x);
+  S[40] = sinc(w[40] * x);
+  S[41] = sinc(w[41] * x);
+  S[42] = sinc(w[42] * x);
+  S[43] = sinc(w[43] * x);
+  S[44] = sinc(w[44] * x);
+  S[45] = sinc(w[45] * x);
+  S[46] = sinc(w[46] * x);
+  S[47] = sinc(w[47] * x);
+  C[48] = std::cos(w[48] * x);
+  S[48] = sinc(w[48] * x);
+  S[49] = sinc(w[49] * x);
+  C[50] = std::cos(w[50] * x);
+  S[50] = sinc(w[50] * x);
+  C[51] = std::cos(w[51] * x);
+  S[51] = sinc(w[51] * x);
+  S[52] = sinc(w[52] * x);
+  C[53] = std::cos(w[53] * x);
+  S[53] = sinc(w[53] * x);
+  S[54] = sinc(w[54] * x);
+  S[55] = sinc(w[55] * x);
+  S[56] = sinc(w[56] * x);
+  S[57] = sinc(w[57] * x);
+  S[58] = sinc(w[58] * x);
+  C[59] = std::cos(w[59] * x);
+  S[59] = sinc(w[59] * x);
+  C[60] = std::cos(w[60] * x);
+  S[60] = sinc(w[60] * x);
+  S[61] = sinc(w[61] * x);
+  C[62] = std::cos(w[62] * x);
+  S[62] = sinc(w[62] * x);
   b[0] = 0.091719152624461647 * C[62];
   b[1] = 0.18398317000500514 * C[59];
   b[2] = -0.056534365832888733 * C[60];
@@ -6185,32 +6526,32 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   bbar[13] = 0.0034724247347192715 * S[4];
   abar[0] = 0.0;
   abar[1] = 0.0094136532972306786 * S[7];
-  abar[2] = 0.0;
+  abar[2] = abar[0];  // (abar22 = abar11)
   abar[3] = 0.0070410725052376718 * S[5];
   abar[4] = -0.0047592560846167224 * S[2];
-  abar[5] = 0.0;
+  abar[5] = abar[0];  // (abar33 = abar11)
   abar[6] = 0.035863027714472542 * S[33];
   abar[7] = 0.053055873399288363 * S[25];
   abar[8] = -0.017765438441081343 * S[30];
-  abar[9] = 0.0;
+  abar[9] = abar[0];  // (abar44 = abar11)
   abar[10] = 0.023926288168766768 * S[21];
   abar[11] = 0.029111483178686455 * S[13];
   abar[12] = -0.010407803955600274 * S[16];
   abar[13] = -0.00063961951428119707 * S[10];
-  abar[14] = 0.0;
+  abar[14] = abar[0];  // (abar55 = abar11)
   abar[15] = 0.033686829470904969 * S[32];
   abar[16] = 0.048690549037317489 * S[22];
   abar[17] = -0.016424061159386667 * S[26];
   abar[18] = -0.00011660963684434548 * S[1];
   abar[19] = 0.015298728555790241 * S[8];
-  abar[20] = 0.0;
+  abar[20] = abar[0];  // (abar66 = abar11)
   abar[21] = 0.032880228943184514 * S[31];
   abar[22] = 0.047072556308739438 * S[20];
   abar[23] = -0.0159268842011361 * S[24];
   abar[24] = -0.0001598306048301231 * S[3];
   abar[25] = 0.01403445825104299 * S[6];
   abar[26] = -0.0028895041829832884 * S[0];
-  abar[27] = 0.0;
+  abar[27] = abar[0];  // (abar77 = abar11)
   abar[28] = 0.051894074211838587 * S[47];
   abar[29] = 0.085213200071933809 * S[41];
   abar[30] = -0.027646744814210963 * S[43];
@@ -6218,7 +6559,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[32] = 0.043836868646377501 * S[29];
   abar[33] = 0.065224244259063105 * S[18];
   abar[34] = -0.040717092623540924 * S[19];
-  abar[35] = 0.0;
+  abar[35] = abar[0];  // (abar88 = abar11)
   abar[36] = 0.051087473684118132 * S[45];
   abar[37] = 0.083595207343355751 * S[39];
   abar[38] = -0.027149567855960399 * S[42];
@@ -6227,7 +6568,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[41] = 0.062334740076079816 * S[17];
   abar[42] = -0.038989802434031794 * S[18];
   abar[43] = 0.0017272901895091298 * S[0];
-  abar[44] = 0.0;
+  abar[44] = abar[0];  // (abar99 = abar11)
   abar[45] = 0.060848014986256332 * S[52];
   abar[46] = 0.1031742732019868 * S[46];
   abar[47] = -0.033165825059746794 * S[49];
@@ -6237,7 +6578,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[51] = -0.059891459023729596 * S[29];
   abar[52] = -0.019174366400188669 * S[6];
   abar[53] = 0.034965418384258574 * S[8];
-  abar[54] = 0.0;
+  abar[54] = abar[0];  // (abar1010 = abar11)
   abar[55] = 0.048911275440550558 * S[44];
   abar[56] = 0.079229882981384878 * S[38];
   abar[57] = -0.025808190574265723 * S[40];
@@ -6248,7 +6589,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[62] = 0.0063874977487137176 * S[3];
   abar[63] = -0.0077958465333024017 * S[1];
   abar[64] = -0.018709714194940653 * S[10];
-  abar[65] = 0.0;
+  abar[65] = abar[0];  // (abar1111 = abar11)
   abar[66] = 0.077733230649785434 * S[58];
   abar[67] = 0.13704501246528997 * S[55];
   abar[68] = -0.043573629015347067 * S[56];
@@ -6260,7 +6601,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[74] = 0.095453726553642093 * S[26];
   abar[75] = 0.026465984113577777 * S[16];
   abar[76] = 0.0015443986962249859 * S[30];
-  abar[77] = 0.0;
+  abar[77] = abar[0];  // (abar1212 = abar11)
   abar[78] = 0.075360649857792422 * S[57];
   abar[79] = 0.13228575638067325 * S[54];
   abar[80] = -0.042111204356761155 * S[55];
@@ -6273,7 +6614,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[87] = 0.022747187338912081 * S[13];
   abar[88] = 0.0014172660761358259 * S[25];
   abar[89] = 0.0014624246585859121 * S[2];
-  abar[90] = 0.0;
+  abar[90] = abar[0];  // (abar1313 = abar11)
   abar[91] = 0.084774303155023101 * S[61];
   abar[92] = 0.15116898551433028 * S[57];
   abar[93] = -0.047913644786064476 * S[58];
@@ -6287,7 +6628,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[101] = 0.0019216882700298342 * S[33];
   abar[102] = -0.0043400157707174135 * S[5];
   abar[103] = 0.018883229133657021 * S[7];
-  abar[104] = 0.0;
+  abar[104] = abar[0];  // (abar1414 = abar11)
 }
 
 }  // namespace SRKN14a
@@ -6940,11 +7281,48 @@ constexpr int generalized_order[] = {10, 6, 4, 6, 8, 10};
 constexpr double generalized_error_constant[] = {2.97197e-06, 7.50976e-05, 1.27988e-05, 3.1691e-05, 5.60595e-05, 5.66394e-05};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.011575144579656381, 0.062276777994026242, 0.17123938515303044, 0.1828145297326868, 0.19123387955426835, 0.23351616314705667, 0.24509130772671306, 0.2535106575482946, 0.25490869227328694, 0.26648383685294336, 0.42475004270132499, 0.43632518728098141, 0.43772322200597374, 0.5, 0.50981738454657388, 0.52139252912623024, 0.53296767370588671, 0.69123387955426829, 0.69263191427926074, 0.7042070588589171, 0.75490869227328694, 0.7664838368529433, 0.87544644401194749, 0.9377232220059738, 0.94614257182755535, 0.95771771640721171, 1.1289571015602422, 1.1912338795542683, 1.3824677591085366};
-  double C[29], S[29];
-  for (int k = 0; k < 29; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[29]{}, S[29]{};
+  S[0] = sinc(w[0] * x);
+  C[1] = std::cos(w[1] * x);
+  S[1] = sinc(w[1] * x);
+  S[2] = sinc(w[2] * x);
+  S[3] = sinc(w[3] * x);
+  C[4] = std::cos(w[4] * x);
+  S[4] = sinc(w[4] * x);
+  C[5] = std::cos(w[5] * x);
+  S[5] = sinc(w[5] * x);
+  C[6] = std::cos(w[6] * x);
+  S[6] = sinc(w[6] * x);
+  S[7] = sinc(w[7] * x);
+  S[8] = sinc(w[8] * x);
+  S[9] = sinc(w[9] * x);
+  S[10] = sinc(w[10] * x);
+  S[11] = sinc(w[11] * x);
+  S[12] = sinc(w[12] * x);
+  C[13] = std::cos(w[13] * x);
+  S[13] = sinc(w[13] * x);
+  S[14] = sinc(w[14] * x);
+  S[15] = sinc(w[15] * x);
+  S[16] = sinc(w[16] * x);
+  S[17] = sinc(w[17] * x);
+  S[18] = sinc(w[18] * x);
+  S[19] = sinc(w[19] * x);
+  C[20] = std::cos(w[20] * x);
+  S[20] = sinc(w[20] * x);
+  C[21] = std::cos(w[21] * x);
+  S[21] = sinc(w[21] * x);
+  S[22] = sinc(w[22] * x);
+  C[23] = std::cos(w[23] * x);
+  S[23] = sinc(w[23] * x);
+  S[24] = sinc(w[24] * x);
+  S[25] = sinc(w[25] * x);
+  S[26] = sinc(w[26] * x);
+  C[27] = std::cos(w[27] * x);
+  S[27] = sinc(w[27] * x);
+  S[28] = sinc(w[28] * x);
   b[0] = 0.14921694736268107 * C[23];
   b[1] = 0.53404328848550808 * C[20];
   b[2] = -0.3063477188212973 * C[21];
@@ -6965,32 +7343,32 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   bbar[8] = 0.0092927507038519878 * S[1];
   abar[0] = 0.0;
   abar[1] = 0.027279026060255621 * S[3];
-  abar[2] = 0.0;
+  abar[2] = abar[0];  // (abar22 = abar11)
   abar[3] = 0.025551818320797615 * S[2];
   abar[4] = -0.0061816282760148982 * S[0];
-  abar[5] = 0.0;
+  abar[5] = abar[0];  // (abar33 = abar11)
   abar[6] = -0.037828086443262542 * S[7];
   abar[7] = -0.23301653786459048 * S[11];
   abar[8] = 0.13012120665079951 * S[10];
-  abar[9] = 0.0;
+  abar[9] = abar[0];  // (abar44 = abar11)
   abar[10] = 0.065315722977488555 * S[12];
   abar[11] = 0.13613227628516658 * S[8];
   abar[12] = -0.081636715522645939 * S[9];
   abar[13] = 0.00018810220052282002 * S[17];
-  abar[14] = 0.0;
+  abar[14] = abar[0];  // (abar55 = abar11)
   abar[15] = 0.16845953239823963 * S[26];
   abar[16] = 0.50528109043492364 * S[24];
   abar[17] = -0.29339463769609142 * S[25];
   abar[18] = 0.00037620440104564005 * S[28];
   abar[19] = 0.16978827235909733 * S[17];
-  abar[20] = 0.0;
+  abar[20] = abar[0];  // (abar66 = abar11)
   abar[21] = 0.10507962763417948 * S[19];
   abar[22] = 0.27844618084634809 * S[15];
   abar[23] = -0.16327343104529188 * S[16];
   abar[24] = 0.0002606191844243121 * S[25];
   abar[25] = 0.065456615494687384 * S[9];
   abar[26] = -0.00011558521662132793 * S[10];
-  abar[27] = 0.0;
+  abar[27] = abar[0];  // (abar77 = abar11)
   abar[28] = 0.10335241989472148 * S[18];
   abar[29] = 0.27226455257033316 * S[14];
   abar[30] = -0.15972741190828746 * S[15];
@@ -6998,7 +7376,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[32] = 0.062613404450468993 * S[8];
   abar[33] = -0.00011873510587184782 * S[11];
   abar[34] = 0.0035460191370044365 * S[0];
-  abar[35] = 0.0;
+  abar[35] = abar[0];  // (abar88 = abar11)
   abar[36] = 0.13063144595497711 * S[22];
   abar[37] = 0.36989542521170893 * S[18];
   abar[38] = -0.21573222605928427 * S[19];
@@ -7007,7 +7385,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[41] = -6.898665408525809e-05 * S[7];
   abar[42] = -0.052458795013992393 * S[2];
   abar[43] = 0.097630872641375752 * S[3];
-  abar[44] = 0.0;
+  abar[44] = abar[0];  // (abar99 = abar11)
 }
 
 }  // namespace SD9_10_6_4
@@ -7450,11 +7828,36 @@ constexpr int generalized_order[] = {4, 4, 4, 6, 8};
 constexpr double generalized_error_constant[] = {4.73384e-06, 4.79706e-05, 8.0762e-05, 5.78994e-05, 4.84233e-05};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.071735072935381963, 0.087224650999171829, 0.15548328906377173, 0.15895972393455379, 0.18555698700167447, 0.24270794006294355, 0.3144430129983255, 0.34104027606544624, 0.37111397400334895, 0.42826492706461805, 0.5, 0.52659726306712074, 0.6138219140662925, 0.68208055213089247, 0.68555698700167444, 0.76930520313006423, 0.84104027606544618, 0.8565298541292361, 0.92826492706461805};
-  double C[19], S[19];
-  for (int k = 0; k < 19; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[19]{}, S[19]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  S[1] = sinc(w[1] * x);
+  S[2] = sinc(w[2] * x);
+  C[3] = std::cos(w[3] * x);
+  S[3] = sinc(w[3] * x);
+  S[4] = sinc(w[4] * x);
+  S[5] = sinc(w[5] * x);
+  C[6] = std::cos(w[6] * x);
+  S[6] = sinc(w[6] * x);
+  S[7] = sinc(w[7] * x);
+  S[8] = sinc(w[8] * x);
+  S[9] = sinc(w[9] * x);
+  C[10] = std::cos(w[10] * x);
+  S[10] = sinc(w[10] * x);
+  S[11] = sinc(w[11] * x);
+  S[12] = sinc(w[12] * x);
+  S[13] = sinc(w[13] * x);
+  C[14] = std::cos(w[14] * x);
+  S[14] = sinc(w[14] * x);
+  S[15] = sinc(w[15] * x);
+  C[16] = std::cos(w[16] * x);
+  S[16] = sinc(w[16] * x);
+  S[17] = sinc(w[17] * x);
+  C[18] = std::cos(w[18] * x);
+  S[18] = sinc(w[18] * x);
   b[0] = 0.18543046233391067 * C[18];
   b[1] = 0.31211731759217559 * C[14];
   b[2] = -0.026566649987642566 * C[3];
@@ -7471,32 +7874,32 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   bbar[6] = 0.01330186773996468 * S[0];
   abar[0] = 0.0;
   abar[1] = 0.045005445537982705 * S[5];
-  abar[2] = 0.0;
+  abar[2] = abar[0];  // (abar22 = abar11)
   abar[3] = 0.14265261949229088 * S[15];
   abar[4] = 0.16436012519989096 * S[11];
-  abar[5] = 0.0;
+  abar[5] = abar[0];  // (abar33 = abar11)
   abar[6] = 0.079413363426990652 * S[9];
   abar[7] = 0.057915549043448832 * S[4];
   abar[8] = 0.0090602976459197033 * S[7];
-  abar[9] = 0.0;
+  abar[9] = abar[0];  // (abar44 = abar11)
   abar[10] = 0.016174107361690435 * S[1];
   abar[11] = -0.048529027112993284 * S[2];
   abar[12] = 0.018120595291839407 * S[13];
   abar[13] = -0.019793206913800938 * S[7];
-  abar[14] = 0.0;
+  abar[14] = abar[0];  // (abar55 = abar11)
   abar[15] = 0.11382128131599861 * S[12];
   abar[16] = 0.11583109808689766 * S[8];
   abar[17] = 0.0041306701194846768 * S[2];
   abar[18] = 0.010769308189630962 * S[4];
   abar[19] = -0.01398992517235473 * S[11];
-  abar[20] = 0.0;
+  abar[20] = abar[0];  // (abar66 = abar11)
   abar[21] = 0.1588267268539813 * S[17];
   abar[22] = 0.19158444929766613 * S[12];
   abar[23] = -0.002317266773389275 * S[1];
   abar[24] = 0.024855528540820064 * S[9];
   abar[25] = -0.020437862065228681 * S[15];
   abar[26] = 0.075753351210768469 * S[5];
-  abar[27] = 0.0;
+  abar[27] = abar[0];  // (abar77 = abar11)
 }
 
 }  // namespace SDT7_4
@@ -7939,11 +8342,36 @@ constexpr int generalized_order[] = {4, 4, 4, 6, 8};
 constexpr double generalized_error_constant[] = {1.6553e-05, 7.71772e-05, 7.88039e-05, 6.10339e-05, 5.42652e-05};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.07370843319503996, 0.074627261111777865, 0.14833569430681784, 0.17236003208334302, 0.17930427360983914, 0.246068465278383, 0.32069572639016086, 0.35166430569318219, 0.35860854721967828, 0.42537273888822213, 0.5, 0.53096857930302133, 0.60467701249806127, 0.67930427360983914, 0.70332861138636438, 0.77703704458140432, 0.85074547777644427, 0.85166430569318219, 0.92537273888822213};
-  double C[19], S[19];
-  for (int k = 0; k < 19; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[19]{}, S[19]{};
+  S[0] = sinc(w[0] * x);
+  C[1] = std::cos(w[1] * x);
+  S[1] = sinc(w[1] * x);
+  C[2] = std::cos(w[2] * x);
+  S[2] = sinc(w[2] * x);
+  S[3] = sinc(w[3] * x);
+  S[4] = sinc(w[4] * x);
+  S[5] = sinc(w[5] * x);
+  C[6] = std::cos(w[6] * x);
+  S[6] = sinc(w[6] * x);
+  S[7] = sinc(w[7] * x);
+  S[8] = sinc(w[8] * x);
+  S[9] = sinc(w[9] * x);
+  C[10] = std::cos(w[10] * x);
+  S[10] = sinc(w[10] * x);
+  S[11] = sinc(w[11] * x);
+  S[12] = sinc(w[12] * x);
+  C[13] = std::cos(w[13] * x);
+  S[13] = sinc(w[13] * x);
+  S[14] = sinc(w[14] * x);
+  S[15] = sinc(w[15] * x);
+  S[16] = sinc(w[16] * x);
+  C[17] = std::cos(w[17] * x);
+  S[17] = sinc(w[17] * x);
+  C[18] = std::cos(w[18] * x);
+  S[18] = sinc(w[18] * x);
   b[0] = 0.19282696244478778 * C[18];
   b[1] = 0.30813684886368459 * C[13];
   b[2] = -0.025313220167176759 * C[2];
@@ -7960,32 +8388,32 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   bbar[6] = 0.014390148075758162 * S[1];
   abar[0] = 0.0;
   abar[1] = 0.047448634713081327 * S[5];
-  abar[2] = 0.0;
+  abar[2] = abar[0];  // (abar22 = abar11)
   abar[3] = 0.14983369301370733 * S[15];
   abar[4] = 0.16361098487206041 * S[11];
-  abar[5] = 0.0;
+  abar[5] = abar[0];  // (abar33 = abar11)
   abar[6] = 0.082023333146635735 * S[9];
   abar[7] = 0.055250253857927756 * S[4];
   abar[8] = 0.0089017559949488723 * S[7];
-  abar[9] = 0.0;
+  abar[9] = abar[0];  // (abar44 = abar11)
   abar[10] = 0.01421297327956412 * S[0];
   abar[11] = -0.053110477156204899 * S[3];
   abar[12] = 0.017803511989897745 * S[14];
   abar[13] = -0.017125635920671387 * S[7];
-  abar[14] = 0.0;
+  abar[14] = abar[0];  // (abar55 = abar11)
   abar[15] = 0.11659803158019014 * S[12];
   abar[16] = 0.11050050771585551 * S[8];
   abar[17] = 0.0043629874401473123 * S[3];
   abar[18] = 0.0087319061364779411 * S[4];
   abar[19] = -0.013440524549750432 * S[11];
-  abar[20] = 0.0;
+  abar[20] = abar[0];  // (abar66 = abar11)
   abar[21] = 0.16404666629327147 * S[16];
   abar[22] = 0.18632326921145942 * S[12];
   abar[23] = -0.0018657977976436863 * S[0];
   abar[24] = 0.020715149473072438 * S[9];
   abar[25] = -0.019669309787541431 * S[15];
   abar[26] = 0.075822761495603921 * S[5];
-  abar[27] = 0.0;
+  abar[27] = abar[0];  // (abar77 = abar11)
 }
 
 }  // namespace SDT7x_4
@@ -8078,18 +8506,22 @@ constexpr int generalized_order[] = {3, 3, 4, 6, 8};
 constexpr double generalized_error_constant[] = {0.00279487, 0.00277572, 0.00325726, 0.00391984, 0.0027873};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.22222222222222221, 0.57777777777777772, 0.80000000000000004};
-  double C[3], S[3];
-  for (int k = 0; k < 3; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[3]{}, S[3]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  S[1] = sinc(w[1] * x);
+  C[2] = std::cos(w[2] * x);
+  S[2] = sinc(w[2] * x);
   b[0] = 0.48076923076923078 * C[2];
   b[1] = 0.51923076923076927 * C[0];
   bbar[0] = 0.38461538461538464 * S[2];
   bbar[1] = 0.11538461538461539 * S[0];
   abar[0] = 0.022435897435897436;
   abar[1] = 0.27777777777777779 * S[1];
-  abar[2] = 0.022435897435897436;
+  abar[2] = abar[0];  // (abar22 = abar11)
 }
 
 }  // namespace SERKN2s3pf
@@ -8182,18 +8614,22 @@ constexpr int generalized_order[] = {4, 4, 4, 6, 8};
 constexpr double generalized_error_constant[] = {0.00838781, 0.00564832, 0.00196419, 0.00294823, 0.00232961};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.21132486540518711, 0.57735026918962573, 0.78867513459481287};
-  double C[3], S[3];
-  for (int k = 0; k < 3; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[3]{}, S[3]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  S[1] = sinc(w[1] * x);
+  C[2] = std::cos(w[2] * x);
+  S[2] = sinc(w[2] * x);
   b[0] = 0.5 * C[2];
   b[1] = 0.5 * C[0];
   bbar[0] = 0.39433756729740643 * S[2];
   bbar[1] = 0.10566243270259355 * S[0];
   abar[0] = 0.022329099369260225;
   abar[1] = 0.28867513459481287 * S[1];
-  abar[2] = 0.022329099369260225;
+  abar[2] = abar[0];  // (abar22 = abar11)
 }
 
 }  // namespace SERKN2s4pf
@@ -8336,11 +8772,18 @@ constexpr int generalized_order[] = {6, 4, 5, 6, 8};
 constexpr double generalized_error_constant[] = {0.000539225, 0.000149176, 0.00010267, 7.62521e-05, 0.00018083};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.11270166537925831, 0.3872983346207417, 0.5, 0.7745966692414834, 0.8872983346207417};
-  double C[5], S[5];
-  for (int k = 0; k < 5; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[5]{}, S[5]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  S[1] = sinc(w[1] * x);
+  C[2] = std::cos(w[2] * x);
+  S[2] = sinc(w[2] * x);
+  S[3] = sinc(w[3] * x);
+  C[4] = std::cos(w[4] * x);
+  S[4] = sinc(w[4] * x);
   b[0] = 0.27777777777777779 * C[4];
   b[1] = 0.44444444444444442 * C[2];
   b[2] = 0.27777777777777779 * C[0];
@@ -8352,7 +8795,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[2] = 0.017417129272016198;
   abar[3] = 0.21516574145596762 * S[3];
   abar[4] = 0.17213259316477408 * S[1];
-  abar[5] = 0.0063508326896291557;
+  abar[5] = abar[0];  // (abar33 = abar11)
 }
 
 }  // namespace SERKN3s4pf_1
@@ -8495,11 +8938,18 @@ constexpr int generalized_order[] = {6, 4, 5, 6, 8};
 constexpr double generalized_error_constant[] = {0.000539225, 0.0623765, 0.0443846, 0.0162159, 0.0150694};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.11270166537925831, 0.3872983346207417, 0.5, 0.7745966692414834, 0.8872983346207417};
-  double C[5], S[5];
-  for (int k = 0; k < 5; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[5]{}, S[5]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  S[1] = sinc(w[1] * x);
+  C[2] = std::cos(w[2] * x);
+  S[2] = sinc(w[2] * x);
+  S[3] = sinc(w[3] * x);
+  C[4] = std::cos(w[4] * x);
+  S[4] = sinc(w[4] * x);
   b[0] = 0.27777777777777779 * C[0];
   b[1] = 0.27777777777777779 * C[4];
   b[2] = 0.44444444444444442 * C[2];
@@ -8714,11 +9164,22 @@ constexpr int generalized_order[] = {6, 6, 6, 6, 8};
 constexpr double generalized_error_constant[] = {0.000493331, 0.000339939, 0.000177025, 6.12443e-05, 0.000162744};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.10936613169386428, 0.10951155775139804, 0.3358053764016698, 0.44517150809553407, 0.44531693415306789, 0.55468306584693217, 0.78097688449720393, 0.89048844224860191};
-  double C[8], S[8];
-  for (int k = 0; k < 8; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[8]{}, S[8]{};
+  S[0] = sinc(w[0] * x);
+  C[1] = std::cos(w[1] * x);
+  S[1] = sinc(w[1] * x);
+  S[2] = sinc(w[2] * x);
+  S[3] = sinc(w[3] * x);
+  C[4] = std::cos(w[4] * x);
+  S[4] = sinc(w[4] * x);
+  C[5] = std::cos(w[5] * x);
+  S[5] = sinc(w[5] * x);
+  S[6] = sinc(w[6] * x);
+  C[7] = std::cos(w[7] * x);
+  S[7] = sinc(w[7] * x);
   b[0] = 0.26872220820481468 * C[7];
   b[1] = 0.23127779179518532 * C[4];
   b[2] = 0.23127779179518532 * C[5];
@@ -8732,11 +9193,11 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[2] = 0.034209181083376561;
   abar[3] = 0.090238362273705686 * S[2];
   abar[4] = -0.025293957435338358 * S[0];
-  abar[5] = 0.034209181083376561;
+  abar[5] = abar[2];  // (abar33 = abar22)
   abar[6] = 0.20986583295900516 * S[6];
   abar[7] = 0.077664325927129227 * S[2];
   abar[8] = 0.10295828336246758 * S[3];
-  abar[9] = 0.0059963906405688938;
+  abar[9] = abar[0];  // (abar44 = abar11)
 }
 
 }  // namespace SERKN4s6
@@ -8880,23 +9341,26 @@ constexpr int generalized_order[] = {4, 4, 4, 6, 8};
 constexpr double generalized_error_constant[] = {0.0125817, 0.00781914, 0.00130946, 0.00400685, 0.00362301};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.5, 1.0};
-  double C[2], S[2];
-  for (int k = 0; k < 2; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[2]{}, S[2]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  C[1] = std::cos(w[1] * x);
+  S[1] = sinc(w[1] * x);
   b[0] = 0.16666666666666666 * C[1];
   b[1] = 0.66666666666666663 * C[0];
   b[2] = 0.16666666666666666;
   bbar[0] = 0.16666666666666666 * S[1];
   bbar[1] = 0.33333333333333331 * S[0];
   bbar[2] = 0.0;
-  abar[0] = 0.0;
+  abar[0] = bbar[2];  // (abar11 = bbar3)
   abar[1] = 0.083333333333333329 * S[0];
-  abar[2] = 0.0;
-  abar[3] = 0.16666666666666666 * S[1];
-  abar[4] = 0.33333333333333331 * S[0];
-  abar[5] = 0.0;
+  abar[2] = bbar[2];  // (abar22 = bbar3)
+  abar[3] = bbar[0];  // (abar31 = bbar1)
+  abar[4] = bbar[1];  // (abar32 = bbar2)
+  abar[5] = bbar[2];  // (abar33 = bbar3)
 }
 
 }  // namespace ChinC
@@ -9040,11 +9504,18 @@ constexpr int generalized_order[] = {4, 4, 4, 6, 8};
 constexpr double generalized_error_constant[] = {0.000319631, 0.000105211, 1.79718e-05, 6.46663e-05, 0.000164083};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.11599536084864155, 0.38400463915135846, 0.5, 0.76800927830271692, 0.88400463915135841};
-  double C[5], S[5];
-  for (int k = 0; k < 5; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[5]{}, S[5]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  S[1] = sinc(w[1] * x);
+  C[2] = std::cos(w[2] * x);
+  S[2] = sinc(w[2] * x);
+  S[3] = sinc(w[3] * x);
+  C[4] = std::cos(w[4] * x);
+  S[4] = sinc(w[4] * x);
   b[0] = 0.28256334041770509 * C[4];
   b[1] = 0.43487331916458982 * C[2];
   b[2] = 0.28256334041770509 * C[0];
@@ -9053,10 +9524,10 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   bbar[2] = 0.032776036634349241 * S[0];
   abar[0] = 0.0;
   abar[1] = 0.10850563357450331 * S[1];
-  abar[2] = 0.0;
+  abar[2] = abar[0];  // (abar22 = abar11)
   abar[3] = 0.21701126714900662 * S[3];
   abar[4] = 0.16699337200235184 * S[1];
-  abar[5] = 0.0;
+  abar[5] = abar[0];  // (abar33 = abar11)
 }
 
 }  // namespace OMF4_3F3G
@@ -9330,11 +9801,26 @@ constexpr int generalized_order[] = {6, 6, 6, 6, 8};
 constexpr double generalized_error_constant[] = {0.000495427, 0.000327704, 0.000177157, 0.000108276, 0.000176956};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.023769199125951303, 0.047538398251902605, 0.10970597239486819, 0.3665248284791805, 0.39029402760513182, 0.41406322673108309, 0.47623080087404868, 0.5, 0.52376919912595132, 0.78058805521026364, 0.89029402760513177};
-  double C[11], S[11];
-  for (int k = 0; k < 11; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[11]{}, S[11]{};
+  S[0] = sinc(w[0] * x);
+  S[1] = sinc(w[1] * x);
+  C[2] = std::cos(w[2] * x);
+  S[2] = sinc(w[2] * x);
+  S[3] = sinc(w[3] * x);
+  S[4] = sinc(w[4] * x);
+  S[5] = sinc(w[5] * x);
+  C[6] = std::cos(w[6] * x);
+  S[6] = sinc(w[6] * x);
+  C[7] = std::cos(w[7] * x);
+  S[7] = sinc(w[7] * x);
+  C[8] = std::cos(w[8] * x);
+  S[8] = sinc(w[8] * x);
+  S[9] = sinc(w[9] * x);
+  C[10] = std::cos(w[10] * x);
+  S[10] = sinc(w[10] * x);
   b[0] = 0.26933158489353004 * C[10];
   b[1] = 1.1319803486515565 * C[6];
   b[2] = -1.8026238670901729 * C[7];
@@ -9347,19 +9833,19 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   bbar[4] = 0.029547283417395705 * S[2];
   abar[0] = 0.0;
   abar[1] = 0.11152030510161169 * S[5];
-  abar[2] = 0.0;
+  abar[2] = abar[0];  // (abar22 = abar11)
   abar[3] = 0.10511850902936933 * S[4];
   abar[4] = -0.026906266313762625 * S[0];
-  abar[5] = 0.0;
+  abar[5] = abar[0];  // (abar33 = abar11)
   abar[6] = 0.098716712957126945 * S[3];
   abar[7] = -0.05381253262752525 * S[1];
   abar[8] = 0.042846925646058694 * S[0];
-  abar[9] = 0.0;
+  abar[9] = abar[0];  // (abar44 = abar11)
   abar[10] = 0.21023701805873865 * S[9];
   abar[11] = 0.41489890313131467 * S[3];
   abar[12] = -0.70355332934376136 * S[4];
   abar[13] = 0.46871143575883989 * S[5];
-  abar[14] = 0.0;
+  abar[14] = abar[0];  // (abar55 = abar11)
 }
 
 }  // namespace OMF6_5F3G
@@ -10263,11 +10749,62 @@ constexpr int generalized_order[] = {8, 8, 8, 8, 8};
 constexpr double generalized_error_constant[] = {3.43043e-05, 2.91516e-05, 1.42696e-05, 1.55812e-05, 5.30934e-06};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.013059917184300322, 0.033700501098751466, 0.035162788728731853, 0.068863289827483312, 0.071726400165545975, 0.084786317349846305, 0.089903252611988879, 0.10296316979628921, 0.17468956996183518, 0.17980650522397776, 0.19286642240827809, 0.20592633959257842, 0.25644714021068149, 0.26459282257382405, 0.27765273975812438, 0.29160992893941334, 0.32531043003816484, 0.32817354037622748, 0.34123345756052781, 0.34937913992367037, 0.36333632910495933, 0.37639624628925966, 0.39703683020371078, 0.41009674738801111, 0.4311367101725167, 0.46629949890124855, 0.5, 0.52103996278450559, 0.53409987996880592, 0.55620275151323739, 0.56926266869753772, 0.58990325261198884, 0.60296316979628917, 0.60582628013435191, 0.64098906886308371, 0.67468956996183516, 0.8622734203450334, 0.8974362090737652, 0.93113671017251665, 0.93259899780249711, 0.96629949890124855};
-  double C[41], S[41];
-  for (int k = 0; k < 41; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[41]{}, S[41]{};
+  S[0] = sinc(w[0] * x);
+  C[1] = std::cos(w[1] * x);
+  S[1] = sinc(w[1] * x);
+  S[2] = sinc(w[2] * x);
+  C[3] = std::cos(w[3] * x);
+  S[3] = sinc(w[3] * x);
+  S[4] = sinc(w[4] * x);
+  S[5] = sinc(w[5] * x);
+  S[6] = sinc(w[6] * x);
+  S[7] = sinc(w[7] * x);
+  S[8] = sinc(w[8] * x);
+  S[9] = sinc(w[9] * x);
+  S[10] = sinc(w[10] * x);
+  S[11] = sinc(w[11] * x);
+  S[12] = sinc(w[12] * x);
+  S[13] = sinc(w[13] * x);
+  S[14] = sinc(w[14] * x);
+  S[15] = sinc(w[15] * x);
+  C[16] = std::cos(w[16] * x);
+  S[16] = sinc(w[16] * x);
+  S[17] = sinc(w[17] * x);
+  S[18] = sinc(w[18] * x);
+  S[19] = sinc(w[19] * x);
+  S[20] = sinc(w[20] * x);
+  S[21] = sinc(w[21] * x);
+  C[22] = std::cos(w[22] * x);
+  S[22] = sinc(w[22] * x);
+  C[23] = std::cos(w[23] * x);
+  S[23] = sinc(w[23] * x);
+  S[24] = sinc(w[24] * x);
+  S[25] = sinc(w[25] * x);
+  C[26] = std::cos(w[26] * x);
+  S[26] = sinc(w[26] * x);
+  S[27] = sinc(w[27] * x);
+  S[28] = sinc(w[28] * x);
+  S[29] = sinc(w[29] * x);
+  S[30] = sinc(w[30] * x);
+  C[31] = std::cos(w[31] * x);
+  S[31] = sinc(w[31] * x);
+  C[32] = std::cos(w[32] * x);
+  S[32] = sinc(w[32] * x);
+  S[33] = sinc(w[33] * x);
+  S[34] = sinc(w[34] * x);
+  C[35] = std::cos(w[35] * x);
+  S[35] = sinc(w[35] * x);
+  S[36] = sinc(w[36] * x);
+  S[37] = sinc(w[37] * x);
+  C[38] = std::cos(w[38] * x);
+  S[38] = sinc(w[38] * x);
+  S[39] = sinc(w[39] * x);
+  C[40] = std::cos(w[40] * x);
+  S[40] = sinc(w[40] * x);
   b[0] = 0.0048249309817414952 * C[31];
   b[1] = 0.17492394861090377 * C[38];
   b[2] = 0.29304366370957063 * C[35];
@@ -10292,32 +10829,32 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   bbar[10] = 0.0019786885019838305 * S[23];
   abar[0] = 0.0;
   abar[1] = -0.0016464278813905623 * S[18];
-  abar[2] = 0.0;
+  abar[2] = abar[0];  // (abar22 = abar11)
   abar[3] = -0.0004090881294090399 * S[5];
   abar[4] = 0.044858746375626479 * S[12];
-  abar[5] = 0.0;
+  abar[5] = abar[0];  // (abar33 = abar11)
   abar[6] = 0.00093056717681534306 * S[10];
   abar[7] = 0.093426859956753261 * S[28];
   abar[8] = 0.081364376097720736 * S[14];
-  abar[9] = 0.0;
+  abar[9] = abar[0];  // (abar44 = abar11)
   abar[10] = -0.0018160859101322513 * S[21];
   abar[11] = -0.0061508138486007563 * S[2];
   abar[12] = -0.085454441950493246 * S[15];
   abar[13] = -0.027010910307167204 * S[30];
-  abar[14] = 0.0;
+  abar[14] = abar[0];  // (abar55 = abar11)
   abar[15] = 0.00043377698888691715 * S[6];
   abar[16] = 0.075416135734491421 * S[24];
   abar[17] = 0.051191671593465549 * S[8];
   abar[18] = -0.0048854932832190908 * S[7];
   abar[19] = -0.00071343186421537618 * S[25];
-  abar[20] = 0.0;
+  abar[20] = abar[0];  // (abar66 = abar11)
   abar[21] = 0.0026836398879060857 * S[29];
   abar[22] = 0.15698308531758359 * S[37];
   abar[23] = 0.18783778513742433 * S[34];
   abar[24] = 0.017239923740729024 * S[20];
   abar[25] = -0.0014268637284307524 * S[39];
   abar[26] = -0.017450323470357201 * S[25];
-  abar[27] = 0.0;
+  abar[27] = abar[0];  // (abar77 = abar11)
   abar[28] = -6.3013199041508781e-05 * S[0];
   abar[29] = 0.057405411512229568 * S[17];
   abar[30] = 0.02101896708921035 * S[4];
@@ -10325,7 +10862,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[32] = -0.00055589962078303348 * S[20];
   abar[33] = 0.0038531901121752377 * S[7];
   abar[34] = 0.00087096410764771898 * S[30];
-  abar[35] = 0.0;
+  abar[35] = abar[0];  // (abar88 = abar11)
   abar[36] = 0.0012766421071828743 * S[13];
   abar[37] = 0.10597352509335635 * S[33];
   abar[38] = 0.1023833431869311 * S[19];
@@ -10334,7 +10871,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[41] = -0.0065374067737893858 * S[8];
   abar[42] = 0.00044615920822813906 * S[15];
   abar[43] = 0.013174328236392176 * S[14];
-  abar[44] = 0.0;
+  abar[44] = abar[0];  // (abar99 = abar11)
   abar[45] = 0.0025139818591643965 * S[27];
   abar[46] = 0.15083227146898284 * S[36];
   abar[47] = 0.17753355270211116 * S[33];
@@ -10344,7 +10881,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[51] = 5.3798586472560784e-05 * S[2];
   abar[52] = 0.025342473248621416 * S[28];
   abar[53] = 0.075150209515180061 * S[12];
-  abar[54] = 0.0;
+  abar[54] = abar[0];  // (abar1010 = abar11)
   abar[55] = 0.0008675539777738343 * S[9];
   abar[56] = 0.091142367674344055 * S[27];
   abar[57] = 0.077537250118289797 * S[13];
@@ -10355,7 +10892,7 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   abar[62] = 0.0091513073373552748 * S[10];
   abar[63] = -0.024846093068641297 * S[5];
   abar[64] = -0.059689903794638774 * S[18];
-  abar[65] = 0.0;
+  abar[65] = abar[0];  // (abar1111 = abar11)
 }
 
 }  // namespace OMF8_11F11G
@@ -10499,23 +11036,24 @@ constexpr int generalized_order[] = {2, 3, 4, 6, 8};
 constexpr double generalized_error_constant[] = {0.125, 0.0721688, 0.0820738, 0.0551312, 0.0422352};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.5};
-  double C[1], S[1];
-  for (int k = 0; k < 1; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[1]{}, S[1]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
   b[0] = 0.0;
   b[1] = 1.0 * C[0];
-  b[2] = 0.0;
-  bbar[0] = 0.0;
+  b[2] = b[0];  // (b3 = b1)
+  bbar[0] = b[0];  // (bbar1 = b1)
   bbar[1] = 0.5 * S[0];
-  bbar[2] = 0.0;
-  abar[0] = 0.0;
-  abar[1] = 0.0;
-  abar[2] = 0.0;
-  abar[3] = 0.0;
-  abar[4] = 0.5 * S[0];
-  abar[5] = 0.0;
+  bbar[2] = b[0];  // (bbar3 = b1)
+  abar[0] = b[0];  // (abar11 = b1)
+  abar[1] = b[0];  // (abar21 = b1)
+  abar[2] = b[0];  // (abar22 = b1)
+  abar[3] = b[0];  // (abar31 = b1)
+  abar[4] = bbar[1];  // (abar32 = bbar2)
+  abar[5] = b[0];  // (abar33 = b1)
 }
 
 }  // namespace SABAC1
@@ -10719,29 +11257,33 @@ constexpr int generalized_order[] = {4, 4, 4, 6, 8};
 constexpr double generalized_error_constant[] = {0.00838781, 0.00318099, 0.00400394, 0.00343667, 0.00286266};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.21132486540518711, 0.57735026918962573, 0.78867513459481287};
-  double C[3], S[3];
-  for (int k = 0; k < 3; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[3]{}, S[3]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  S[1] = sinc(w[1] * x);
+  C[2] = std::cos(w[2] * x);
+  S[2] = sinc(w[2] * x);
   b[0] = 0.0;
   b[1] = 0.5 * C[2];
   b[2] = 0.5 * C[0];
-  b[3] = 0.0;
-  bbar[0] = 0.0;
+  b[3] = b[0];  // (b4 = b1)
+  bbar[0] = b[0];  // (bbar1 = b1)
   bbar[1] = 0.39433756729740643 * S[2];
   bbar[2] = 0.10566243270259355 * S[0];
-  bbar[3] = 0.0;
-  abar[0] = 0.0;
-  abar[1] = 0.0;
-  abar[2] = 0.0;
-  abar[3] = 0.0;
+  bbar[3] = b[0];  // (bbar4 = b1)
+  abar[0] = b[0];  // (abar11 = b1)
+  abar[1] = b[0];  // (abar21 = b1)
+  abar[2] = b[0];  // (abar22 = b1)
+  abar[3] = b[0];  // (abar31 = b1)
   abar[4] = 0.28867513459481287 * S[1];
-  abar[5] = 0.0;
-  abar[6] = 0.0;
-  abar[7] = 0.39433756729740643 * S[2];
-  abar[8] = 0.10566243270259355 * S[0];
-  abar[9] = 0.0;
+  abar[5] = b[0];  // (abar33 = b1)
+  abar[6] = b[0];  // (abar41 = b1)
+  abar[7] = bbar[1];  // (abar42 = bbar2)
+  abar[8] = bbar[2];  // (abar43 = bbar3)
+  abar[9] = b[0];  // (abar44 = b1)
 }
 
 }  // namespace SABAC2
@@ -11015,36 +11557,43 @@ constexpr int generalized_order[] = {6, 4, 4, 6, 8};
 constexpr double generalized_error_constant[] = {0.000539225, 0.00515437, 0.00345817, 0.00343344, 0.00243733};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.11270166537925831, 0.3872983346207417, 0.5, 0.7745966692414834, 0.8872983346207417};
-  double C[5], S[5];
-  for (int k = 0; k < 5; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[5]{}, S[5]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  S[1] = sinc(w[1] * x);
+  C[2] = std::cos(w[2] * x);
+  S[2] = sinc(w[2] * x);
+  S[3] = sinc(w[3] * x);
+  C[4] = std::cos(w[4] * x);
+  S[4] = sinc(w[4] * x);
   b[0] = 0.0;
   b[1] = 0.27777777777777779 * C[4];
   b[2] = 0.44444444444444442 * C[2];
   b[3] = 0.27777777777777779 * C[0];
-  b[4] = 0.0;
-  bbar[0] = 0.0;
+  b[4] = b[0];  // (b5 = b1)
+  bbar[0] = b[0];  // (bbar1 = b1)
   bbar[1] = 0.2464717596168727 * S[4];
   bbar[2] = 0.22222222222222221 * S[2];
   bbar[3] = 0.031306018160905086 * S[0];
-  bbar[4] = 0.0;
-  abar[0] = 0.0;
-  abar[1] = 0.0;
-  abar[2] = 0.0;
-  abar[3] = 0.0;
+  bbar[4] = b[0];  // (bbar5 = b1)
+  abar[0] = b[0];  // (abar11 = b1)
+  abar[1] = b[0];  // (abar21 = b1)
+  abar[2] = b[0];  // (abar22 = b1)
+  abar[3] = b[0];  // (abar31 = b1)
   abar[4] = 0.10758287072798381 * S[1];
-  abar[5] = 0.0;
-  abar[6] = 0.0;
+  abar[5] = b[0];  // (abar33 = b1)
+  abar[6] = b[0];  // (abar41 = b1)
   abar[7] = 0.21516574145596762 * S[3];
   abar[8] = 0.17213259316477408 * S[1];
-  abar[9] = 0.0;
-  abar[10] = 0.0;
-  abar[11] = 0.2464717596168727 * S[4];
-  abar[12] = 0.22222222222222221 * S[2];
-  abar[13] = 0.031306018160905086 * S[0];
-  abar[14] = 0.0;
+  abar[9] = b[0];  // (abar44 = b1)
+  abar[10] = b[0];  // (abar51 = b1)
+  abar[11] = bbar[1];  // (abar52 = bbar2)
+  abar[12] = bbar[2];  // (abar53 = bbar3)
+  abar[13] = bbar[3];  // (abar54 = bbar4)
+  abar[14] = b[0];  // (abar55 = b1)
 }
 
 }  // namespace SABAC3
@@ -11398,44 +11947,55 @@ constexpr int generalized_order[] = {8, 4, 4, 6, 8};
 constexpr double generalized_error_constant[] = {3.42365e-05, 0.00311026, 0.00201845, 0.00209275, 0.00159562};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.069431844202973714, 0.26057763400459816, 0.33000947820757187, 0.33998104358485626, 0.60055867758945447, 0.66999052179242813, 0.86113631159405257, 0.93056815579702634};
-  double C[8], S[8];
-  for (int k = 0; k < 8; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[8]{}, S[8]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  S[1] = sinc(w[1] * x);
+  C[2] = std::cos(w[2] * x);
+  S[2] = sinc(w[2] * x);
+  S[3] = sinc(w[3] * x);
+  S[4] = sinc(w[4] * x);
+  C[5] = std::cos(w[5] * x);
+  S[5] = sinc(w[5] * x);
+  S[6] = sinc(w[6] * x);
+  C[7] = std::cos(w[7] * x);
+  S[7] = sinc(w[7] * x);
   b[0] = 0.0;
   b[1] = 0.17392742256872692 * C[7];
   b[2] = 0.32607257743127305 * C[5];
   b[3] = 0.32607257743127305 * C[2];
   b[4] = 0.17392742256872692 * C[0];
-  b[5] = 0.0;
-  bbar[0] = 0.0;
+  b[5] = b[0];  // (b6 = b1)
+  bbar[0] = b[0];  // (bbar1 = b1)
   bbar[1] = 0.1618513208623103 * S[7];
   bbar[2] = 0.21846553629538057 * S[5];
   bbar[3] = 0.10760704113589251 * S[2];
   bbar[4] = 0.012076101706416622 * S[0];
-  bbar[5] = 0.0;
-  abar[0] = 0.0;
-  abar[1] = 0.0;
-  abar[2] = 0.0;
-  abar[3] = 0.0;
+  bbar[5] = b[0];  // (bbar6 = b1)
+  abar[0] = b[0];  // (abar11 = b1)
+  abar[1] = b[0];  // (abar21 = b1)
+  abar[2] = b[0];  // (abar22 = b1)
+  abar[3] = b[0];  // (abar31 = b1)
   abar[4] = 0.045321596261476811 * S[1];
-  abar[5] = 0.0;
-  abar[6] = 0.0;
+  abar[5] = b[0];  // (abar33 = b1)
+  abar[6] = b[0];  // (abar41 = b1)
   abar[7] = 0.10445362289441687 * S[4];
   abar[8] = 0.11085849515948806 * S[3];
-  abar[9] = 0.0;
-  abar[10] = 0.0;
+  abar[9] = b[0];  // (abar44 = b1)
+  abar[10] = b[0];  // (abar51 = b1)
   abar[11] = 0.14977521915589367 * S[6];
   abar[12] = 0.19582571590031034 * S[4];
   abar[13] = 0.084967220740822261 * S[1];
-  abar[14] = 0.0;
-  abar[15] = 0.0;
-  abar[16] = 0.1618513208623103 * S[7];
-  abar[17] = 0.21846553629538057 * S[5];
-  abar[18] = 0.10760704113589251 * S[2];
-  abar[19] = 0.012076101706416622 * S[0];
-  abar[20] = 0.0;
+  abar[14] = b[0];  // (abar55 = b1)
+  abar[15] = b[0];  // (abar61 = b1)
+  abar[16] = bbar[1];  // (abar62 = bbar2)
+  abar[17] = bbar[2];  // (abar63 = bbar3)
+  abar[18] = bbar[3];  // (abar64 = bbar4)
+  abar[19] = bbar[4];  // (abar65 = bbar5)
+  abar[20] = b[0];  // (abar66 = b1)
 }
 
 }  // namespace SABAC4
@@ -11493,11 +12053,12 @@ constexpr int generalized_order[] = {4, 4, 4, 6, 8};
 constexpr double generalized_error_constant[] = {0.0125817, 0.00659722, 0.00196419, 0.0061268, 0.0578441};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.5};
-  double C[1], S[1];
-  for (int k = 0; k < 1; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[1]{}, S[1]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
   b[0] = 1.0 * C[0];
   bbar[0] = 0.5 * S[0];
   abar[0] = 0.0;
@@ -11648,11 +12209,18 @@ constexpr int generalized_order[] = {6, 6, 6, 6, 8};
 constexpr double generalized_error_constant[] = {0.000109353, 2.49481e-05, 0.000215935, 0.000105364, 0.0102638};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.06826103839186301, 0.5, 0.56826103839186304, 1.0682610383918629, 1.1365220767837261};
-  double C[5], S[5];
-  for (int k = 0; k < 5; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[5]{}, S[5]{};
+  C[0] = std::cos(w[0] * x);
+  S[0] = sinc(w[0] * x);
+  C[1] = std::cos(w[1] * x);
+  S[1] = sinc(w[1] * x);
+  S[2] = sinc(w[2] * x);
+  C[3] = std::cos(w[3] * x);
+  S[3] = sinc(w[3] * x);
+  S[4] = sinc(w[4] * x);
   b[0] = 0.26211293525170282 * C[3];
   b[1] = 0.47577412949659437 * C[1];
   b[2] = 0.26211293525170282 * C[0];
@@ -11661,10 +12229,10 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   bbar[2] = -0.01789210113622039 * S[0];
   abar[0] = 0.0;
   abar[1] = 0.1489485687620718 * S[2];
-  abar[2] = 0.0;
+  abar[2] = abar[0];  // (abar22 = abar11)
   abar[3] = 0.2978971375241436 * S[4];
   abar[4] = 0.27036390086771944 * S[2];
-  abar[5] = 0.0;
+  abar[5] = abar[0];  // (abar33 = abar11)
 }
 
 }  // namespace PMLF6
@@ -11811,11 +12379,18 @@ constexpr int generalized_order[] = {7, 6, 4, 6, 8};
 constexpr double generalized_error_constant[] = {0.0447042, 0.054241, 0.0307106, 0.042765, 0.0862976};
 
 void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* abar) {
+  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x), those read
   const double x = std::sqrt(v);
-  // C[k] = phi0(w_k^2 v) = cos(w_k x), S[k] = phi1(w_k^2 v) = sinc(w_k x)
   constexpr double w[] = {0.060087981092461912, 0.12017596218492382, 0.43991201890753806, 0.5, 0.56008798109246194};
-  double C[5], S[5];
-  for (int k = 0; k < 5; ++k) C[k] = std::cos(w[k] * x), S[k] = sinc(w[k] * x);
+  double C[5]{}, S[5]{};
+  S[0] = sinc(w[0] * x);
+  S[1] = sinc(w[1] * x);
+  C[2] = std::cos(w[2] * x);
+  S[2] = sinc(w[2] * x);
+  C[3] = std::cos(w[3] * x);
+  S[3] = sinc(w[3] * x);
+  C[4] = std::cos(w[4] * x);
+  S[4] = sinc(w[4] * x);
   b[0] = 1.5171479707207227 * C[2];
   b[1] = -2.0342959414414454 * C[3];
   b[2] = 1.5171479707207227 * C[4];
@@ -11824,10 +12399,10 @@ void coefficients([[maybe_unused]] double v, double* b, double* bbar, double* ab
   bbar[2] = 0.84973634393949515 * S[4];
   abar[0] = 0.0;
   abar[1] = -0.091162358579133754 * S[0];
-  abar[2] = 0.0;
+  abar[2] = abar[0];  // (abar22 = abar11)
   abar[3] = -0.18232471715826751 * S[1];
   abar[4] = 0.12223673606580558 * S[0];
-  abar[5] = 0.0;
+  abar[5] = abar[0];  // (abar33 = abar11)
 }
 
 }  // namespace PLF7_6_4
