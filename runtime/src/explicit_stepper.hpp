@@ -594,6 +594,19 @@ class ExplicitStepper final : public StepperBase {
       q.resize(D), p.resize(D);
       for (int e = 0; e < D; ++e) q[e] = v.q[e] + v.eq[e], p[e] = v.p[e] + v.ep[e];
     } else {
+      if constexpr (kStaged && !kKahan) {
+        // The pending flow stages q as a step's first pass does, and q needs no copy pass of its
+        // own into the staging buffer (the same product, bit for bit). Reading the final state of
+        // sine-Gordon N = 8192 Strang: 1.12-1.16x the specialist's loop's -> 1.09-1.10x (medians
+        // of 201 construct + integrate + read runs, three processes each, alternated).
+        if (pending_) {
+          apply<false, kFlowStaged>(arrays_.state, arrays_.work, true, false, 0, nullptr,
+                                    kicks_.stages());
+          transform_.inverse_staged(q);
+          inverse_of_sum<false>(arrays_.work.p, arrays_.work.ep, p);
+          return;
+        }
+      }
       const State* from = &arrays_.state;
       if (pending_)
         apply<kKahan, kFlow>(arrays_.state, arrays_.work, true, true, 0, nullptr, kicks_.stages()),
