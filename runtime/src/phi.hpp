@@ -2,6 +2,7 @@
 //   phi0(v) = cos x,  phi1(v) = sin x / x,  and phi0(v) - 1 = -2 sin^2(x/2) without cancellation.
 #pragma once
 
+#include <array>
 #include <cmath>
 
 namespace erkn::detail {
@@ -13,6 +14,13 @@ inline double phi1(double v) {
   return x == 0 ? 1.0 : std::sin(x) / x;
 }
 
+/// {phi0(v), phi1(v)}, the same values, from one square root: the compiler then pairs the sine
+/// and cosine of x in one sincos (computed apart, each took its own sqrt, which errno keeps the
+/// compiler from merging, and its own libm call).
+inline std::array<double, 2> phi01(double v) {
+  const double x = std::sqrt(v);
+  return {std::cos(x), x == 0 ? 1.0 : std::sin(x) / x};
+}
 inline double phi0_minus_1(double v) {
   const double s = std::sin(0.5 * std::sqrt(v));
   return -2 * s * s;

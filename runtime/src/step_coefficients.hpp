@@ -158,15 +158,17 @@ class StepCoefficients {
       method.evaluate(v, co.b.data(), co.bbar.data(), co.abar_packed.data());
       for (int i = 0; i < s_; ++i) {
         const double c = table.c[i];
-        set(i, phi0(c * c * v));
-        set(s_ + i, h * c * phi1(c * c * v));
+        const auto [phi0c, phi1c] = phi01(c * c * v);
+        set(i, phi0c);
+        set(s_ + i, h * c * phi1c);
         set(2 * s_ + i, h * h * co.bbar[i]);
         set(3 * s_ + i, h * co.b[i]);
         for (int j = 0; j <= i; ++j) set(abar_slot(i, j), h * h * co.abar(i, j));
       }
       set(last(0), phi0_minus_1(v));
-      set(last(1), h * phi1(v));
-      set(last(2), -h * lambda[e] * phi1(v));
+      const double phi1v = phi1(v);  // (once: the libm call is not merged)
+      set(last(1), h * phi1v);
+      set(last(2), -h * lambda[e] * phi1v);
     }
   }
 
