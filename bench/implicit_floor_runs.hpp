@@ -132,18 +132,6 @@ inline double relative_diff(const Eigen::VectorXd& qe, const Eigen::VectorXd& pe
   return state_diff(qe, pe, qf, pf) / std::max(qe.cwiseAbs().maxCoeff(), pe.cwiseAbs().maxCoeff());
 }
 
-/// Per round, the median over contenders [from, to) of seconds per grad U.
-inline std::vector<double> per_grad_median(const Schedule::Seconds& t,
-                                           const std::vector<double>& ev, size_t from, size_t to) {
-  std::vector<double> out(t[0].size());
-  for (size_t r = 0; r < out.size(); ++r) {
-    std::vector<double> x;
-    for (size_t c = from; c < to; ++c) x.push_back(t[c][r] / ev[c]);
-    out[r] = median(x);
-  }
-  return out;
-}
-
 /// seconds per grad U of contender c, per round.
 inline std::vector<double> per_grad(const Schedule::Seconds& t, const std::vector<double>& ev,
                                     size_t c) {
@@ -211,8 +199,8 @@ void add_scene(FloorScene s, Gradient g, const Settings& settings, Schedule& sch
     }
   }
   schedule.add(std::move(runs), [=, &out](const Schedule::Seconds& t, const RoundStates&) {
-    const auto expl = per_grad_median(t, ev, 0, peers_from);
-    const auto peers = per_grad_median(t, ev, peers_from, implicit_from);
+    const auto expl = per_grad_median(t, ev, contender_range(0, peers_from));
+    const auto peers = per_grad_median(t, ev, contender_range(peers_from, implicit_from));
     out.explicit_s = median(expl), out.peer_s = median(peers);
     implicit_ratios(t, ev, expl, peers, implicit_from, s.steps, out);
   });

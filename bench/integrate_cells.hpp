@@ -216,13 +216,10 @@ void add_scene(const Scene& s, Basis basis, Gradient g, const Config& cfg, Sched
 inline void implicit_ratios(const Scene& s, const std::vector<erkn::Method>& methods,
                             const std::vector<double>& evaluations, const Schedule::Seconds& t,
                             const RoundStates& states, const FloorGroup* floor, Results& out) {
-  std::vector<double> explicit_ref(t[0].size());  // per round
-  for (size_t r = 0; r < explicit_ref.size(); ++r) {
-    std::vector<double> per_grad;
-    for (size_t i = 0; i < methods.size(); ++i)
-      if (methods[i].is_explicit()) per_grad.push_back(t[i][r] / evaluations[i]);
-    explicit_ref[r] = median(per_grad);
-  }
+  std::vector<size_t> explicit_methods;
+  for (size_t i = 0; i < methods.size(); ++i)
+    if (methods[i].is_explicit()) explicit_methods.push_back(i);
+  const std::vector<double> explicit_ref = per_grad_median(t, evaluations, explicit_methods);
   size_t k = 0;  // implicit methods so far
   for (size_t i = 0; i < methods.size(); ++i) {
     if (methods[i].is_explicit()) continue;

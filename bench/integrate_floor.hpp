@@ -84,7 +84,8 @@ class FloorGroupOf final : public FloorGroup {
     const std::vector<double> cb = faster(t, *e.first), inl = faster(t, *e.first + 2);
     c.floor = median_ratio(cb, explicit_grad), c.erkn_floor = median_ratio(erkn_grad, cb);
     c.inlined = median_ratio(
-        inl, floor::per_grad_median(t, evaluations_, compiled_from_, evaluations_.size()));
+        inl,
+        per_grad_median(t, evaluations_, contender_range(compiled_from_, evaluations_.size())));
     return c;
   }
 

@@ -214,6 +214,27 @@ inline std::vector<double> ratios(const std::vector<double>& a, const std::vecto
   return r;
 }
 
+/// The contenders [from, to) of a group.
+inline std::vector<size_t> contender_range(size_t from, size_t to) {
+  std::vector<size_t> c;
+  for (size_t i = from; i < to; ++i) c.push_back(i);
+  return c;
+}
+
+/// Per round, the median over the given contenders of seconds per grad U (seconds t[c][r],
+/// gradient evaluations ev[c] per run).
+inline std::vector<double> per_grad_median(const std::vector<std::vector<double>>& t,
+                                           const std::vector<double>& ev,
+                                           const std::vector<size_t>& contenders) {
+  std::vector<double> out(t[0].size());
+  for (size_t r = 0; r < out.size(); ++r) {
+    std::vector<double> x;
+    for (size_t c : contenders) x.push_back(t[c][r] / ev[c]);
+    out[r] = median(x);
+  }
+  return out;
+}
+
 /// The median over rounds of a[r] / b[r].
 inline double median_ratio(const std::vector<double>& a, const std::vector<double>& b) {
   return median(ratios(a, b));

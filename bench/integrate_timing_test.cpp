@@ -44,3 +44,13 @@ TEST(SampleReps, ContenderSlowOnEveryRunGetsFewReps) {
 }
 
 }  // namespace
+
+TEST(PerGradMedian, TakesTheListedContendersOnlyPerRound) {
+  // Seconds t[c][r] of four contenders over two rounds; gradient evaluations per run ev[c].
+  const std::vector<std::vector<double>> t = {{2, 4}, {100, 100}, {9, 3}, {8, 16}};
+  const std::vector<double> ev = {2, 1, 3, 4};  // per grad: {1, 2}, {100, 100}, {3, 1}, {2, 4}
+  EXPECT_EQ(bench::per_grad_median(t, ev, {0, 2, 3}), (std::vector<double>{2, 2}));
+  // Negative control: with the outlier contender 1 listed the median moves.
+  EXPECT_EQ(bench::per_grad_median(t, ev, bench::contender_range(0, 4)),
+            (std::vector<double>{2.5, 3}));
+}
