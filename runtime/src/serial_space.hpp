@@ -42,9 +42,19 @@ class SerialSpace {
   // One array in eigen coordinates (aligned when stride keeps it so: in the dynamic storage).
   using Array = std::conditional_t<kFixed, Eigen::Array<Scalar, D, 1>, Spectral>;
   using Map = Eigen::Map<Array, kFixed ? Eigen::Unaligned : Eigen::AlignedMax>;
-  // Storage for up to `slots` arrays: one allocation, or (fixed dimension) inside its owner.
+  // Storage for up to `slots` arrays: one allocation, or (fixed dimension) inside its owner,
+  // not cleared (the constructor's empty body: its owners, the stepper, the stage solver and the
+  // predictor, write every array before they read it; value-initialised, the predictor's
+  // kMaxNodes arrays were a rep stos of 448 bytes at D = 2, ~1 % of the time of a construct +
+  // 1-step run of SERKN2s3 at P3, perf).
   template <int slots>
-  using Block = std::conditional_t<kFixed, std::array<Scalar, slots * std::max(D, 1)>, Spectral>;
+  struct FixedBlock {
+    FixedBlock() {}
+    Scalar* data() { return values.data(); }
+    std::array<Scalar, slots * std::max(D, 1)> values;
+  };
+  template <int slots>
+  using Block = std::conditional_t<kFixed, FixedBlock<slots>, Spectral>;
 
   /// M: the stiffness applied by add_MQ (RKN methods), d the dimension.
   SerialSpace(Transform transform, const Stiffness& M, Eigen::Index d, bool rkn)
@@ -63,7 +73,7 @@ class SerialSpace {
   template <int slots>
   Block<slots> block(int count) const {
     if constexpr (kFixed)
-      return Block<slots>{};
+      return Block<slots>();
     else
       return Spectral::Zero(count * stride_);
   }

@@ -85,21 +85,36 @@ class StageSolver {
   struct Arrays {
     alignas(EIGEN_MAX_ALIGN_BYTES) typename Space::template Block<5> block;
     Map r_hat, Q_hat, Q_hat_new, guess_hat, g_first_hat;
-    Eigen::VectorXd Q, g;  // (go to the callbacks)
+    // (Go to the callbacks. Q not cleared: every path writes it before a call, start_stage; Zero
+    // was a calloc, which glibc's per-thread cache does not serve. g cleared: a gradient that
+    // leaves an entry unwritten finds it 0.)
+    Eigen::VectorXd Q, g;
   };
-  // What the solver knows of stage i between steps.
+  // What the solver knows of stage i between steps: kFresh before its first solve. (Trivial, so
+  // that record_ is not cleared: the constructor sets the s records read. Value-initialised, the
+  // kMaxStages records were a 1 KB rep stos, ~1.9 % of the time of a construct + 1-step run of
+  // SERKN2s3 at P3: perf.)
   struct StageRecord {
-    double theta = -1;                  // the contraction measured; < 0: none
-    double due_num2 = 0, due_den2 = 0;  // a new measurement, theta^2 as a fraction; 0: none
-    int theta_age = 0;                  // stage solves since the measurement, at most kThetaRefresh
-    double weight = 0;                  // max(1, |bbar_i| / |abar_ii|, |b_i| / (h |abar_ii|))
-    double newton_cost = 0;             // evaluations of its last Newton solve; 0: none
-    bool explicit_stage = false;        // abar_ii = 0: Q_i = r_i, one evaluation
+    double theta;               // the contraction measured; < 0: none
+    double due_num2, due_den2;  // a new measurement, theta^2 as a fraction; 0: none
+    int theta_age;              // stage solves since the measurement, at most kThetaRefresh
+    double weight;              // max(1, |bbar_i| / |abar_ii|, |b_i| / (h |abar_ii|))
+    double newton_cost;         // evaluations of its last Newton solve; 0: none
+    bool explicit_stage;        // abar_ii = 0: Q_i = r_i, one evaluation
     // contraction_proves' factors, formed with theta (set_theta): (theta_s weight)^2 and
     // (kFirstShare tolerance (1 - theta_s))^2, or -1 where no first-iteration stop is allowed
     // (no theta, theta_s >= 1/2).
-    double proof_X = 0, proof_N = -1;
+    double proof_X, proof_N;
   };
+  static constexpr StageRecord kFresh{.theta = -1,
+                                      .due_num2 = 0,
+                                      .due_den2 = 0,
+                                      .theta_age = 0,
+                                      .weight = 0,
+                                      .newton_cost = 0,
+                                      .explicit_stage = false,
+                                      .proof_X = 0,
+                                      .proof_N = -1};
   // Newton's workspace (allocated at the first fallback): dense (d <= kDenseNewtonMaxD) or
   // Newton-Krylov.
   struct NewtonWork {
@@ -293,7 +308,7 @@ class StageSolver {
   Space& space_;
   const StepCoefficients<Coef>& k_;
   StagePredictor<Space> predictor_;
-  std::array<StageRecord, kMaxStages> record_{};
+  std::array<StageRecord, kMaxStages> record_;  // (the first s set: the constructor)
   Arrays x_;
   // The step being taken (for messages; solve's argument, kept by address: a copy loaded the
   // caller's separate stores as one wide load, which waits for them to retire).
@@ -338,13 +353,14 @@ StageSolver<Space, Coef>::StageSolver(const Method& method, const System& system
          space.map(x_.block, 2),
          space.map(x_.block, 3),
          space.map(x_.block, 4),
-         Eigen::VectorXd::Zero(space.dimension()),
+         Eigen::VectorXd(space.dimension()),
          Eigen::VectorXd::Zero(space.dimension())} {
   const int s = method.stages();
   for (int i = 0; i < s; ++i) {
     const auto ratio = [&](const auto& num) {
       return space.reduce_max(max_ratio(num, k.abar(i, i)));
     };
+    record_[i] = kFresh;
     record_[i].explicit_stage = explicit_stage(method, i);
     if (!record_[i].explicit_stage)
       record_[i].weight = std::max({1.0, ratio(k.h2bbar(i)), ratio(k.hb(i) * k.h())});

@@ -147,7 +147,11 @@ class StepCoefficients {
     // (Below kShareFrom entries the sort and its allocations would cost more than they save.)
     const std::vector<Eigen::Index> first =
         lambda.size() >= kShareFrom ? first_equal(lambda) : std::vector<Eigen::Index>{};
-    Coefficients co;
+    // (Not a Coefficients: its value-initialised arrays were a 1.2 KB rep stos per construction,
+    // ~2 % of the time of a construct + 1-step run of SERKN2s3 at P3, perf; evaluate writes
+    // every entry of the s stages, Table::coefficients.)
+    std::array<double, kMaxStages> b, bbar;
+    std::array<double, kMaxStages*(kMaxStages + 1) / 2> abar;
     for (Eigen::Index e = 0; e < lambda.size(); ++e) {
       if (!first.empty() && first[size_t(e)] != e) {  // (first[e] < e: evaluated already)
         slots_.copy(slot_count(s_), first[size_t(e)], e);
@@ -155,15 +159,15 @@ class StepCoefficients {
       }
       const auto set = [&](int slot, double x) { slots_.set(slot, e, x); };
       const double v = h * h * lambda[e];
-      method.evaluate(v, co.b.data(), co.bbar.data(), co.abar_packed.data());
+      method.evaluate(v, b.data(), bbar.data(), abar.data());
       for (int i = 0; i < s_; ++i) {
         const double c = table.c[i];
         const auto [phi0c, phi1c] = phi01(c * c * v);
         set(i, phi0c);
         set(s_ + i, h * c * phi1c);
-        set(2 * s_ + i, h * h * co.bbar[i]);
-        set(3 * s_ + i, h * co.b[i]);
-        for (int j = 0; j <= i; ++j) set(abar_slot(i, j), h * h * co.abar(i, j));
+        set(2 * s_ + i, h * h * bbar[i]);
+        set(3 * s_ + i, h * b[i]);
+        for (int j = 0; j <= i; ++j) set(abar_slot(i, j), h * h * abar[i * (i + 1) / 2 + j]);
       }
       set(last(0), phi0_minus_1(v));
       const double phi1v = phi1(v);  // (once: the libm call is not merged)
