@@ -76,10 +76,12 @@ class StagePredictor {
   /// offsets); else the steps' pointers rotated.
   void advance() {
     if constexpr (kInPlace) {  // (array by array: std::copy_n of s D values was a memmove call)
+      // (s in a local: each store may alias s_, which GCC reloaded after it.)
+      const int s = s_;
       for (int age = kHistory; age > 0; --age)
-        for (int j = 0; j < s_; ++j)
-          space_.map(block_.data(), age * s_ + j) =
-              stored_force(space_.map(block_.data(), (age - 1) * s_ + j));
+        for (int j = 0; j < s; ++j)
+          space_.map(block_.data(), age * s + j) =
+              stored_force(space_.map(block_.data(), (age - 1) * s + j));
     } else {
       Scalar* const oldest = steps_[kHistory];  // (rotated by hand: std::rotate was a call)
       for (int age = kHistory; age > 0; --age) steps_[age] = steps_[age - 1];

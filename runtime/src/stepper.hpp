@@ -124,9 +124,8 @@ class Stepper final : public StepperBase {
     const int last = s_ - 1;  // (the next step's first guess formed before its terms: carry)
     solver_.carry(q_hat_ + dq, p_hat_ + dp, co(k.h2bbar(last)), co(k.hb(last)));
     update_stage(co(k.h2bbar(last)), co(k.hb(last)), stored_force(solver_.G(last)), dq, dp);
-    require_finite_result(q_hat_ + dq, p_hat_ + dp, at);
-    add(q_hat_, eq_hat_, dq);
-    add(p_hat_, ep_hat_, dp);
+    require_finite_result((q_hat_ + dq).eval(), (p_hat_ + dp).eval(), at);
+    add_values(dq, dp);
   }
   // The passes: dq_hat_, dp_hat_ with the non-finite bits of the result, then the adds.
   void update_arrays(const StepPlace& at) {
@@ -160,18 +159,25 @@ class Stepper final : public StepperBase {
       return value.data();
   }
 
-  // x += dx in eigen coordinates, Kahan-compensated when enabled (compensated_sum.hpp; with a
-  // fixed D on values the compiler keeps in registers: through the maps each of its sums was
-  // stored and reloaded).
+  // q += dq, p += dp in eigen coordinates, Kahan-compensated when enabled (compensated_sum.hpp;
+  // with a fixed D on values the compiler keeps in registers: through the maps each of its sums
+  // was stored and reloaded). (The option tested once: tested per array, GCC reloaded and tested
+  // it twice.)
   template <class Increment>
-  [[gnu::always_inline]] void add(Map& x, Map& error, Increment& dx) {
+  [[gnu::always_inline]] void add_values(Increment& dq, Increment& dp) {
     if (!options_.compensated_summation) {
-      x += dx;
+      q_hat_ += dq;
+      p_hat_ += dp;
     } else {
-      typename Map::PlainObject x_value = x, error_value = error;
-      compensated_add(x_value, error_value, dx);
-      x = x_value, error = error_value;
+      compensated_add_values(q_hat_, eq_hat_, dq);
+      compensated_add_values(p_hat_, ep_hat_, dp);
     }
+  }
+  template <class Increment>
+  [[gnu::always_inline]] static void compensated_add_values(Map& x, Map& error, Increment& dx) {
+    typename Map::PlainObject x_value = x, error_value = error;
+    compensated_add(x_value, error_value, dx);
+    x = x_value, error = error_value;
   }
 
   Method method_;
