@@ -102,10 +102,10 @@ class CoefficientSlots {
   }
 
   Eigen::Index m_, stride_;
-  // (Not value-initialised: every slot is set before it is read.)
-  std::conditional_t<kArrayInside, std::array<double, kMax*(kArrayInside ? kFixed : 1)>,
-                     Eigen::ArrayXd>
-      values_;
+  // (Not value-initialised: every slot is set before it is read. 16-byte aligned: the fixed-size
+  // slots of an even D are read through aligned maps, SerialSpace::co.)
+  alignas(16) std::conditional_t<kArrayInside, std::array<double, kMax*(kArrayInside ? kFixed : 1)>,
+                                 Eigen::ArrayXd> values_;
 };
 
 /// For each entry of lambda, the index of the first entry with exactly the same value (itself
