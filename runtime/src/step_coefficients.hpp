@@ -101,11 +101,14 @@ class CoefficientSlots {
       return stride_;
   }
 
+  using Values =
+      std::conditional_t<kArrayInside, std::array<double, kMax*(kArrayInside ? kFixed : 1)>,
+                         Eigen::ArrayXd>;
   Eigen::Index m_, stride_;
-  // (Not value-initialised: every slot is set before it is read. 16-byte aligned: the fixed-size
-  // slots of an even D are read through aligned maps, SerialSpace::co.)
-  alignas(16) std::conditional_t<kArrayInside, std::array<double, kMax*(kArrayInside ? kFixed : 1)>,
-                                 Eigen::ArrayXd> values_;
+  // (Not value-initialised: every slot is set before it is read. Inside, 16-byte aligned: the
+  // fixed-size slots of an even D are read through aligned maps, SerialSpace::co. Outside
+  // (FlowCoefficients) its natural alignment: the explicit stepper's layout stays as it was.)
+  alignas(kArrayInside ? 16 : alignof(Values)) Values values_;
 };
 
 /// For each entry of lambda, the index of the first entry with exactly the same value (itself
