@@ -56,6 +56,7 @@ template <class... A>
   std::uint64_t odd = 0;  // (the last entries of odd sizes)
   const auto take = [&](const auto& x) {
     constexpr int n = int(std::decay_t<decltype(x)>::SizeAtCompileTime);
+    static_assert(n > 0, "all_finite_values: fixed-size arrays only (else all_finite)");
     for (int k = 0; k + 1 < n; k += 2) {
       V v;
       std::memcpy(&v, x.data() + k, sizeof v);
