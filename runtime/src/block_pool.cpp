@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <mutex>
 #include <new>
+#include <utility>
 #include <vector>
 
 namespace erkn::detail {
@@ -41,7 +42,40 @@ Pool& pool() {
   return *p;
 }
 
+// The block this thread keeps (take_kept_block): trivially destructible, so that reading it needs
+// no initialisation guard, and still readable when an Integrator is destroyed after the thread's
+// destructors ran (a thread_local or static one): its block is then freed (closed).
+struct Kept {
+  void* block;
+  std::size_t bytes;
+  bool closed;
+};
+thread_local Kept kept{};
+// Frees the kept block when the thread ends (set up by the first block kept).
+struct KeptRelease {
+  bool armed = false;
+  ~KeptRelease() {
+    std::free(kept.block);
+    kept = {nullptr, 0, true};
+  }
+};
+thread_local KeptRelease kept_release;
+
 }  // namespace
+
+void* take_kept_block(std::size_t bytes) {
+  if (kept.block && kept.bytes == bytes) return std::exchange(kept.block, nullptr);
+  void* block = std::malloc(bytes);
+  if (!block) throw std::bad_alloc();
+  return block;
+}
+
+void give_kept_block(void* block, std::size_t bytes) noexcept {
+  if (kept.closed) return std::free(block);
+  std::free(kept.block);      // (the newest kept: the size the thread's next stepper likely has)
+  kept_release.armed = true;  // (its destructor registered with the thread's first use)
+  kept = {block, bytes, false};
+}
 
 void* take_block(std::size_t bytes) {
   {

@@ -26,6 +26,16 @@ void* take_block(std::size_t bytes);
 /// process's Integrators alive at once) or freed.
 void give_block(void* block, std::size_t bytes) noexcept;
 
+/// A block of `bytes` (below kPooledBytes, at most __STDCPP_DEFAULT_NEW_ALIGNMENT__-aligned
+/// objects): the one this thread gave back last when of that size, else malloc's; uninitialised.
+/// For the implicit stepper (stepper.hpp), ~10.8 KB at D = 2: above the 1,032 bytes that
+/// glibc's per-thread cache serves, so each construction took _int_malloc and each destruction
+/// _int_free (and, with fastbins, malloc_consolidate).
+void* take_kept_block(std::size_t bytes);
+/// Gives back a block of take_kept_block(bytes): kept for this thread's next take_kept_block in
+/// place of the one kept before, which is freed (a thread's kept block is freed when it ends).
+void give_kept_block(void* block, std::size_t bytes) noexcept;
+
 /// n T (trivially destructible, not initialised): a pooled block when large, else Eigen's.
 template <class T>
 class PooledArray {

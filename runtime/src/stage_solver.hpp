@@ -86,8 +86,10 @@ class StageSolver {
     alignas(EIGEN_MAX_ALIGN_BYTES) typename Space::template Block<5> block;
     Map r_hat, Q_hat, Q_hat_new, guess_hat, g_first_hat;
     // (Go to the callbacks. Q not cleared: every path writes it before a call, start_stage; Zero
-    // was a calloc, which glibc's per-thread cache does not serve. g cleared: a gradient that
-    // leaves an entry unwritten finds it 0.)
+    // was a calloc, which glibc's per-thread cache does not serve. g cleared, after its malloc: a
+    // gradient that leaves an entry unwritten finds it 0. Its calloc took _int_malloc and, the
+    // cache's bin then full, a free through _int_free per construction: ~3 % of the time of a
+    // construct + 1-step run of SERKN2s3 at P3, perf.)
     Eigen::VectorXd Q, g;
   };
   // What the solver knows of stage i between steps: kFresh before its first solve. (Trivial, so
@@ -354,7 +356,8 @@ StageSolver<Space, Coef>::StageSolver(const Method& method, const System& system
          space.map(x_.block, 3),
          space.map(x_.block, 4),
          Eigen::VectorXd(space.dimension()),
-         Eigen::VectorXd::Zero(space.dimension())} {
+         Eigen::VectorXd(space.dimension())} {
+  x_.g.setZero();  // (not Zero(d): GCC made that a calloc, see Arrays)
   const int s = method.stages();
   for (int i = 0; i < s; ++i) {
     const auto ratio = [&](const auto& num) {

@@ -5,6 +5,8 @@
 #include <atomic>
 #include <cstdlib>
 #include <erkn/compiled_gradient.hpp>
+#include <optional>
+#include <thread>
 
 #include "problems.hpp"
 
@@ -15,8 +17,11 @@
 namespace {
 std::atomic<long> allocations{0};
 std::atomic<std::size_t> largest{0};  // the largest block asked for since it was reset
+std::atomic<long> large{0};  // blocks asked for of more than glibc's per-thread cache serves
+constexpr std::size_t kLargeBytes = 1032;
 void note(std::size_t n) {
   ++allocations;
+  if (n > kLargeBytes) ++large;
   for (std::size_t seen = largest; n > seen && !largest.compare_exchange_weak(seen, n);) {
   }
 }
@@ -107,6 +112,37 @@ TEST(Allocation, SmallExplicitIntegratorsUseCachedBlocks) {
   static double* volatile kept;  // (so the compiler keeps the block)
   kept = eigens.data();
   EXPECT_EQ(largest.load(), kCached + sizeof(double));
+}
+
+// The implicit stepper (~10.8 KB at d = 2: above glibc's per-thread cache) takes the block its
+// thread's last one of the same size gave back (block_pool.hpp: take_kept_block): construct +
+// integrate again asks malloc for one block above the cache's limit fewer than on a new thread,
+// for every implicit method and fixed dimension. Negative control: with the first still alive, a
+// second one asks for as many as on a new thread.
+TEST(Allocation, ImplicitIntegratorsReuseTheirThreadsBlock) {
+  const auto large_blocks = [&](const auto& run) {
+    const long before = large;
+    run();
+    return large - before;
+  };
+  for (int d = 1; d <= 4; ++d) {
+    const Eigen::VectorXd q0 = Eigen::VectorXd::LinSpaced(d, 0.1, 0.4), p0 = q0.reverse();
+    const System sys = sine_gordon(Stiffness::diagonal(Eigen::VectorXd::LinSpaced(d, 20, 50)));
+    const double h = 1.0 / 32, t_end = 4 * h;  // (on the grid: no stepper for a shorter step)
+    for (const Method& m : Method::all()) {
+      if (m.is_explicit()) continue;
+      SCOPED_TRACE(std::string(m.name()) + " d = " + std::to_string(d));
+      const auto construct_and_integrate = [&] { Integrator(m, sys, h, q0, p0).integrate(t_end); };
+      long on_new_thread = 0;
+      std::thread([&] { on_new_thread = large_blocks(construct_and_integrate); }).join();
+      EXPECT_GE(on_new_thread, 1);
+      construct_and_integrate();  // (its block kept)
+      std::optional<Integrator> first;
+      EXPECT_EQ(large_blocks([&] { first.emplace(m, sys, h, q0, p0).integrate(t_end); }),
+                on_new_thread - 1);
+      EXPECT_EQ(large_blocks(construct_and_integrate), on_new_thread);
+    }
+  }
 }
 
 }  // namespace
