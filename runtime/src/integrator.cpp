@@ -22,7 +22,7 @@
 namespace erkn {
 namespace {
 
-void require_state(const System& system, const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
+void require_sizes(const System& system, const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
   if (q.size() == 0) throw Error("q is empty");
   if (p.size() != q.size())
     throw Error("dimension mismatch: q has size " + std::to_string(q.size()) + ", p has size " +
@@ -30,13 +30,32 @@ void require_state(const System& system, const Eigen::VectorXd& q, const Eigen::
   if (system.M.dim() != 0 && system.M.dim() != q.size())
     throw Error("dimension mismatch: M is " + std::to_string(system.M.dim()) + "x" +
                 std::to_string(system.M.dim()) + ", q has size " + std::to_string(q.size()));
-  if (detail::all_finite(q.data(), q.size()) && detail::all_finite(p.data(), p.size())) return;
-  for (Eigen::Index i = 0; i < q.size(); ++i) {  // (the first entry that is not finite)
-    if (!std::isfinite(q[i]))
-      throw Error("q[" + std::to_string(i) + "] = " + format(q[i]) + " is not finite");
-    if (!std::isfinite(p[i]))
-      throw Error("p[" + std::to_string(i) + "] = " + format(p[i]) + " is not finite");
-  }
+}
+
+// The error for the first entry of q or p that is not finite (there is one).
+Error non_finite_state(const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
+  Eigen::Index i = 0;
+  while (std::isfinite(q[i]) && std::isfinite(p[i])) ++i;
+  const bool in_q = !std::isfinite(q[i]);
+  return Error(std::string(in_q ? "q[" : "p[") + std::to_string(i) +
+               "] = " + format(in_q ? q[i] : p[i]) + " is not finite");
+}
+
+void require_state(const System& system, const Eigen::VectorXd& q, const Eigen::VectorXd& p) {
+  require_sizes(system, q, p);
+  if (!detail::all_finite(q.data(), q.size()) || !detail::all_finite(p.data(), p.size()))
+    throw non_finite_state(q, p);
+}
+
+// require_state, with q and p copied to q_out, p_out in the pass that checks them (the
+// constructor's: at N = 8192 the separate check was ~7 us of a construction).
+void take_state(const System& system, const Eigen::VectorXd& q, const Eigen::VectorXd& p,
+                Eigen::VectorXd& q_out, Eigen::VectorXd& p_out) {
+  require_sizes(system, q, p);
+  q_out.resize(q.size()), p_out.resize(p.size());
+  const bool finite = detail::copy_finite(q.data(), q_out.data(), q.size());
+  if (!detail::copy_finite(p.data(), p_out.data(), p.size()) || !finite)
+    throw non_finite_state(q, p);
 }
 
 // Circulant M: the explicit Fourier basis (folded matrix-vector products, O(N^2)) up to N =
@@ -176,15 +195,13 @@ Integrator::Integrator(const Method& method, System&& system, double h, const Ei
       // zeroing the object first with a rep stos)
       guard_(std::make_unique_for_overwrite<detail::BlowupGuard>()) {
   validate(options);
-  require_state(system, q0, p0);
+  take_state(system, q0, p0, q_, p_);
   if (!system.gradient) throw Error("System::gradient is not set");
   detail::require_modified_force(method, system);
   if (options.energy_tolerance > 0 && !system.potential)
     throw Error("Options::energy_tolerance (the energy monitor) needs System::potential");
   if (options.check_stability) require_advised(method, system, h, q0, p0);
   stepper_ = make_stepper(method, std::move(system), h, options, q0.size(), compiled_.get());
-  q_ = q0;
-  p_ = p0;
   monitor_.H_0 = monitored_energy(q0, p0);
   guard_->start(options.blowup_guard);  // (its reference, at the checkpoint: when first needed)
   stepper_->set_state(q_, p_, statistics_);
@@ -404,6 +421,7 @@ double Integrator::monitored_energy(const Eigen::VectorXd& q, const Eigen::Vecto
 // The energy monitor after a step of `stepper`: beyond the tolerance the step is an error (and
 // checked_step restores the state before it, dropping its compensated-summation errors).
 void Integrator::check_energy(detail::StepperBase& stepper) {
+  keep_checkpoint();
   stepper.get_state(q_, p_, statistics_);
   stale_ = false;
   const double H = energy(q_, p_), scale = monitor_.H_0 == 0 ? 1.0 : std::abs(monitor_.H_0);
@@ -416,8 +434,19 @@ void Integrator::check_energy(detail::StepperBase& stepper) {
               " (H_0 = " + format(monitor_.H_0) + "); the state before the step is kept");
 }
 
+// Before q_, p_ change: the checkpoint's state they hold moves into the checkpoint (a swap, no
+// copy: the checkpoint's previous vectors, resized, become q_ and p_).
+[[gnu::always_inline]] inline void Integrator::keep_checkpoint() const {
+  if (!checkpoint_in_state_) return;
+  detail::BlowupGuard::Checkpoint& c = guard_->checkpoint();
+  c.q.swap(q_), c.p.swap(p_);
+  q_.resize(c.q.size()), p_.resize(c.p.size());
+  checkpoint_in_state_ = false;
+}
+
 // (Always inline in reach and load_state: the output path's load without a call of its own.)
 [[gnu::always_inline]] inline void Integrator::load() const {
+  keep_checkpoint();
   stepper_->get_state(q_, p_, statistics_);
   ++statistics_.state_loads;
   stale_ = false;
@@ -448,7 +477,7 @@ void Integrator::set_step_size(double h) {
   fresh->set_state(q(), p(), statistics_);  // (the summation errors are dropped)
   grid_ = grid;
   stepper_ = std::move(fresh);
-  if (guard_->pending()) start_guard(guard_->checkpoint().q, guard_->checkpoint().p);
+  if (guard_->pending()) start_guard_at_checkpoint();
   save_checkpoint();  // (on the grid of h; the guard's reference measured before, at the start)
 }
 
@@ -491,6 +520,7 @@ void Integrator::step_to(double t_end) {
     statistics_ = before;
     std::rethrow_exception(unreadable(before.steps + 1, t()));
   }
+  keep_checkpoint();
   q_.swap(short_.q), p_.swap(short_.p);
   grid_.restart(t_end);
   time_resolved_ = grid_.resolved();
@@ -571,25 +601,41 @@ void Integrator::start_guard(const Eigen::VectorXd& q, const Eigen::VectorXd& p)
   guard_->set_reference(H, scale, bool(system().potential));
 }
 
+// The checkpoint of the current state (q_, p_ current at every call): its grid and step count,
+// and q_, p_ themselves until they change (keep_checkpoint). (Copying them cost ~7.5 us of a
+// construction at N = 8192.)
 void Integrator::save_checkpoint() {
   time_resolved_ = grid_.resolved();
   detail::BlowupGuard::Checkpoint& c = guard_->checkpoint();
-  c.q = q(), c.p = p();
+  checkpoint_in_state_ = true;
   c.grid = grid_, c.steps = statistics_.steps;
+}
+
+void Integrator::start_guard_at_checkpoint() {
+  const detail::BlowupGuard::Checkpoint& c = guard_->checkpoint();
+  if (checkpoint_in_state_)
+    start_guard(q_, p_);
+  else
+    start_guard(c.q, c.p);
 }
 
 // A check of the guard: passed, the state becomes the checkpoint; failed, the checkpoint becomes
 // the state again and the run stops. After a step that failed with `failure`, a passed check
 // changes nothing (the caller rethrows the failure).
 void Integrator::check_guard(const char* failure) {
-  if (guard_->pending()) start_guard(guard_->checkpoint().q, guard_->checkpoint().p);
+  if (guard_->pending()) start_guard_at_checkpoint();
   const double measure = guard_measure(q(), p(), nullptr);
   if (guard_->growth(measure) <= 1) return failure ? void() : save_checkpoint();
   const double t_now = t();
   const long step_now = statistics_.steps;
   const detail::BlowupGuard::Checkpoint& c = guard_->checkpoint();
-  stepper_->set_state(c.q, c.p, statistics_);
-  q_ = c.q, p_ = c.p, stale_ = false;
+  if (!checkpoint_in_state_) {  // (else q_, p_ are the checkpoint's)
+    stepper_->set_state(c.q, c.p, statistics_);
+    q_ = c.q, p_ = c.p;
+  } else {
+    stepper_->set_state(q_, p_, statistics_);
+  }
+  stale_ = false;
   grid_ = c.grid, statistics_.steps = c.steps;
   std::string message = guard_->message(measure, t_now, step_now, t(), likely_cause());
   if (failure) message += ". The next step then failed: " + std::string(failure);

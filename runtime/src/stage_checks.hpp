@@ -39,6 +39,12 @@ bool all_finite(const double* x, Eigen::Index n) {
   for (Eigen::Index k = 0; k < (N == Eigen::Dynamic ? n : N); ++k) bits |= nonfinite_bits(x[k]);
   return bits == 0;
 }
+/// y = x, and all_finite(x, n) in the same pass.
+inline bool copy_finite(const double* __restrict x, double* __restrict y, Eigen::Index n) {
+  std::uint64_t bits = 0;
+  for (Eigen::Index k = 0; k < n; ++k) y[k] = x[k], bits |= nonfinite_bits(x[k]);
+  return bits == 0;
+}
 inline bool all_finite(const std::complex<double>* x, Eigen::Index n) {
   return all_finite(reinterpret_cast<const double*>(x), 2 * n);
 }

@@ -240,6 +240,8 @@ class Integrator {
   TimeGrid grid_;
   mutable Eigen::VectorXd q_, p_;  // the state in physical coordinates, current unless stale_
   mutable bool stale_ = false;
+  // The blow-up guard's checkpoint state is q_, p_ (not copied) until they change.
+  mutable bool checkpoint_in_state_ = false;
   mutable Statistics statistics_;  // (mutable: load_state counts state_loads)
   std::shared_ptr<const detail::CompiledSteppers> compiled_;  // (or nullptr)
   std::unique_ptr<detail::StepperBase> stepper_;
@@ -323,6 +325,8 @@ class Integrator {
   double guard_measure(const Eigen::VectorXd& q, const Eigen::VectorXd& p, double* scale) const;
   void start_guard(const Eigen::VectorXd& q, const Eigen::VectorXd& p);
   void save_checkpoint();
+  void keep_checkpoint() const;
+  void start_guard_at_checkpoint();
   void check_guard(const char* failure = nullptr);
   std::string likely_cause() const;
 };
