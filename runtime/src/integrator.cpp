@@ -421,8 +421,7 @@ double Integrator::monitored_energy(const Eigen::VectorXd& q, const Eigen::Vecto
 // The energy monitor after a step of `stepper`: beyond the tolerance the step is an error (and
 // checked_step restores the state before it, dropping its compensated-summation errors).
 void Integrator::check_energy(detail::StepperBase& stepper) {
-  keep_checkpoint();
-  stepper.get_state(q_, p_, statistics_);
+  read_state(stepper);
   stale_ = false;
   const double H = energy(q_, p_), scale = monitor_.H_0 == 0 ? 1.0 : std::abs(monitor_.H_0);
   const double drift = std::abs(H - monitor_.H_0) / scale;
@@ -435,19 +434,35 @@ void Integrator::check_energy(detail::StepperBase& stepper) {
 }
 
 // Before q_, p_ change: the checkpoint's state they hold moves into the checkpoint (a swap, no
-// copy: the checkpoint's previous vectors, resized, become q_ and p_).
-[[gnu::always_inline]] inline void Integrator::keep_checkpoint() const {
-  if (!checkpoint_in_state_) return;
+// copy: the checkpoint's previous vectors, resized, become q_ and p_). True when it moved.
+[[gnu::always_inline]] inline bool Integrator::keep_checkpoint() const {
+  if (!checkpoint_in_state_) return false;
   detail::BlowupGuard::Checkpoint& c = guard_->checkpoint();
   c.q.swap(q_), c.p.swap(p_);
   q_.resize(c.q.size()), p_.resize(c.p.size());
   checkpoint_in_state_ = false;
+  return true;
+}
+
+// stepper's state into q_, p_ (the checkpoint they hold kept first); when get_state fails (a
+// processed method's pi) q_, p_ and the checkpoint in them are as they were.
+[[gnu::always_inline]] inline void Integrator::read_state(detail::StepperBase& stepper) const {
+  const bool kept = keep_checkpoint();
+  try {
+    stepper.get_state(q_, p_, statistics_);
+  } catch (...) {
+    if (kept) {
+      detail::BlowupGuard::Checkpoint& c = guard_->checkpoint();
+      c.q.swap(q_), c.p.swap(p_);
+      checkpoint_in_state_ = true;
+    }
+    throw;
+  }
 }
 
 // (Always inline in reach and load_state: the output path's load without a call of its own.)
 [[gnu::always_inline]] inline void Integrator::load() const {
-  keep_checkpoint();
-  stepper_->get_state(q_, p_, statistics_);
+  read_state(*stepper_);
   ++statistics_.state_loads;
   stale_ = false;
 }

@@ -325,7 +325,8 @@ class Integrator {
   double guard_measure(const Eigen::VectorXd& q, const Eigen::VectorXd& p, double* scale) const;
   void start_guard(const Eigen::VectorXd& q, const Eigen::VectorXd& p);
   void save_checkpoint();
-  void keep_checkpoint() const;
+  bool keep_checkpoint() const;
+  void read_state(detail::StepperBase& stepper) const;
   void start_guard_at_checkpoint();
   void check_guard(const char* failure = nullptr);
   std::string likely_cause() const;
