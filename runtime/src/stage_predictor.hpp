@@ -7,11 +7,11 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
-#include <memory>
 
 #include "erkn/method.hpp"
 #include "implicit_passes.hpp"
 #include "stage_checks.hpp"
+#include "stage_nodes.hpp"
 
 namespace erkn::detail {
 
@@ -36,22 +36,16 @@ class StagePredictor {
  public:
   using Map = typename Space::Map;
   using Scalar = typename Space::Scalar;
-  // Steps back whose stage gradients the starting values extrapolate from. One: three predicted
-  // better at fine h on P1-P3, but their higher degrees let the modes with large abar_ii of P1 at
-  // N = 2048 diverge (SERKN3s4(1), h = 1/32: 9.4 evaluations per stage and 23 Newton fallbacks
-  // instead of 3.8, 7).
-  static constexpr int kHistory = 1;
-  static constexpr int kMaxNodes = (kHistory + 1) * kMaxStages;
+  static constexpr int kHistory = kPredictorHistory;  // (stage_nodes.hpp)
+  static constexpr int kMaxNodes = kMaxPredictorNodes;
 
   StagePredictor(const Method& method, const Space& space)
       : space_(space),
         s_(method.stages()),
-        c_(method.table().c),
         n_((kHistory + 1) * s_),
-        weights_(std::make_unique_for_overwrite<double[]>(size_t(s_) * n_ * n_)),
         block_(space.template block<kMaxNodes>(n_)) {
     for (int age = 0; age <= kHistory; ++age) steps_[age] = space.map(block_, age * s_).data();
-    for (int i = 0; i < s_; ++i) set_nodes(i);
+    set_nodes(stage_nodes(method));
     set_uses();
   }
   StagePredictor(const StagePredictor&) = delete;  // (steps_ points into block_)
@@ -131,7 +125,7 @@ class StagePredictor {
   void adapt(int i, const Abar& abar_ii, Map& prediction, Map& below, Map& above);
 
  private:
-  void set_nodes(int i);
+  void set_nodes(const StageNodes& formed);
   // |h^2 abar_ii (g_pred - g_i)|^2 (this process's part) of stage i's prediction through m nodes
   // (m = 0: the one in `guess`), formed in `guess`, or with a fixed size in a value the compiler
   // keeps in registers (guess then unchanged: through the maps, adapt stored and reloaded each
@@ -194,65 +188,44 @@ class StagePredictor {
   void set_uses() {
     for (int i = 0; i < s_; ++i) set_use(i);
   }
-  // weight(i, m - 1, l): node l's Lagrange weight at c_i on the first m nodes; sized by s, not
-  // by kMaxStages (that would be kMaxStages (2 kMaxStages)^2 doubles), and not cleared: set_nodes
-  // writes every weight read (l < m <= node_count_[i]).
-  double& weight(int i, int m, int l) { return weights_[(size_t(i) * n_ + m) * n_ + l]; }
+  // weight(i, m - 1, l): node l's Lagrange weight at c_i on the first m nodes (stage_nodes.hpp).
+  const double& weight(int i, int m, int l) const {
+    return weights_[(size_t(i) * n_ + m) * n_ + l];
+  }
 
-  struct Node {
-    int age, stage;  // age 0: this step
-  };
+  using Node = StageNodes::Node;
   static constexpr int kMaxAdaptInterval = 64;
   // Whether the gradients of the steps before stay in block_ at fixed places (advance).
   static constexpr bool kInPlace = Space::kFixed;
   const Space& space_;
   int s_;
-  const double* c_;
   int n_;  // nodes at most: (kHistory + 1) s
-  // (Not value-initialised: set_nodes writes node_count_[i] entries of stage i before any is
-  // read. Zeroed, their 4.7 KB at kMaxStages = 14 were ~650 of the ~10,000 instructions of a
+  // Copied from stage_nodes (the prediction reads them at fixed offsets from `this`). (Not
+  // value-initialised: set_nodes writes node_count_[i] entries of stage i before any is read.
+  // Zeroed, their 4.7 KB at kMaxStages = 14 were ~650 of the ~10,000 instructions of a
   // Stepper's construction, P3, SERKN2s3: callgrind.)
   std::array<std::array<Node, kMaxNodes>, kMaxStages> nodes_;
   std::array<std::array<int, kMaxNodes>, kMaxStages> offset_;  // node's array in block_
   std::array<int, kMaxStages> node_count_{}, order_{}, use_{};
   std::array<const double*, kMaxStages> use_weights_{};
-  std::unique_ptr<double[]> weights_;
-  int history_ = 0;  // steps before this one with stage gradients (since set_state)
+  const double* weights_ = nullptr;  // stage_nodes(method).weights
+  int history_ = 0;                  // steps before this one with stage gradients (since set_state)
   std::array<int, kMaxStages> adapt_wait_{}, adapt_interval_{};  // steps to adapt's check
   alignas(EIGEN_MAX_ALIGN_BYTES) typename Space::template Block<kMaxNodes> block_;  // s per step
   std::array<Scalar*, kHistory + 1> steps_{};
 };
 
-// Stage i's nodes, most recent first: this step's stages j < i (at c_j), then those of the
-// previous steps (at c_j - age); a node at the time of a more recent one is left out.
+// The method's nodes (stage_nodes.hpp), each stage's first at order n (every node it has).
 template <class Space>
-void StagePredictor<Space>::set_nodes(int i) {
-  std::array<double, kMaxNodes> time;  // node l's time, c_j - age
-  int& n = node_count_[i];
-  for (int age = 0; age <= kHistory; ++age)
-    for (int j = (age == 0 ? i : s_) - 1; j >= 0; --j) {
-      const double t = c_[j] - age;
-      bool repeated = false;
-      for (int l = 0; l < n; ++l) repeated |= time[l] == t;
-      if (!repeated && n < kMaxNodes)
-        offset_[i][n] = age * s_ + j, nodes_[i][n] = Node{age, j}, time[n++] = t;
-    }
-  // Lagrange weights at c_i on the first m nodes, for every m: node l's weight on m nodes,
-  // prod_{k < m, k != l} (c_i - t_k) / (t_l - t_k), is its weight on m - 1 nodes times the factor
-  // of node m - 1, the same product in the same order as formed anew, so the same bits: O(n^2)
-  // divisions rather than O(n^3). (Formed anew for every m, they and the nodes' times were ~5 %
-  // of the time of a construct + 1-step run of SERKN2s3 at P3: perf.)
-  for (int m = 1; m <= n; ++m) {
-    const int k = m - 1;  // the node added
-    double w = 1;         // its own weight
-    for (int l = 0; l < k; ++l) {
-      weight(i, k, l) = weight(i, k - 1, l) * ((c_[i] - time[k]) / (time[l] - time[k]));
-      w *= (c_[i] - time[l]) / (time[k] - time[l]);
-    }
-    weight(i, k, k) = w;
+void StagePredictor<Space>::set_nodes(const StageNodes& formed) {
+  for (int i = 0; i < s_; ++i) {
+    const int n = formed.count[i];
+    std::copy_n(formed.nodes[i].begin(), n, nodes_[i].begin());
+    std::copy_n(formed.offset[i].begin(), n, offset_[i].begin());
+    node_count_[i] = order_[i] = n;
+    adapt_wait_[i] = adapt_interval_[i] = 1;
   }
-  order_[i] = n;
-  adapt_wait_[i] = adapt_interval_[i] = 1;
+  weights_ = formed.weights.get();
 }
 
 // Called after stage i is solved (G(i) known) with predict(i)'s result in `prediction` (with a

@@ -133,6 +133,7 @@ TEST(Allocation, ImplicitIntegratorsReuseTheirThreadsBlock) {
       if (m.is_explicit()) continue;
       SCOPED_TRACE(std::string(m.name()) + " d = " + std::to_string(d));
       const auto construct_and_integrate = [&] { Integrator(m, sys, h, q0, p0).integrate(t_end); };
+      construct_and_integrate();  // (the method's predictor nodes formed once: stage_nodes.hpp)
       long on_new_thread = 0;
       std::thread([&] { on_new_thread = large_blocks(construct_and_integrate); }).join();
       EXPECT_GE(on_new_thread, 1);

@@ -7,9 +7,11 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <thread>
 #include <vector>
 
 #include "problems.hpp"
+#include "stage_nodes.hpp"
 
 namespace erkn::test {
 namespace {
@@ -343,6 +345,40 @@ TEST(StageSolver, CompensatedSummationRemovesTheRoundOffOfManySmallIncrements) {
       EXPECT_LT(err[1], 0.01 * err[0]);
       EXPECT_LT(err[1], bound);
     }
+}
+
+// The predictor's nodes and weights (stage_nodes.hpp), formed once per method: on m nodes,
+// stage i's weights reproduce every polynomial of degree < m at c_i (the Lagrange property), for
+// every implicit method; each method's are formed once (the same object from any call or thread).
+// Negative control: two methods' are different objects.
+TEST(StageSolver, PredictorWeightsInterpolateAndAreFormedOncePerMethod) {
+  const detail::StageNodes* previous = nullptr;
+  for (const Method& m : Method::all()) {
+    if (m.is_explicit()) continue;
+    SCOPED_TRACE(std::string(m.name()));
+    const detail::StageNodes& nodes = detail::stage_nodes(m);
+    const double* c = m.table().c;
+    for (int i = 0; i < m.stages(); ++i)
+      for (int n = 1; n <= nodes.count[i]; ++n) {
+        const double* w = &nodes.weights[(size_t(i) * nodes.n + n - 1) * nodes.n];
+        for (int k = 0; k < n; ++k) {
+          double sum = 0, scale = 0;
+          for (int l = 0; l < n; ++l) {
+            const auto [age, stage] = nodes.nodes[i][l];
+            EXPECT_EQ(nodes.offset[i][l], age * m.stages() + stage);
+            const double term = w[l] * std::pow(c[stage] - age, k);
+            sum += term, scale += std::abs(term);
+          }
+          EXPECT_NEAR(sum, std::pow(c[i], k), 1e-13 * std::max(1.0, scale)) << i << " " << n;
+        }
+      }
+    const detail::StageNodes* on_thread = nullptr;
+    std::thread([&] { on_thread = &detail::stage_nodes(m); }).join();
+    EXPECT_EQ(on_thread, &nodes);
+    EXPECT_EQ(&detail::stage_nodes(m), &nodes);
+    EXPECT_NE(previous, &nodes);
+    previous = &nodes;
+  }
 }
 
 }  // namespace
