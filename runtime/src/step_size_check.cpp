@@ -10,6 +10,18 @@
 #include "format.hpp"
 
 namespace erkn::detail {
+namespace {
+
+// Whether no v in [0, vmax] is within a relative `tolerance` of a pole, decided without a look at
+// each eigenvalue when vmax lies well below the smallest pole: for tolerance <= 1/2 and vmax <
+// P_1 / 4, every pole P has P - v > 3P/4 > tolerance P, with a margin no rounding of pole_within's
+// |v - P| <= tolerance P reaches, so the answer is pole_within's. (pole_within per eigenvalue was
+// ~160 of the ~7,250 instructions of a construct + 1-step run of SERKN2s3 at P3: callgrind.)
+bool below_every_pole(const Method& method, double vmax, double tolerance) {
+  return tolerance <= 0.5 && vmax < 0.25 * method.poles().front();
+}
+
+}  // namespace
 
 double nearest_safe_step(const Method& method, double h, const Eigen::VectorXd& eigenvalues,
                          double pole_tolerance) {
@@ -51,6 +63,7 @@ void check_step_size(const Method& method, double h, const Eigen::VectorXd& eige
                 format(vmax) + " > " + format(generated::kPoleSearchMax) +
                 ", beyond the range where the method's poles are known; use h <= " +
                 format(std::sqrt(generated::kPoleSearchMax / lambda_max)));
+  if (below_every_pole(method, vmax, pole_tolerance)) return;
   for (Eigen::Index k = 0; k < eigenvalues.size(); ++k) {
     const double v = h * h * eigenvalues[k];
     if (const double P = method.pole_within(v, pole_tolerance); P > 0)

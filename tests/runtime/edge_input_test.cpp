@@ -3,6 +3,7 @@
 // before its fix (silent NaN, a wrong time, a hang, a corrupted state, std::bad_alloc).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <stdexcept>
@@ -53,6 +54,33 @@ TEST(EdgeInput, CoefficientsRefuseANaNOrNegativePoleTolerance) {
     // accepted (the advisor's use).
     EXPECT_CONTAINS(error_of([&] { m.at(P, 1e-6); }), "singular");
     EXPECT_NO_THROW(m.at(0.5 * P, 0.0));
+    ++checked;
+  }
+  EXPECT_GT(checked, 0);
+}
+
+// The step-size check over M's eigenvalues (v = h^2 lambda, h = 1) refuses a v within a relative
+// pole_tolerance of a pole and accepts one outside, also below a quarter of the first pole, where
+// it decides for all eigenvalues at once (tolerance <= 1/2). Negative control: at tolerance 0.8
+// a v of 0.24 P_1 is within it, and is refused.
+TEST(EdgeInput, StepSizeCheckBelowTheFirstPoleAgreesWithEachEigenvalues) {
+  int checked = 0;
+  for (const Method& m : methods_of(Kind::erkn)) {
+    if (m.poles().empty()) continue;
+    SCOPED_TRACE(std::string(m.name()));
+    const double P = m.poles()[0];
+    const auto construct = [&](double v, double tolerance) {
+      Options o;
+      o.pole_tolerance = tolerance;
+      const Eigen::VectorXd lambda = Eigen::Vector2d(0.01 * v, v), q0 = Eigen::Vector2d(0.1, 0.2);
+      Integrator(m, sine_gordon(Stiffness::diagonal(lambda)), 1.0, q0, q0, o);
+    };
+    EXPECT_NO_THROW(construct(std::nextafter(0.25 * P, 0.0), 1e-6));
+    EXPECT_NO_THROW(construct(std::nextafter(0.25 * P, 0.0), 0.5));
+    EXPECT_NO_THROW(construct(0.25 * P, 1e-6));
+    EXPECT_CONTAINS(error_of([&] { construct(P * (1 - 0.5e-6), 1e-6); }), "pole");
+    EXPECT_CONTAINS(error_of([&] { construct(0.24 * P, 0.8); }), "pole");
+    EXPECT_NO_THROW(construct(0.1 * P, 0.8));
     ++checked;
   }
   EXPECT_GT(checked, 0);
