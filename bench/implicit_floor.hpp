@@ -128,7 +128,7 @@ class Loop {
       const double c = m.table().c[i];
       phi0c_[i][k] = phi0(c * c * v), hcphi1c_[i][k] = h * c * phi1(c * c * v);
       bq_[i][k] = h * h * bbar[i], bp_[i][k] = h * b[i];
-      for (int j = 0; j <= i; ++j) A_[i][j][k] = h * h * abar[i * (i + 1) / 2 + j];
+      for (int j = 0; j <= i; ++j) A_[i][j][k] = h * h * abar[erkn::Coefficients::packed(i, j)];
     }
     phi0_[k] = std::cos(x), hphi1_[k] = h * phi1(v);
     mhMphi1_[k] = rkn_ ? 0.0 : -h * lambda_[k] * phi1(v);

@@ -25,7 +25,8 @@ namespace {
 bool implicit_stages(const erkn::Method& m) {
   const int s = m.stages();
   for (int i = 0; i < s; ++i)
-    if (std::string_view(m.table().closed_forms[2 * s + i * (i + 1) / 2 + i]) != "0") return true;
+    if (std::string_view(m.table().closed_forms[2 * s + erkn::Coefficients::packed(i, i)]) != "0")
+      return true;
   return false;
 }
 

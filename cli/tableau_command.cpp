@@ -49,7 +49,8 @@ void print_tableau(const Method& m, const std::function<std::string(int)>& value
   std::cout << "],\n \"abar\": [";
   for (int i = 0; i < s; ++i) {
     std::cout << (i ? ", " : "") << "[";
-    for (int j = 0; j <= i; ++j) std::cout << (j ? ", " : "") << value(2 * s + i * (i + 1) / 2 + j);
+    for (int j = 0; j <= i; ++j)
+      std::cout << (j ? ", " : "") << value(2 * s + Coefficients::packed(i, j));
     std::cout << "]";
   }
   std::cout << "]}\n";
@@ -163,7 +164,9 @@ int tableau_command(int argc, char** argv) {
     Coefficients k = m.at(x);  // refuses negative v and v near a pole, naming it
     std::vector<double> all(k.b.begin(), k.b.begin() + k.s);
     all.insert(all.end(), k.bbar.begin(), k.bbar.begin() + k.s);
-    all.insert(all.end(), k.abar_packed.begin(), k.abar_packed.begin() + k.s * (k.s + 1) / 2);
+    // (packed(s, 0): the number of entries in s rows)
+    all.insert(all.end(), k.abar_packed.begin(),
+               k.abar_packed.begin() + Coefficients::packed(k.s, 0));
     print_tableau(m, [&](int i) { return json_number(all[i]); });
   } else if (option == "--series") {
     if (x < 0 || x != std::floor(x) || x >= generated::kSeriesTerms)

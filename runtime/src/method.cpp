@@ -110,8 +110,8 @@ void detail::explicit_family(const double* c, const double* d, int s, double v, 
     b[i] = d[i] * std::cos(std::abs(1 - c[i]) * x);
     bbar[i] = d[i] * (1 - c[i]) * sinc(std::abs(1 - c[i]) * x);
     for (int j = 0; j < i; ++j)
-      abar[i * (i + 1) / 2 + j] = d[j] * (c[i] - c[j]) * sinc(std::abs(c[i] - c[j]) * x);
-    abar[i * (i + 1) / 2 + i] = 0.0;
+      abar[Coefficients::packed(i, j)] = d[j] * (c[i] - c[j]) * sinc(std::abs(c[i] - c[j]) * x);
+    abar[Coefficients::packed(i, i)] = 0.0;
   }
 }
 

@@ -60,7 +60,7 @@ Coefficients modified_coefficients(const StagePhases& ph, double z) {
   for (int j = 0; j < k.s; ++j) {
     const double w = ph.d[j] + 2 * z * ph.e[j];
     k.b[j] *= w, k.bbar[j] *= w;
-    for (int i = j; i < k.s; ++i) k.abar_packed[i * (i + 1) / 2 + j] *= w;
+    for (int i = j; i < k.s; ++i) k.abar_packed[Coefficients::packed(i, j)] *= w;
   }
   return k;
 }

@@ -145,7 +145,7 @@ class StepCoefficients {
         last_(slot_count(s_) - 3),
         h_(h),
         slots_(slot_count(s_), lambda.size()) {
-    for (int i = 0; i < s_; ++i) abar_row_[size_t(i)] = 4 * s_ + i * (i + 1) / 2;
+    for (int i = 0; i < s_; ++i) abar_row_[size_t(i)] = 4 * s_ + Coefficients::packed(i, 0);
     const generated::Table& table = method.table();
     // (Below kShareFrom entries the sort and its allocations would cost more than they save.)
     const std::vector<Eigen::Index> first =
@@ -170,7 +170,7 @@ class StepCoefficients {
         set(s_ + i, h * c * phi1c);
         set(2 * s_ + i, h * h * bbar[i]);
         set(3 * s_ + i, h * b[i]);
-        for (int j = 0; j <= i; ++j) set(abar_slot(i, j), h * h * abar[i * (i + 1) / 2 + j]);
+        for (int j = 0; j <= i; ++j) set(abar_slot(i, j), h * h * abar[Coefficients::packed(i, j)]);
       }
       set(last(0), phi0_minus_1(v));
       const double phi1v = phi1(v);  // (once: the libm call is not merged)

@@ -15,7 +15,7 @@ namespace erkn::detail {
 /// form is "0"): the stage is explicit, Q_i = r_i.
 inline bool explicit_stage(const Method& method, int i) {
   const int s = method.stages();
-  const char* form = method.table().closed_forms[2 * s + i * (i + 1) / 2 + i];
+  const char* form = method.table().closed_forms[2 * s + Coefficients::packed(i, i)];
   return form[0] == '0' && form[1] == '\0';
 }
 

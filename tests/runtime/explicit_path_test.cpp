@@ -38,7 +38,7 @@ void splitting_coefficients(double v, double* b, double* bbar, double* abar) {
     bbar[i] = di * e * phi1(e * e * v);
     for (int j = 0; j <= i; ++j) {
       const double dc = m.c[i] - m.c[j];
-      abar[i * (i + 1) / 2 + j] = (m.d[j] + (j == 0 ? d_nudge : 0)) * dc * phi1(dc * dc * v);
+      abar[Coefficients::packed(i, j)] = (m.d[j] + (j == 0 ? d_nudge : 0)) * dc * phi1(dc * dc * v);
     }
   }
 }
@@ -57,8 +57,8 @@ Tables& tables_of(const Splitting& m, bool rkn) {
   const int n = 2 * m.s + m.s * (m.s + 1) / 2;
   for (int k = 0; k < n; ++k) t.forms[k] = t.generic_forms[k] = "nonzero";
   for (int i = 0; i < m.s; ++i) {
-    t.forms[2 * m.s + i * (i + 1) / 2 + i] = "0";
-    t.generic_forms[2 * m.s + i * (i + 1) / 2 + i] = "0*v";
+    t.forms[2 * m.s + Coefficients::packed(i, i)] = "0";
+    t.generic_forms[2 * m.s + Coefficients::packed(i, i)] = "0*v";
   }
   t.explicit_table = Method::all()[0].table();
   t.explicit_table.name = m.name;
@@ -148,7 +148,8 @@ TEST(ExplicitPath, RegistryMethodsWithZeroDiagonalAreTheSplittingOfTheirNodesAnd
     const int s = m.stages();
     bool zero_diagonal = true;
     for (int i = 0; i < s; ++i)
-      zero_diagonal &= std::string_view(m.table().closed_forms[2 * s + i * (i + 1) / 2 + i]) == "0";
+      zero_diagonal &=
+          std::string_view(m.table().closed_forms[2 * s + Coefficients::packed(i, i)]) == "0";
     if (!zero_diagonal) continue;
     ++checked;
     Splitting spec{m.table().name, s, {}, {}};
@@ -164,7 +165,7 @@ TEST(ExplicitPath, RegistryMethodsWithZeroDiagonalAreTheSplittingOfTheirNodesAnd
         EXPECT_NEAR(b[i], b0[i], 1e-13) << m.name() << " b" << i + 1 << " v = " << v;
         EXPECT_NEAR(bbar[i], bbar0[i], 1e-13) << m.name() << " bbar" << i + 1 << " v = " << v;
         for (int j = 0; j <= i; ++j)
-          EXPECT_NEAR(abar[i * (i + 1) / 2 + j], abar0[i * (i + 1) / 2 + j], 1e-13)
+          EXPECT_NEAR(abar[Coefficients::packed(i, j)], abar0[Coefficients::packed(i, j)], 1e-13)
               << m.name() << " abar" << i + 1 << j + 1 << " v = " << v;
       }
     }

@@ -28,10 +28,14 @@ inline constexpr int kMaxStages = generated::kMaxStages;
 
 /// Coefficients of one method at one v = h^2 lambda (scalar). abar(i, j) for j <= i, 0-based.
 struct Coefficients {
+  /// Position of abar_ij (0 <= j <= i) in the row-packed lower triangle abar_11, abar_21,
+  /// abar_22, ...: the order of abar_packed, of Method::evaluate and of the generated tables.
+  static constexpr int packed(int i, int j) { return i * (i + 1) / 2 + j; }
+
   int s = 0;
   std::array<double, kMaxStages> c{}, b{}, bbar{};
   std::array<double, kMaxStages*(kMaxStages + 1) / 2> abar_packed{};
-  double abar(int i, int j) const { return abar_packed[i * (i + 1) / 2 + j]; }
+  double abar(int i, int j) const { return abar_packed[packed(i, j)]; }
 };
 
 class Method {
