@@ -644,12 +644,8 @@ void Integrator::check_guard(const char* failure) {
   const double t_now = t();
   const long step_now = statistics_.steps;
   const detail::BlowupGuard::Checkpoint& c = guard_->checkpoint();
-  if (!checkpoint_in_state_) {  // (else q_, p_ are the checkpoint's)
-    stepper_->set_state(c.q, c.p, statistics_);
-    q_ = c.q, p_ = c.p;
-  } else {
-    stepper_->set_state(q_, p_, statistics_);
-  }
+  if (!checkpoint_in_state_) q_ = c.q, p_ = c.p;  // (else q_, p_ are the checkpoint's)
+  stepper_->set_state(q_, p_, statistics_);
   stale_ = false;
   grid_ = c.grid, statistics_.steps = c.steps;
   std::string message = guard_->message(measure, t_now, step_now, t(), likely_cause());
