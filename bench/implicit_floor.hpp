@@ -122,7 +122,7 @@ class Loop {
     const auto phi0 = [](double w) { return std::cos(std::sqrt(w)); };
     const auto phi1 = [](double w) { return w == 0 ? 1.0 : std::sin(std::sqrt(w)) / std::sqrt(w); };
     std::array<double, erkn::kMaxStages> b{}, bbar{};
-    std::array<double, erkn::kMaxStages*(erkn::kMaxStages + 1) / 2> abar{};
+    std::array<double, erkn::Coefficients::kMaxPacked> abar{};
     m.evaluate(v, b.data(), bbar.data(), abar.data());
     for (int i = 0; i < S; ++i) {
       const double c = m.table().c[i];

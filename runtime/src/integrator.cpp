@@ -626,12 +626,16 @@ void Integrator::save_checkpoint() {
   c.grid = grid_, c.steps = statistics_.steps;
 }
 
-void Integrator::start_guard_at_checkpoint() {
+// The checkpoint's state: q_, p_ while they hold it, else the checkpoint's own vectors.
+std::pair<const Eigen::VectorXd&, const Eigen::VectorXd&> Integrator::checkpoint_state() const {
+  if (checkpoint_in_state_) return {q_, p_};
   const detail::BlowupGuard::Checkpoint& c = guard_->checkpoint();
-  if (checkpoint_in_state_)
-    start_guard(q_, p_);
-  else
-    start_guard(c.q, c.p);
+  return {c.q, c.p};
+}
+
+void Integrator::start_guard_at_checkpoint() {
+  const auto [q, p] = checkpoint_state();
+  start_guard(q, p);
 }
 
 // A check of the guard: passed, the state becomes the checkpoint; failed, the checkpoint becomes
@@ -643,10 +647,11 @@ void Integrator::check_guard(const char* failure) {
   if (guard_->growth(measure) <= 1) return failure ? void() : save_checkpoint();
   const double t_now = t();
   const long step_now = statistics_.steps;
-  const detail::BlowupGuard::Checkpoint& c = guard_->checkpoint();
-  if (!checkpoint_in_state_) q_ = c.q, p_ = c.p;  // (else q_, p_ are the checkpoint's)
+  const auto [q, p] = checkpoint_state();
+  if (&q != &q_) q_ = q, p_ = p;  // (q_, p_ may hold it already)
   stepper_->set_state(q_, p_, statistics_);
   stale_ = false;
+  const detail::BlowupGuard::Checkpoint& c = guard_->checkpoint();
   grid_ = c.grid, statistics_.steps = c.steps;
   std::string message = guard_->message(measure, t_now, step_now, t(), likely_cause());
   if (failure) message += ". The next step then failed: " + std::string(failure);

@@ -154,7 +154,7 @@ class StepCoefficients {
     // ~2 % of the time of a construct + 1-step run of SERKN2s3 at P3, perf; evaluate writes
     // every entry of the s stages, Table::coefficients.)
     std::array<double, kMaxStages> b, bbar;
-    std::array<double, kMaxStages*(kMaxStages + 1) / 2> abar;
+    std::array<double, Coefficients::kMaxPacked> abar;
     for (Eigen::Index e = 0; e < lambda.size(); ++e) {
       if (!first.empty() && first[size_t(e)] != e) {  // (first[e] < e: evaluated already)
         slots_.copy(slot_count(s_), first[size_t(e)], e);

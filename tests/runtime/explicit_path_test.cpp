@@ -47,8 +47,8 @@ void splitting_coefficients(double v, double* b, double* bbar, double* abar) {
 /// non-trivial spelling of zero (the generic path, whose stage solves then take one iteration).
 struct Tables {
   generated::Table explicit_table, generic_table;
-  const char* forms[3 * kMaxStages + kMaxStages * (kMaxStages + 1) / 2];
-  const char* generic_forms[3 * kMaxStages + kMaxStages * (kMaxStages + 1) / 2];
+  const char* forms[3 * kMaxStages + Coefficients::kMaxPacked];
+  const char* generic_forms[3 * kMaxStages + Coefficients::kMaxPacked];
 };
 
 Tables& tables_of(const Splitting& m, bool rkn) {
@@ -157,8 +157,8 @@ TEST(ExplicitPath, RegistryMethodsWithZeroDiagonalAreTheSplittingOfTheirNodesAnd
     current = &spec;
     for (double v : {0.0, 0.3, 2.0, 7.5}) {
       if (m.kind() == Kind::rkn && v > 0) continue;
-      double b[kMaxStages], bbar[kMaxStages], abar[kMaxStages * (kMaxStages + 1) / 2];
-      double b0[kMaxStages], bbar0[kMaxStages], abar0[kMaxStages * (kMaxStages + 1) / 2];
+      double b[kMaxStages], bbar[kMaxStages], abar[Coefficients::kMaxPacked];
+      double b0[kMaxStages], bbar0[kMaxStages], abar0[Coefficients::kMaxPacked];
       m.table().coefficients(v, b, bbar, abar);
       splitting_coefficients(v, b0, bbar0, abar0);
       for (int i = 0; i < s; ++i) {

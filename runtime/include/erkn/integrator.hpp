@@ -31,6 +31,7 @@
 #include <exception>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "erkn/method.hpp"
 #include "erkn/system.hpp"
@@ -327,6 +328,7 @@ class Integrator {
   void save_checkpoint();
   bool keep_checkpoint() const;
   void read_state(detail::StepperBase& stepper) const;
+  std::pair<const Eigen::VectorXd&, const Eigen::VectorXd&> checkpoint_state() const;
   void start_guard_at_checkpoint();
   void check_guard(const char* failure = nullptr);
   std::string likely_cause() const;

@@ -31,10 +31,13 @@ struct Coefficients {
   /// Position of abar_ij (0 <= j <= i) in the row-packed lower triangle abar_11, abar_21,
   /// abar_22, ...: the order of abar_packed, of Method::evaluate and of the generated tables.
   static constexpr int packed(int i, int j) { return i * (i + 1) / 2 + j; }
+  /// The size of that triangle for kMaxStages stages (packed(kMaxStages, 0)): abar_packed's, and
+  /// of any array that receives a method's abar (Method::evaluate).
+  static constexpr int kMaxPacked = kMaxStages * (kMaxStages + 1) / 2;
 
   int s = 0;
   std::array<double, kMaxStages> c{}, b{}, bbar{};
-  std::array<double, kMaxStages*(kMaxStages + 1) / 2> abar_packed{};
+  std::array<double, kMaxPacked> abar_packed{};
   double abar(int i, int j) const { return abar_packed[packed(i, j)]; }
 };
 
