@@ -618,11 +618,12 @@ void Integrator::start_guard(const Eigen::VectorXd& q, const Eigen::VectorXd& p)
 
 // The checkpoint of the current state (q_, p_ current at every call): its grid and step count,
 // and q_, p_ themselves until they change (keep_checkpoint). (Copying them cost ~7.5 us of a
-// construction at N = 8192.)
+// construction at N = 8192.) Without the guard nothing returns to it: q_, p_ are not kept, and
+// the first load after stepping allocates no vectors for it.
 void Integrator::save_checkpoint() {
   time_resolved_ = grid_.resolved();
   detail::BlowupGuard::Checkpoint& c = guard_->checkpoint();
-  checkpoint_in_state_ = true;
+  checkpoint_in_state_ = guard_->on();
   c.grid = grid_, c.steps = statistics_.steps;
 }
 

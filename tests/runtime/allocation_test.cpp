@@ -1,5 +1,6 @@
-// A step allocates nothing, on every structure of M, for ERKN and RKN methods alike; an explicit
-// integrator of a small dimension is built from blocks that glibc's per-thread cache serves.
+// A step allocates nothing, on every structure of M, for ERKN and RKN methods alike, nor a read of
+// the state after steps but the blow-up guard's checkpoint; an explicit integrator of a small
+// dimension is built from blocks that glibc's per-thread cache serves.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -65,6 +66,39 @@ TEST(Allocation, StepAllocatesNothing) {
       EXPECT_EQ(allocations - before, 0);
       EXPECT_EQ(run.statistics().newton_fallbacks, 0);
     }
+}
+
+// Steps and the first read of the state after them: without the blow-up guard they allocate
+// nothing (no checkpoint is kept); with it (the negative control) the checkpoint's q and p, to
+// which a failed check would return, once. Every method, every structure of M.
+TEST(Allocation, StepsAndAReadAllocateOnlyTheGuardsCheckpoint) {
+  const int N = 16;
+  Eigen::VectorXd q0, p0;
+  sine_gordon_initial(N, q0, p0);
+  const Stiffness circ = Stiffness::circulant(sine_gordon_column(N));
+  const Stiffness forms[] = {Stiffness::scalar(50),
+                             Stiffness::diagonal(circ.to_dense(N).diagonal()), circ,
+                             Stiffness::dense(circ.to_dense(N))};
+  for (const Method& m : Method::all())
+    for (const Stiffness& M : forms)
+      for (const bool guard : {false, true}) {
+        SCOPED_TRACE(std::string(m.name()) + " structure " + std::to_string(int(M.structure())) +
+                     (guard ? " guard on" : " guard off"));
+        Options o;
+        o.blowup_guard = guard;
+        Integrator warm(m, sine_gordon(M), 1.0 / 40, q0, p0, o);
+        warm.step();  // (FFT plans and twiddles are built on first use)
+        warm.q();
+        Integrator run(m, sine_gordon(M), 1.0 / 40, q0, p0, o);
+        const long before = allocations;
+        for (int k = 0; k < 3; ++k) run.step();  // (a processed method's steps read the state)
+        run.q(), run.p();
+        EXPECT_EQ(allocations - before, guard ? 2 : 0);
+        run.step();
+        const long again = allocations;
+        run.q(), run.p();  // (the checkpoint stays out of q, p until a check passes)
+        EXPECT_EQ(allocations - again, 0);
+      }
 }
 
 // glibc's malloc serves blocks of up to 1032 bytes from a per-thread cache (tcache) of freed
