@@ -67,11 +67,13 @@ class StagePredictor {
   }
   /// After a step: this step's gradients become the previous step's: with a fixed size moved
   /// back by one step in place (s D values), so that every node keeps its address (predict's
-  /// offsets); else the steps' pointers rotated.
+  /// offsets); else the steps' pointers rotated. S: the stage count when the caller knows it at
+  /// compile time (StageSolver::for_each_stage), else 0.
+  template <int S = 0>
   void advance() {
     if constexpr (kInPlace) {  // (array by array: std::copy_n of s D values was a memmove call)
       // (s in a local: each store may alias s_, which GCC reloaded after it.)
-      const int s = s_;
+      const int s = S > 0 ? S : s_;
       for (int age = kHistory; age > 0; --age)
         for (int j = 0; j < s; ++j)
           space_.map(block_.data(), age * s + j) =

@@ -47,13 +47,26 @@ class StageSolver {
   /// throws erkn::Error naming the stage.
   template <class State>
   long solve(const State& q_hat, const State& p_hat, const StepPlace& at) {
-    return solve_inline(q_hat, p_hat, at);
+    return solve_inline<0>(q_hat, p_hat, at);
   }
   /// solve, inlined into the caller (the fixed-D step: as a call, its frame and its loop's
-  /// set-up were ~45 instructions per step, P2).
-  template <class State>
+  /// set-up were ~45 instructions per step, P2); S: the stage count when the caller knows it at
+  /// compile time (for_each_stage), else 0.
+  template <int S, class State>
   [[gnu::always_inline]] long solve_inline(const State& q_hat, const State& p_hat,
                                            const StepPlace& at);
+  /// f(i) for the stages i = 0, ..., s - 1 in order: with S = s > 0 one inlined call per stage
+  /// with i a constant, so that each stage's coefficients, records and arrays are found at
+  /// constant offsets (with a fixed Coef, StepCoefficients::layout_s); else a loop.
+  template <int S, class F>
+  [[gnu::always_inline]] void for_each_stage(F&& f) const {
+    if constexpr (S > 0) {
+      const auto each = [&]<int... I>(std::integer_sequence<int, I...>) { (f(I), ...); };
+      each(std::make_integer_sequence<int, S>{});
+    } else {
+      for (int i = 0; i < s_; ++i) f(i);
+    }
+  }
   /// Adds a solved step's counts to stats: `evaluations` (solve's result) as gradient evaluations
   /// and as stage iterations, and those of its Newton fallbacks. (One counter on the fixed point's
   /// path, not five cleared and added per step: GCC added two adjacent ones with one 16-byte load
@@ -64,15 +77,18 @@ class StageSolver {
     if (newton_pending_) add_newton_counts(stats);
   }
   Map G(int i) { return predictor_.G(i); }
-  /// After a successful step (its gradients start the next step's guesses).
-  void advance() { predictor_.advance(); }
+  /// After a successful step (its gradients start the next step's guesses); S as solve_inline's.
+  template <int S = 0>
+  void advance() {
+    predictor_.template advance<S>();
+  }
   /// Forgets the steps before (set_state).
   void reset() {
     predictor_.reset();
     carried_for_ = -1;
   }
   template <class X, class B>
-  void carry(const X& q_part, const X& p_part, const B& h2bbar_last, const B& hb_last);
+  void carry(int last, const X& q_part, const X& p_part, const B& h2bbar_last, const B& hb_last);
 
  private:
   // The fixed point's iterates, force and contraction measure: with a fixed D values, which the
@@ -372,21 +388,21 @@ StageSolver<Space, Coef>::StageSolver(const Method& method, const System& system
 
 // Eq. (d)'s stages one by one.
 template <class Space, class Coef>
-template <class State>
+template <int S, class State>
 [[gnu::always_inline]] inline long StageSolver<Space, Coef>::solve_inline(const State& q_hat,
                                                                           const State& p_hat,
                                                                           const StepPlace& at) {
   at_ = &at;
   newton_pending_ = false;
   long evaluations = 0;
-  for (int i = 0; i < s_; ++i) {
+  for_each_stage<S>([&](int i) __attribute__((always_inline)) {
     if constexpr (Space::kFixed)
       stage(i, q_hat, p_hat, evaluations);
     else
       stage_call(i, q_hat, p_hat, evaluations);
     if (predictor_.adapt_due(i))
       predictor_.adapt(i, Space::co(k_.abar(i, i)), x_.guess_hat, x_.Q_hat_new, x_.g_first_hat);
-  }
+  });
   return evaluations;
 }
 
@@ -520,7 +536,8 @@ template <class State>
 // state's stores and r_0 to Q_0 was on the path of the next step's first gradient evaluation.)
 template <class Space, class Coef>
 template <class X, class B>
-[[gnu::always_inline]] inline void StageSolver<Space, Coef>::carry(const X& q_part, const X& p_part,
+[[gnu::always_inline]] inline void StageSolver<Space, Coef>::carry(int last, const X& q_part,
+                                                                   const X& p_part,
                                                                    const B& h2bbar_last,
                                                                    const B& hb_last) {
   if constexpr (Space::kFixed) {
@@ -529,7 +546,7 @@ template <class X, class B>
     const auto phi0c = co(k_.phi0c(0)), hcphi1c = co(k_.hcphi1c(0)), abar = co(k_.abar(0, 0));
     Work rest;
     const double w0 = predictor_.predict_rest(0, rest, predictor_.next());
-    const auto g = stored_force(G(s_ - 1));
+    const auto g = stored_force(G(last));
     next_Q0_ = (phi0c * q_part + hcphi1c * p_part - abar * rest) -
                (phi0c * h2bbar_last + hcphi1c * hb_last + abar * w0) * g;
     carried_for_ = at_->step + 1;

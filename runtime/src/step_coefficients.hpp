@@ -129,9 +129,9 @@ inline std::vector<Eigen::Index> first_equal(const Eigen::VectorXd& lambda) {
 
 template <class Coef>
 class StepCoefficients {
-  // The flat layout for s stages: phi0c, hcphi1c, h2bbar, hb (s slots each), h2abar (the lower
-  // triangle, s(s+1)/2 slots), then phi0m1, hphi1, mhMphi1. Sized by the method's s, not by
-  // kMaxStages: on a grid every slot is an array over all unknowns.
+  // The flat layout for s stages (layout_s): phi0c, hcphi1c, h2bbar, hb (s slots each), h2abar
+  // (the lower triangle, s(s+1)/2 slots), then phi0m1, hphi1, mhMphi1. With an allocation sized
+  // by the method's s, not by kMaxStages: on a grid every slot is an array over all unknowns.
   static constexpr int slot_count(int s) { return 4 * s + s * (s + 1) / 2 + 3; }
   static constexpr Eigen::Index kShareFrom = 16;
   using Slots = CoefficientSlots<Coef, slot_count(kMaxStages)>;
@@ -142,10 +142,10 @@ class StepCoefficients {
   /// every v against the method's poles (check_step_size), so the table is evaluated directly.
   StepCoefficients(const Method& method, double h, const Eigen::VectorXd& lambda)
       : s_(method.stages()),
-        last_(slot_count(s_) - 3),
+        last_(slot_count(layout_s()) - 3),
         h_(h),
-        slots_(slot_count(s_), lambda.size()) {
-    for (int i = 0; i < s_; ++i) abar_row_[size_t(i)] = 4 * s_ + Coefficients::packed(i, 0);
+        slots_(slot_count(layout_s()), lambda.size()) {
+    for (int i = 0; i < s_; ++i) abar_row_[size_t(i)] = 4 * layout_s() + Coefficients::packed(i, 0);
     const generated::Table& table = method.table();
     // (Below kShareFrom entries the sort and its allocations would cost more than they save.)
     const std::vector<Eigen::Index> first =
@@ -157,7 +157,7 @@ class StepCoefficients {
     std::array<double, Coefficients::kMaxPacked> abar;
     for (Eigen::Index e = 0; e < lambda.size(); ++e) {
       if (!first.empty() && first[size_t(e)] != e) {  // (first[e] < e: evaluated already)
-        slots_.copy(slot_count(s_), first[size_t(e)], e);
+        slots_.copy(slot_count(layout_s()), first[size_t(e)], e);
         continue;
       }
       const auto set = [&](int slot, double x) { slots_.set(slot, e, x); };
@@ -167,9 +167,9 @@ class StepCoefficients {
         const double c = table.c[i];
         const auto [phi0c, phi1c] = phi01(c * c * v);
         set(i, phi0c);
-        set(s_ + i, h * c * phi1c);
-        set(2 * s_ + i, h * h * bbar[i]);
-        set(3 * s_ + i, h * b[i]);
+        set(layout_s() + i, h * c * phi1c);
+        set(2 * layout_s() + i, h * h * bbar[i]);
+        set(3 * layout_s() + i, h * b[i]);
         for (int j = 0; j <= i; ++j) set(abar_slot(i, j), h * h * abar[Coefficients::packed(i, j)]);
       }
       set(last(0), phi0_minus_1(v));
@@ -181,18 +181,37 @@ class StepCoefficients {
 
   double h() const { return h_; }                                 ///< the step size
   Value phi0c(int i) const { return at(i); }                      ///< phi0(c_i^2 V)
-  Value hcphi1c(int i) const { return at(s_ + i); }               ///< h c_i phi1(c_i^2 V)
+  Value hcphi1c(int i) const { return at(layout_s() + i); }       ///< h c_i phi1(c_i^2 V)
   Value abar(int i, int j) const { return at(abar_slot(i, j)); }  ///< h^2 abar_ij(V)
-  Value h2bbar(int i) const { return at(2 * s_ + i); }            ///< h^2 bbar_i(V)
-  Value hb(int i) const { return at(3 * s_ + i); }                ///< h b_i(V)
+  Value h2bbar(int i) const { return at(2 * layout_s() + i); }    ///< h^2 bbar_i(V)
+  Value hb(int i) const { return at(3 * layout_s() + i); }        ///< h b_i(V)
   Value phi0m1() const { return at(last(0)); }                    ///< phi0(V) - 1
   Value hphi1() const { return at(last(1)); }                     ///< h phi1(V)
   Value mhMphi1() const { return at(last(2)); }                   ///< -h M phi1(V) = -(V/h) phi1(V)
 
  private:
   // (Slot offsets kept, not recomputed from s at every access: the step reads them per stage.)
-  int abar_slot(int i, int j) const { return abar_row_[size_t(i)] + j; }
-  int last(int k) const { return last_ + k; }
+  int abar_slot(int i, int j) const {
+    if constexpr (Slots::kArrayInside)
+      return 4 * kMaxStages + Coefficients::packed(i, j);
+    else
+      return abar_row_[size_t(i)] + j;
+  }
+  int last(int k) const {
+    if constexpr (Slots::kArrayInside)
+      return slot_count(kMaxStages) - 3 + k;
+    else
+      return last_ + k;
+  }
+  // The stage count the slots are laid out for: with the values inside the object (a fixed
+  // Coef, which has room for kMaxStages) kMaxStages, so that every slot's offset is a constant
+  // for a constant i, without s_ or abar_row_ loaded; else s (an allocation per slot's array).
+  int layout_s() const {
+    if constexpr (Slots::kArrayInside)
+      return kMaxStages;
+    else
+      return s_;
+  }
   Value at(int slot) const { return slots_.at(slot); }
 
   int s_;
