@@ -51,12 +51,26 @@ struct Kept {
   bool closed;
 };
 thread_local Kept kept{};
-// Frees the kept block when the thread ends (set up by the first block kept).
+// The vectors this thread keeps (take_kept_vectors), in raw storage for the same reason:
+// constructed by the first give_kept_vectors, destroyed when the thread ends.
+constexpr int kKeptVectors = 2;
+struct KeptVectors {
+  alignas(Eigen::VectorXd) unsigned char bytes[kKeptVectors][sizeof(Eigen::VectorXd)];
+  bool constructed;
+  Eigen::VectorXd& operator[](int k) {
+    return *std::launder(reinterpret_cast<Eigen::VectorXd*>(bytes[k]));
+  }
+};
+thread_local KeptVectors kept_vectors{};
+// Frees the kept block and vectors when the thread ends (set up by the first one kept).
 struct KeptRelease {
   bool armed = false;
   ~KeptRelease() {
     std::free(kept.block);
     kept = {nullptr, 0, true};
+    if (kept_vectors.constructed)
+      for (int k = 0; k < kKeptVectors; ++k) kept_vectors[k].~Matrix();
+    kept_vectors.constructed = false;
   }
 };
 thread_local KeptRelease kept_release;
@@ -75,6 +89,29 @@ void give_kept_block(void* block, std::size_t bytes) noexcept {
   std::free(kept.block);      // (the newest kept: the size the thread's next stepper likely has)
   kept_release.armed = true;  // (its destructor registered with the thread's first use)
   kept = {block, bytes, false};
+}
+
+void take_kept_vectors(Eigen::Index n, Eigen::VectorXd& a, Eigen::VectorXd& b) {
+  if (kept_vectors.constructed && kept_vectors[0].size() == n && kept_vectors[1].size() == n) {
+    a.swap(kept_vectors[0]);  // (the storages exchanged: no allocation)
+    b.swap(kept_vectors[1]);
+  } else {
+    a.resize(n);
+    b.resize(n);
+  }
+}
+
+void give_kept_vectors(Eigen::VectorXd& a, Eigen::VectorXd& b) noexcept {
+  // (Large ones not: their malloc is small against a step, and a thread that builds no more
+  // stepper would hold them.)
+  if (kept.closed || std::size_t(a.size() + b.size()) * sizeof(double) >= kPooledBytes) return;
+  if (!kept_vectors.constructed) {
+    for (int k = 0; k < kKeptVectors; ++k) new (kept_vectors.bytes[k]) Eigen::VectorXd();
+    kept_vectors.constructed = true;
+    kept_release.armed = true;  // (its destructor registered with the thread's first use)
+  }
+  kept_vectors[0].swap(a);
+  kept_vectors[1].swap(b);
 }
 
 void* take_block(std::size_t bytes) {

@@ -36,6 +36,19 @@ void* take_kept_block(std::size_t bytes);
 /// place of the one kept before, which is freed (a thread's kept block is freed when it ends).
 void give_kept_block(void* block, std::size_t bytes) noexcept;
 
+/// The stage solver's two vectors that the user's callbacks see (its iterate Q and gradient g:
+/// Eigen::VectorXd, their own allocations), kept per thread like the implicit stepper's block: a
+/// malloc and a free each per construction were ~260 of the ~6,600 instructions of a construct +
+/// 1-step run of SERKN2s3 at P3 (callgrind; a call per vector to take and give one cost ~110 of
+/// them). a, b (empty) take the two vectors this thread gave back last when they have n entries
+/// (their values those they had), else new ones of n entries (uninitialised).
+void take_kept_vectors(Eigen::Index n, Eigen::VectorXd& a, Eigen::VectorXd& b);
+/// Keeps the storage of a and b for this thread's next take_kept_vectors; a and b then hold the
+/// storage kept before (or none), which their owner frees (a thread's kept vectors are freed
+/// when it ends; after that, and when a and b together reach kPooledBytes, a and b are left as
+/// they are).
+void give_kept_vectors(Eigen::VectorXd& a, Eigen::VectorXd& b) noexcept;
+
 /// n T (trivially destructible, not initialised): a pooled block when large, else Eigen's.
 template <class T>
 class PooledArray {

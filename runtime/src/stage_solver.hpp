@@ -19,6 +19,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "block_pool.hpp"
 #include "erkn/error.hpp"
 #include "erkn/integrator.hpp"
 #include "format.hpp"
@@ -105,8 +106,10 @@ class StageSolver {
     // was a calloc, which glibc's per-thread cache does not serve. g cleared, after its malloc: a
     // gradient that leaves an entry unwritten finds it 0. Its calloc took _int_malloc and, the
     // cache's bin then full, a free through _int_free per construction: ~3 % of the time of a
-    // construct + 1-step run of SERKN2s3 at P3, perf.)
+    // construct + 1-step run of SERKN2s3 at P3, perf.) Both kept for this thread's next stage
+    // solver (block_pool.hpp).
     Eigen::VectorXd Q, g;
+    ~Arrays() { give_kept_vectors(Q, g); }
   };
   // What the solver knows of stage i between steps: kFresh before its first solve. (Trivial, so
   // that record_ is not cleared: the constructor sets the s records read. Value-initialised, the
@@ -371,8 +374,9 @@ StageSolver<Space, Coef>::StageSolver(const Method& method, const System& system
          space.map(x_.block, 2),
          space.map(x_.block, 3),
          space.map(x_.block, 4),
-         Eigen::VectorXd(space.dimension()),
-         Eigen::VectorXd(space.dimension())} {
+         {},
+         {}} {
+  take_kept_vectors(space.dimension(), x_.Q, x_.g);
   x_.g.setZero();  // (not Zero(d): GCC made that a calloc, see Arrays)
   const int s = method.stages();
   for (int i = 0; i < s; ++i) {

@@ -180,5 +180,40 @@ TEST(Allocation, ImplicitIntegratorsReuseTheirThreadsBlock) {
   }
 }
 
+// The stage solver's vectors that the callbacks see (Q and g) are kept per thread like the
+// stepper's block (block_pool.hpp: take_kept_vectors): construct + integrate after another has
+// gone asks malloc for three blocks fewer (the block, Q and g) than one while another is alive
+// (which holds them), for every implicit method, on every structure of M (a fixed dimension,
+// dynamic ones, a transform).
+TEST(Allocation, ImplicitIntegratorsReuseTheirThreadsVectors) {
+  const auto allocations_of = [&](const auto& run) {
+    const long before = allocations;
+    run();
+    return allocations - before;
+  };
+  const int d = 8;
+  Eigen::VectorXd q0, p0;
+  sine_gordon_initial(d, q0, p0);
+  const Stiffness circ = Stiffness::circulant(sine_gordon_column(d));
+  const Stiffness forms[] = {Stiffness::scalar(50),
+                             Stiffness::diagonal(circ.to_dense(d).diagonal()), circ,
+                             Stiffness::dense(circ.to_dense(d))};
+  const double h = 1.0 / 40, t_end = 4 * h;
+  for (const Method& m : Method::all()) {
+    if (m.is_explicit()) continue;
+    for (const Stiffness& M : forms) {
+      SCOPED_TRACE(std::string(m.name()) + " structure " + std::to_string(int(M.structure())));
+      const System sys = sine_gordon(M);
+      const auto construct_and_integrate = [&] { Integrator(m, sys, h, q0, p0).integrate(t_end); };
+      construct_and_integrate();  // (plans, nodes: formed once per process)
+      std::optional<Integrator> first;
+      first.emplace(m, sys, h, q0, p0).integrate(t_end);  // (takes what the thread kept)
+      const long beside_first = allocations_of(construct_and_integrate);
+      first.reset();
+      EXPECT_EQ(allocations_of(construct_and_integrate), beside_first - 3);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace erkn::test
