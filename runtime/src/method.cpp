@@ -65,6 +65,8 @@ void detail::check_addable(const generated::Table& table) {
                 std::to_string(kMaxStages) + " (kMaxStages, from erkn's own largest method)");
   if (!table.coefficients && !table.explicit_method)
     throw Error(name + ": an implicit method needs its emitted coefficient function");
+  if (!table.closed_forms)  // (the steppers read which abar_ii are identically zero from them)
+    throw Error(name + ": lacks its closed forms (closed_forms: b, bbar and abar in GiNaC syntax)");
   for (const Method& m : registry())
     if (m.name() == name || m.id_name() == table.id || m.name() == table.id || m.id_name() == name)
       throw Error("cannot add method '" + name + "' (id " + table.id + "): '" +

@@ -2,13 +2,18 @@
 // Its own executable: the methods it adds must not join the registry loops of the other tests.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "erkn/erkn.hpp"
+#include "erkn/problems.hpp"
 #include "order_conditions.hpp"
 #include "refusals.hpp"
 
@@ -188,6 +193,109 @@ TEST(MethodLoad, RefusesModifiedKicksImplicitKindsDuplicatesAndMalformedFiles) {
   EXPECT_EQ(Method::all().size(), before);
 }
 
+// Two steps of h / 2 of an implicit ERKN method as one step of h: a method of 2s stages whose
+// coefficients at v = h^2 lambda follow from the base method's at u = v / 4 and the exact linear
+// flow (the half step's flow composes with the second half's: nodes c / 2 and (1 + c) / 2).
+// With u = v / 4, phi0(x) = cos sqrt(x), phi1(x) = sin sqrt(x) / sqrt(x):
+//   abar'_ij = abar_ij / 4 within each half; second half row i, first half j:
+//     (phi0(c_i^2 u) bbar_j + c_i phi1(c_i^2 u) b_j) / 4 (the first half's increments carried
+//     over c_i h by the flow);
+//   bbar'_j = (phi0(u) bbar_j + phi1(u) b_j) / 4,  b'_j = (phi0(u) b_j - u phi1(u) bbar_j) / 2;
+//   second half: bbar'_(s+j) = bbar_j / 4, b'_(s+j) = b_j / 2.
+// kCoupled = false drops the c_i phi1 b_j term (the negative control).
+const Method* composed_base = nullptr;  // (a table's coefficients are a plain function pointer)
+
+double phi0(double x) { return std::cos(std::sqrt(x)); }
+double phi1(double x) { return x == 0 ? 1.0 : std::sin(std::sqrt(x)) / std::sqrt(x); }
+
+template <bool kCoupled>
+void composed_coefficients(double v, double* b2, double* bbar2, double* abar2) {
+  const Method& m = *composed_base;
+  const int s = m.stages();
+  const double u = v / 4;
+  std::array<double, kMaxStages> b{}, bbar{};
+  std::array<double, Coefficients::kMaxPacked> abar{};
+  m.evaluate(u, b.data(), bbar.data(), abar.data());
+  for (int i = 0; i < s; ++i) {
+    const double c = m.table().c[i], f0 = phi0(c * c * u), f1 = kCoupled ? c * phi1(c * c * u) : 0;
+    for (int j = 0; j <= i; ++j) {
+      abar2[Coefficients::packed(i, j)] = abar[Coefficients::packed(i, j)] / 4;
+      abar2[Coefficients::packed(s + i, s + j)] = abar[Coefficients::packed(i, j)] / 4;
+    }
+    for (int j = 0; j < s; ++j)
+      abar2[Coefficients::packed(s + i, j)] = (f0 * bbar[j] + f1 * b[j]) / 4;
+    bbar2[i] = (phi0(u) * bbar[i] + phi1(u) * b[i]) / 4, bbar2[s + i] = bbar[i] / 4;
+    b2[i] = (phi0(u) * b[i] - u * phi1(u) * bbar[i]) / 2, b2[s + i] = b[i] / 2;
+  }
+}
+
+// The composed table of `base` (kept for the process: the registry holds its address).
+const Method& add_composed(const Method& base, bool coupled) {
+  struct Storage {
+    generated::Table table;
+    std::vector<double> c, d, poles;
+    std::vector<std::string> forms;
+    std::vector<const char*> form_ptrs;
+    std::string name;
+  };
+  static std::deque<Storage> kept;
+  Storage& x = kept.emplace_back(Storage{base.table(), {}, {}, {}, {}, {}, {}});
+  const int s = base.stages();
+  for (int half = 0; half < 2; ++half)
+    for (int i = 0; i < s; ++i)
+      x.c.push_back((half + base.table().c[i]) / 2), x.d.push_back(base.table().d[i] / 2);
+  // Closed forms: only whether each abar'_ii is identically zero is read (as the base's abar_ii).
+  const int S = 2 * s;  // (b, bbar, then abar packed: Method::num_coefficients)
+  x.forms.assign(2 * S + S * (S + 1) / 2, "composed");
+  for (int half = 0; half < 2; ++half)
+    for (int i = 0; i < s; ++i)
+      x.forms[2 * S + Coefficients::packed(half * s + i, half * s + i)] =
+          base.table().closed_forms[2 * s + Coefficients::packed(i, i)];
+  for (const std::string& f : x.forms) x.form_ptrs.push_back(f.c_str());
+  for (double p : base.poles())
+    if (4 * p <= generated::kPoleSearchMax) x.poles.push_back(4 * p);
+  x.name = std::string(base.id_name()) + (coupled ? "_twice" : "_uncoupled");
+  generated::Table& t = x.table;
+  t.name = t.id = x.name.c_str();
+  t.stages = 2 * s, t.c = x.c.data(), t.d = x.d.data(), t.paper = false;
+  t.c_exact = t.d_exact = nullptr, t.series = nullptr, t.closed_forms = x.form_ptrs.data();
+  t.poles = x.poles.data(), t.npoles = int(x.poles.size());
+  t.coefficients = coupled ? composed_coefficients<true> : composed_coefficients<false>;
+  return Method::add(t);
+}
+
+// Every implicit ERKN method of the registry, composed with itself (2s stages: 4 to 8, beyond
+// the 4 the fixed-dimension steppers unroll, which then loop over the stages), integrates as the
+// method itself at half the step and twice the steps (P3, d = 2: a fixed-dimension stepper).
+TEST(MethodAdd, ComposedImplicitMethodsIntegrateAsTheirHalfSteps) {
+  const problems::Problem P = problems::stellar_orbits();
+  const System sys = problems::system(P);
+  const double h = 1.0 / 20;
+  const long n = 100;
+  std::vector<const Method*> bases;
+  for (const Method& m : Method::all())
+    if (m.kind() == Kind::erkn && !m.is_explicit() && 2 * m.stages() <= kMaxStages)
+      bases.push_back(&m);
+  ASSERT_FALSE(bases.empty());
+  for (const Method* base : bases) {
+    composed_base = base;
+    Integrator half(*base, sys, h / 2, P.q0, P.p0);
+    half.integrate(h * double(n));
+    for (bool coupled : {true, false}) {
+      const Method& twice = add_composed(*base, coupled);
+      Integrator whole(twice, sys, h, P.q0, P.p0);
+      whole.integrate(h * double(n));
+      EXPECT_EQ(whole.statistics().steps, n);
+      const double diff = std::max((whole.q() - half.q()).norm(), (whole.p() - half.p()).norm());
+      if (coupled)
+        EXPECT_LT(diff, 1e-12) << twice.name();
+      else  // (negative control: the first half's increments not carried into the second's
+            // stages; ~1.3e-9 here, the composed methods <= 4e-14)
+        EXPECT_GT(diff, 1e-10) << twice.name();
+    }
+  }
+}
+
 TEST(MethodAdd, AddedTablesJoinTheRegistryAndBadOnesAreRefused) {
   generated::Table t = Method::by_name("Strang").table();
   t.name = "MyStrang", t.id = "MyStrang";
@@ -200,6 +308,9 @@ TEST(MethodAdd, AddedTablesJoinTheRegistryAndBadOnesAreRefused) {
   generated::Table big = t;
   big.name = big.id = "Big", big.stages = kMaxStages + 1;
   EXPECT_NE(error_of([&] { Method::add(big); }).find("stages"), std::string::npos);
+  generated::Table formless = t;  // (the steppers read abar_ii's zeros from the closed forms)
+  formless.name = formless.id = "Formless", formless.closed_forms = nullptr;
+  EXPECT_NE(error_of([&] { Method::add(formless); }).find("closed forms"), std::string::npos);
   // Modified kicks on an implicit table (the explicit stepper alone kicks with them).
   generated::Table mod = Method::by_name("SERKN2s4").table();
   mod.name = mod.id = "Mod";

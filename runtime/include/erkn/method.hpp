@@ -55,7 +55,8 @@ class Method {
   /// Adds a method defined outside erkn's tables (the source erkn_add_methods compiles calls it
   /// at program start). `table` and what it points to must outlive the program. Throws
   /// erkn::Error, adding nothing, for a name or id already listed, stages outside 1..kMaxStages,
-  /// an implicit table without its coefficient function, or modified kicks in an implicit table.
+  /// an implicit table without its coefficient function, a table without its closed forms, or
+  /// modified kicks in an implicit table.
   /// Not thread-safe: add methods before other threads look methods up.
   static const Method& add(const generated::Table& table);
   /// Reads a method file written by `erkn-generate --json` (explicit methods: constant
