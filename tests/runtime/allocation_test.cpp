@@ -3,6 +3,7 @@
 // dimension is built from blocks that glibc's per-thread cache serves.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <atomic>
 #include <cstdlib>
 #include <erkn/compiled_gradient.hpp>
@@ -48,14 +49,19 @@ void* realloc(void* p, std::size_t n) {
 namespace erkn::test {
 namespace {
 
+// M in each structure: scalar, and sine-Gordon's N-point circulant as a diagonal (its
+// diagonal), circulant and dense matrix.
+std::array<Stiffness, 4> every_structure(int N) {
+  const Stiffness circ = Stiffness::circulant(sine_gordon_column(N));
+  return {Stiffness::scalar(50), Stiffness::diagonal(circ.to_dense(N).diagonal()), circ,
+          Stiffness::dense(circ.to_dense(N))};
+}
+
 TEST(Allocation, StepAllocatesNothing) {
   const int N = 16;
   Eigen::VectorXd q0, p0;
   sine_gordon_initial(N, q0, p0);
-  const Stiffness circ = Stiffness::circulant(sine_gordon_column(N));
-  const Stiffness forms[] = {Stiffness::scalar(50),
-                             Stiffness::diagonal(circ.to_dense(N).diagonal()), circ,
-                             Stiffness::dense(circ.to_dense(N))};
+  const std::array<Stiffness, 4> forms = every_structure(N);
   for (const Method& m : Method::all())
     for (const Stiffness& M : forms) {
       SCOPED_TRACE(std::string(m.name()) + " structure " + std::to_string(int(M.structure())));
@@ -75,10 +81,7 @@ TEST(Allocation, StepsAndAReadAllocateOnlyTheGuardsCheckpoint) {
   const int N = 16;
   Eigen::VectorXd q0, p0;
   sine_gordon_initial(N, q0, p0);
-  const Stiffness circ = Stiffness::circulant(sine_gordon_column(N));
-  const Stiffness forms[] = {Stiffness::scalar(50),
-                             Stiffness::diagonal(circ.to_dense(N).diagonal()), circ,
-                             Stiffness::dense(circ.to_dense(N))};
+  const std::array<Stiffness, 4> forms = every_structure(N);
   for (const Method& m : Method::all())
     for (const Stiffness& M : forms)
       for (const bool guard : {false, true}) {
@@ -194,10 +197,7 @@ TEST(Allocation, ImplicitIntegratorsReuseTheirThreadsVectors) {
   const int d = 8;
   Eigen::VectorXd q0, p0;
   sine_gordon_initial(d, q0, p0);
-  const Stiffness circ = Stiffness::circulant(sine_gordon_column(d));
-  const Stiffness forms[] = {Stiffness::scalar(50),
-                             Stiffness::diagonal(circ.to_dense(d).diagonal()), circ,
-                             Stiffness::dense(circ.to_dense(d))};
+  const std::array<Stiffness, 4> forms = every_structure(d);
   const double h = 1.0 / 40, t_end = 4 * h;
   for (const Method& m : Method::all()) {
     if (m.is_explicit()) continue;
