@@ -117,9 +117,11 @@ inline constexpr double kStageBound = 0x1p512;
 /// What a pass does: kick (p -= hd g, g also to `save` with kSave), then flow (its q also to Q,
 /// times Q_scale, with kStage), in place or from one copy of the state into another; compensated,
 /// in increment form, the step's first pass is the one not in place, and fold_q, fold_p add the
-/// step's increments of q (after its last flow) and of p (its last pass) to the state.
+/// step's increments of q (after its last flow) and of p (its last pass) to the state. stage_p
+/// (plain, with stage: get_state's pass) stores p times Q_scale, the input of p's inverse
+/// transform, and no q (Q is the staged q).
 struct PassKind {
-  bool kick, flow, in_place, save, stage, fold_q, fold_p;
+  bool kick, flow, in_place, save, stage, fold_q, fold_p, stage_p;
 };
 
 /// The kLanes doubles of one eigen coordinate as one value (Value), on which the passes' arithmetic
@@ -189,6 +191,7 @@ EIGEN_ALWAYS_INLINE PassBits pass_body(Eigen::Index n, const double* __restrict 
   using F = PassFlow<C>;
   constexpr bool kInPlace = kKind.in_place;
   constexpr bool kFoldQ = kKahan && kKind.fold_q, kFoldP = kKahan && kKind.fold_p;
+  constexpr bool kStageP = !kKahan && kKind.flow && kKind.stage && kKind.stage_p;
   // (compensated: whether dq, dp have been made, before the flow and after it)
   constexpr bool kHadP = !kKahan || kInPlace;  // (p read: plain, or an increment made)
   constexpr bool kHaveQ = kInPlace, kHaveP = kInPlace || kKind.kick;
@@ -228,8 +231,12 @@ EIGEN_ALWAYS_INLINE PassBits pass_body(Eigen::Index n, const double* __restrict 
       lane_store(Q + x, Qx);
       stage_bits |= L::nonfinite(V(kStageBound * Qx));
     }
-    if (kKind.flow || !kInPlace || kFoldQ) lane_store(q + x, qx);  // (a kick in place: q stays)
-    lane_store(p + x, px);
+    if constexpr (kStageP) {
+      lane_store(p + x, V(Q_scale * px));
+    } else {
+      if (kKind.flow || !kInPlace || kFoldQ) lane_store(q + x, qx);  // (a kick in place: q stays)
+      lane_store(p + x, px);
+    }
   }
   return {L::any(g_bits), L::any(p_bits), L::any(stage_bits)};
 }

@@ -149,6 +149,10 @@ class ExplicitStepper final : public StepperBase {
   // A transform with a staging buffer (HalfSpectrumTransform): the flow before a gradient writes
   // the stage's eigen coordinates there, scaled, and the inverse transform needs no copy pass.
   static constexpr bool kStaged = requires(Transform & t) { t.staging(); };
+  // One that also inverts y scaled as staged from an array of the caller's (get_state's p).
+  static constexpr bool kScaledInverse = requires(Transform & t, Scalar* y, Eigen::VectorXd& x) {
+    t.inverse_scaled(y, x);
+  };
   // A space of several processes, whose checks are collective (see above).
   static constexpr bool kDeferred = requires(Transform & t, const Error& e) { t.defer(e); };
   static_assert(!kFixed || kIdentity, "a fixed dimension needs the identity basis");
@@ -606,12 +610,18 @@ class ExplicitStepper final : public StepperBase {
         // The pending flow stages q as a step's first pass does, and q needs no copy pass of its
         // own into the staging buffer (the same product, bit for bit). Reading the final state of
         // sine-Gordon N = 8192 Strang: 1.12-1.16x the specialist's loop's -> 1.09-1.10x (medians
-        // of 201 construct + integrate + read runs, three processes each, alternated).
+        // of 201 construct + integrate + read runs, three processes each, alternated). With a
+        // transform that inverts from the caller's array (inverse_scaled) it also writes p scaled
+        // (the product inverse_of_sum makes) to the second copy, which p's inverse transform reads
+        // in place, and no q: one store stream and the copy pass fewer.
         if (pending_) {
-          apply<false, kFlowStaged>(arrays_.state, arrays_.work, true, false, 0, nullptr,
-                                    kicks_.stages());
+          apply<false, kFlowRead>(arrays_.state, arrays_.work, true, false, 0, nullptr,
+                                  kicks_.stages());
           transform_.inverse_staged(q);
-          inverse_of_sum<false>(arrays_.work.p, arrays_.work.ep, p);
+          if constexpr (kFlowRead.stage_p)
+            transform_.inverse_scaled(arrays_.work.p, p);
+          else
+            inverse_of_sum<false>(arrays_.work.p, arrays_.work.ep, p);
           return;
         }
       }
@@ -659,17 +669,19 @@ class ExplicitStepper final : public StepperBase {
   }
 
   // The passes a step makes (explicit_passes.hpp, PassKind {kick, flow, in place, save, stage,
-  // fold q, fold p}): a flow, the first one staging Q (identity basis: physical_.Q, else the
-  // transform's staging buffer, if any), get_state's folding both (compensated); kicks, the last
-  // one saving the force to arrays_.G (identity basis) and folding p; a kick and the next flow,
-  // staging its Q. Compensated, the step's last flow folds q (apply's fold_q), or else its last
-  // kick does.
+  // fold q, fold p, stage p}): a flow, the first one staging Q (identity basis: physical_.Q, else
+  // the transform's staging buffer, if any), get_state's folding both (compensated) or, plain with
+  // a staging transform, staging q (and p: kScaledInverse) (kFlowRead); kicks, the last one saving
+  // the force to arrays_.G (identity basis) and folding p; a kick and the next flow, staging its Q.
+  // Compensated, the step's last flow folds q (apply's fold_q), or else its last kick does.
   static constexpr bool kStage = kIdentity || kStaged;
-  static constexpr PassKind kFlow{false, true, false, false, false, true, true};
-  static constexpr PassKind kFlowStaged{false, true, false, false, kStage, false, false};
-  static constexpr PassKind kKick{true, false, true, false, false, false, false};
-  static constexpr PassKind kKickLast{true, false, true, kIdentity, false, false, true};
-  static constexpr PassKind kKickFlow{true, true, true, false, kStage, false, false};
+  static constexpr PassKind kFlow{false, true, false, false, false, true, true, false};
+  static constexpr PassKind kFlowStaged{false, true, false, false, kStage, false, false, false};
+  static constexpr PassKind kFlowRead{false,  true,  false, false,
+                                      kStage, false, false, kScaledInverse};
+  static constexpr PassKind kKick{true, false, true, false, false, false, false, false};
+  static constexpr PassKind kKickLast{true, false, true, kIdentity, false, false, true, false};
+  static constexpr PassKind kKickFlow{true, true, true, false, kStage, false, false, false};
   static constexpr PassKind folding_q(PassKind kind) {
     kind.fold_q = true;
     return kind;
@@ -688,10 +700,10 @@ class ExplicitStepper final : public StepperBase {
     const double* gd = reinterpret_cast<const double*>(g);
     double* save = reinterpret_cast<double*>(arrays_.G);
     double* Q = stage_input();
-    constexpr PassKind copy{kind.kick,  kind.flow,   false,      kind.save,
-                            kind.stage, kind.fold_q, kind.fold_p};
-    constexpr PassKind in_place{kind.kick,  kind.flow,   true,       kind.save,
-                                kind.stage, kind.fold_q, kind.fold_p};
+    constexpr PassKind copy{kind.kick,  kind.flow,   false,       kind.save,
+                            kind.stage, kind.fold_q, kind.fold_p, kind.stage_p};
+    constexpr PassKind in_place{kind.kick,  kind.flow,   true,        kind.save,
+                                kind.stage, kind.fold_q, kind.fold_p, kind.stage_p};
     if (!first) return pass<kKahan, in_place, kLanes>(n(), a, b, hd, gd, save, f, Q, stage_scale_);
     return pass<kKahan, copy, kLanes>(n(), a, b, hd, gd, save, f, Q, stage_scale_);
   }

@@ -170,6 +170,7 @@ class EigenHalfSpectrum final : public HalfSpectrumBackend {
   std::complex<double>* staging() override { return staged_.data(); }
   double staging_scale() const override { return 1; }
   void inverse_staged(double* x) override { inverse(staged_.data(), x); }
+  void inverse_scaled(std::complex<double>* y, double* x) override { inverse(y, x); }
 
  private:
   Eigen::Index n_;
