@@ -117,11 +117,11 @@ inline constexpr double kStageBound = 0x1p512;
 /// What a pass does: kick (p -= hd g, g also to `save` with kSave), then flow (its q also to Q,
 /// times Q_scale, with kStage), in place or from one copy of the state into another; compensated,
 /// in increment form, the step's first pass is the one not in place, and fold_q, fold_p add the
-/// step's increments of q (after its last flow) and of p (its last pass) to the state. stage_p
-/// (plain, with stage: get_state's pass) stores p times Q_scale, the input of p's inverse
-/// transform, and no q (Q is the staged q).
+/// step's increments of q (after its last flow) and of p (its last pass) to the state. read
+/// (get_state's pass, a flow) stores no state: q and p (compensated: folded, q + eq and p + ep)
+/// times Q_scale go to Q and p, the inputs of their inverse transforms.
 struct PassKind {
-  bool kick, flow, in_place, save, stage, fold_q, fold_p, stage_p;
+  bool kick, flow, in_place, save, stage, fold_q, fold_p, read;
 };
 
 /// The kLanes doubles of one eigen coordinate as one value (Value), on which the passes' arithmetic
@@ -160,6 +160,16 @@ EIGEN_ALWAYS_INLINE void lane_store(double* x, const V& v) {
   std::memcpy(x, &v, sizeof(V));
 }
 
+// Q_scale (x + ex) of the coordinate that fold_increment makes from x0, ex0 and the increment dx,
+// stored to out: the sum get_state reads, x and ex themselves not stored.
+template <bool kHave, class V>
+EIGEN_ALWAYS_INLINE void store_folded_sum(const double* x0, const double* ex0, const V& dx,
+                                          double Q_scale, double* out) {
+  V x, ex;
+  fold_increment<kHave>(lane_load<V>(x0), lane_load<V>(ex0), dx, x, ex);
+  lane_store(out, V(Q_scale * (x + ex)));
+}
+
 // fold_increment of the coordinate at x0, ex0 (the state at the step's start and its error) with
 // the increment dx, which becomes the new x; the new error is stored to ex. Returns the new x.
 template <bool kHave, class V>
@@ -191,7 +201,6 @@ EIGEN_ALWAYS_INLINE PassBits pass_body(Eigen::Index n, const double* __restrict 
   using F = PassFlow<C>;
   constexpr bool kInPlace = kKind.in_place;
   constexpr bool kFoldQ = kKahan && kKind.fold_q, kFoldP = kKahan && kKind.fold_p;
-  constexpr bool kStageP = !kKahan && kKind.flow && kKind.stage && kKind.stage_p;
   // (compensated: whether dq, dp have been made, before the flow and after it)
   constexpr bool kHadP = !kKahan || kInPlace;  // (p read: plain, or an increment made)
   constexpr bool kHaveQ = kInPlace, kHaveP = kInPlace || kKind.kick;
@@ -224,6 +233,16 @@ EIGEN_ALWAYS_INLINE PassBits pass_body(Eigen::Index n, const double* __restrict 
         Qx = qx;
       }
     }
+    if constexpr (kKind.read) {  // (the scaled sums out; plain: Q_scale q, Q_scale p)
+      if constexpr (kKahan) {
+        store_folded_sum<kMadeQ>(q_in + x, eq_in + x, qx, Q_scale, Q + x);
+        store_folded_sum<kMadeP>(p_in + x, ep_in + x, px, Q_scale, p + x);
+      } else {
+        lane_store(Q + x, V(Q_scale * qx));
+        lane_store(p + x, V(Q_scale * px));
+      }
+      continue;
+    }
     if constexpr (kFoldQ) fold_at<kMadeQ>(q_in + x, eq_in + x, eq + x, qx);
     if constexpr (kFoldP) p_bits |= L::nonfinite(fold_at<kMadeP>(p_in + x, ep_in + x, ep + x, px));
     if constexpr (kKind.flow && kKind.stage) {
@@ -231,12 +250,8 @@ EIGEN_ALWAYS_INLINE PassBits pass_body(Eigen::Index n, const double* __restrict 
       lane_store(Q + x, Qx);
       stage_bits |= L::nonfinite(V(kStageBound * Qx));
     }
-    if constexpr (kStageP) {
-      lane_store(p + x, V(Q_scale * px));
-    } else {
-      if (kKind.flow || !kInPlace || kFoldQ) lane_store(q + x, qx);  // (a kick in place: q stays)
-      lane_store(p + x, px);
-    }
+    if (kKind.flow || !kInPlace || kFoldQ) lane_store(q + x, qx);  // (a kick in place: q stays)
+    lane_store(p + x, px);
   }
   return {L::any(g_bits), L::any(p_bits), L::any(stage_bits)};
 }

@@ -606,24 +606,8 @@ class ExplicitStepper final : public StepperBase {
       q.resize(D), p.resize(D);
       for (int e = 0; e < D; ++e) q[e] = v.q[e] + v.eq[e], p[e] = v.p[e] + v.ep[e];
     } else {
-      if constexpr (kStaged && !kKahan) {
-        // The pending flow stages q as a step's first pass does, and q needs no copy pass of its
-        // own into the staging buffer (the same product, bit for bit). Reading the final state of
-        // sine-Gordon N = 8192 Strang: 1.12-1.16x the specialist's loop's -> 1.09-1.10x (medians
-        // of 201 construct + integrate + read runs, three processes each, alternated). With a
-        // transform that inverts from the caller's array (inverse_scaled) it also writes p scaled
-        // (the product inverse_of_sum makes) to the second copy, which p's inverse transform reads
-        // in place, and no q: one store stream and the copy pass fewer.
-        if (pending_) {
-          apply<false, kFlowRead>(arrays_.state, arrays_.work, true, false, 0, nullptr,
-                                  kicks_.stages());
-          transform_.inverse_staged(q);
-          if constexpr (kFlowRead.stage_p)
-            transform_.inverse_scaled(arrays_.work.p, p);
-          else
-            inverse_of_sum<false>(arrays_.work.p, arrays_.work.ep, p);
-          return;
-        }
+      if constexpr (kStaged) {
+        if (pending_) return load_pending_staged<kKahan>(q, p);
       }
       const State* from = &arrays_.state;
       if (pending_)
@@ -641,6 +625,27 @@ class ExplicitStepper final : public StepperBase {
       }
       transform_.inverse(map(from->q), q);
       transform_.inverse(map(from->p), p);
+    }
+  }
+  // load of a staged transform with the flow pending: one pass (kFlowRead) applies the flow and
+  // writes q + eq (x alone without kKahan) scaled into the staging buffer and p + ep scaled into
+  // the second copy's p, storing no state; p's inverse transform reads it there in place
+  // (inverse_scaled) or from a copy in the staging buffer. Bit for bit the sums of the kFlow pass
+  // and inverse_of_sum below (the same operations, their intermediates not stored): 9.5 streams
+  // of the state's size against 15.5 compensated. Reading the final state of sine-Gordon
+  // N = 8192 Strang, plain: 1.35-1.53x the specialist's loop's read -> 1.14-1.16x; compensated,
+  // with an output time at each of 10 steps, the output times' cost over the loop's 1.16-1.29x ->
+  // 0.90-0.94x (N = 8192), 1.12-1.21x -> 0.96-1.00x (256^2; perf: inverse_of_sum's two passes
+  // were 18 % of get_state). Pinned, alternated, medians.
+  template <bool kKahan>
+  void load_pending_staged(Eigen::VectorXd& q, Eigen::VectorXd& p) {
+    apply<kKahan, kFlowRead>(arrays_.state, arrays_.work, true, false, 0, nullptr, kicks_.stages());
+    transform_.inverse_staged(q);
+    if constexpr (kScaledInverse) {
+      transform_.inverse_scaled(arrays_.work.p, p);
+    } else {
+      std::copy_n(lanes(arrays_.work.p), kLanes * arrays_.m, transform_.staging());
+      transform_.inverse_staged(p);
     }
   }
   // out = the physical vector of x + ex (x alone without kKahan), through the staging buffer.
@@ -669,21 +674,24 @@ class ExplicitStepper final : public StepperBase {
   }
 
   // The passes a step makes (explicit_passes.hpp, PassKind {kick, flow, in place, save, stage,
-  // fold q, fold p, stage p}): a flow, the first one staging Q (identity basis: physical_.Q, else
-  // the transform's staging buffer, if any), get_state's folding both (compensated) or, plain with
-  // a staging transform, staging q (and p: kScaledInverse) (kFlowRead); kicks, the last one saving
-  // the force to arrays_.G (identity basis) and folding p; a kick and the next flow, staging its Q.
+  // fold q, fold p, read}): a flow, the first one staging Q (identity basis: physical_.Q, else
+  // the transform's staging buffer, if any), get_state's folding both (compensated) or, with a
+  // staging transform, reading the state out (kFlowRead); kicks, the last one saving the force
+  // to arrays_.G (identity basis) and folding p; a kick and the next flow, staging its Q.
   // Compensated, the step's last flow folds q (apply's fold_q), or else its last kick does.
   static constexpr bool kStage = kIdentity || kStaged;
   static constexpr PassKind kFlow{false, true, false, false, false, true, true, false};
   static constexpr PassKind kFlowStaged{false, true, false, false, kStage, false, false, false};
-  static constexpr PassKind kFlowRead{false,  true,  false, false,
-                                      kStage, false, false, kScaledInverse};
+  static constexpr PassKind kFlowRead{false, true, false, false, false, true, true, true};
   static constexpr PassKind kKick{true, false, true, false, false, false, false, false};
   static constexpr PassKind kKickLast{true, false, true, kIdentity, false, false, true, false};
   static constexpr PassKind kKickFlow{true, true, true, false, kStage, false, false, false};
   static constexpr PassKind folding_q(PassKind kind) {
     kind.fold_q = true;
+    return kind;
+  }
+  static constexpr PassKind placed(PassKind kind, bool in_place) {
+    kind.in_place = in_place;
     return kind;
   }
 
@@ -700,10 +708,7 @@ class ExplicitStepper final : public StepperBase {
     const double* gd = reinterpret_cast<const double*>(g);
     double* save = reinterpret_cast<double*>(arrays_.G);
     double* Q = stage_input();
-    constexpr PassKind copy{kind.kick,  kind.flow,   false,       kind.save,
-                            kind.stage, kind.fold_q, kind.fold_p, kind.stage_p};
-    constexpr PassKind in_place{kind.kick,  kind.flow,   true,        kind.save,
-                                kind.stage, kind.fold_q, kind.fold_p, kind.stage_p};
+    constexpr PassKind copy = placed(kind, false), in_place = placed(kind, true);
     if (!first) return pass<kKahan, in_place, kLanes>(n(), a, b, hd, gd, save, f, Q, stage_scale_);
     return pass<kKahan, copy, kLanes>(n(), a, b, hd, gd, save, f, Q, stage_scale_);
   }

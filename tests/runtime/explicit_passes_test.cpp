@@ -72,12 +72,12 @@ std::vector<unsigned char> outcome(bool avx, double nudge) {
   return bytes;
 }
 
-// The pass kinds {kick, flow, in place, save, stage, fold q, fold p, stage p} the stepper makes,
+// The pass kinds {kick, flow, in place, save, stage, fold q, fold p, read} the stepper makes,
 // each also with in_place flipped.
 constexpr PassKind kKinds[] = {
     {false, true, false, false, true, false, false, false},
     {false, true, false, false, false, true, true, false},
-    {false, true, false, false, true, false, false, true},
+    {false, true, false, false, false, true, true, true},
     {true, false, true, false, false, false, false, false},
     {true, false, true, true, false, false, true, false},
     {true, true, true, false, true, false, false, false},
