@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <fstream>
 #include <random>
 
 #include "integrate_markdown.hpp"
@@ -147,6 +148,20 @@ TEST(HostState, CsvKeepsRatiosAndReadings) {
   const bench::CsvRatio& v = read.at("plain,Duffing (P2),SD9(10,6,4)");
   EXPECT_EQ(v.ratio, 1.25);
   EXPECT_EQ(v.probe, (std::vector<double>{3.5, 3.6, 5.0}));
+}
+
+TEST(HostState, CsvQuotesFieldsWithCommas) {
+  std::ifstream f(csv_with("q.csv", {3.5}, 1.25));
+  std::string line;
+  int rows = 0;
+  while (std::getline(f, line)) {
+    EXPECT_EQ(bench::csv_fields(line).size(), 5u) << line;  // (header included)
+    rows += line.find("\"SD9(10,6,4)\"") != std::string::npos;
+  }
+  EXPECT_EQ(rows, 3);  // (plain, default, output)
+  EXPECT_EQ(bench::csv_fields("a,\"b \"\"c\"\", d\",e")[1], "b \"c\", d");
+  // Negative control: the name unquoted makes three fields of one.
+  EXPECT_EQ(bench::csv_fields("plain,Duffing (P2),SD9(10,6,4),1.25,3.5").size(), 7u);
 }
 
 TEST(HostState, TwoRunsInDifferentStatesAreToldApart) {

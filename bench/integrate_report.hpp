@@ -8,6 +8,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -92,6 +93,34 @@ inline std::string readings(const RoundStates& s) {
   return out.str();
 }
 
+/// A csv field (RFC 4180): quoted, its quotes doubled, when it holds a comma or a quote (method
+/// names such as SD9(10,6,4) do).
+inline std::string csv_field(const std::string& x) {
+  if (x.find_first_of(",\"") == std::string::npos) return x;
+  std::string out = "\"";
+  for (char c : x) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + '"';
+}
+
+/// The fields of a csv line written with csv_field, unquoted.
+inline std::vector<std::string> csv_fields(const std::string& line) {
+  std::vector<std::string> out(1);
+  bool quoted = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+      out.back() += c, ++i;
+    } else if (c == '"') {
+      quoted = !quoted;
+    } else if (c == ',' && !quoted) {
+      out.emplace_back();
+    } else {
+      out.back() += c;
+    }
+  }
+  return out;
+}
+
 /// One line per ratio: kind,scene,method,value,probe (kind: plain, default, output, implicit; rows
 /// through System::gradient also callback_peer, plain_vs_callback_peer, default_vs_callback_peer;
 /// implicit cells with a floor also implicit_floor, implicit_vs_floor, implicit_floor_inlined;
@@ -101,7 +130,8 @@ inline void write_csv(const Results& r, const std::string& path) {
   f << "kind,scene,method,ratio,probe_ns_per_round\n";
   auto row = [&f](const char* kind, const std::string& scene, const std::string& method,
                   double ratio, const RoundStates& s) {
-    f << kind << ',' << scene << ',' << method << ',' << ratio << ',' << readings(s) << '\n';
+    f << kind << ',' << csv_field(scene) << ',' << csv_field(method) << ',' << ratio << ','
+      << readings(s) << '\n';
   };
   for (const Cell& c : r.cells) {
     row("plain", c.scene, c.method, c.plain, c.states);
@@ -127,27 +157,26 @@ struct CsvRatio {
   std::vector<double> probe;
 };
 
-/// kind,scene,method -> ratio and readings from a csv written by write_csv (empty if there is
-/// none; a csv without the probe column, from before it, gives ratios without readings).
+/// kind,scene,method (unquoted) -> ratio and readings from a csv written by write_csv (empty if
+/// there is none; a csv without the probe column, from before it, gives ratios without readings).
 inline std::map<std::string, CsvRatio> read_csv(const std::string& path) {
   std::map<std::string, CsvRatio> out;
   std::ifstream f(path);
   std::string line;
   std::getline(f, line);
-  const bool probed = line.find(",probe") != std::string::npos;
+  const size_t n = line.find(",probe") != std::string::npos ? 5 : 4;
   while (std::getline(f, line)) {
+    const std::vector<std::string> x = csv_fields(line);
+    if (x.size() != n)
+      throw std::runtime_error(path + ": not a row of " + std::to_string(n) +
+                               " fields (kind,scene,method,ratio...): " + line);
     CsvRatio value;
-    if (probed) {  // (scene and method may hold commas: the numbers are read from the right)
-      const size_t comma = line.rfind(',');
-      if (comma == std::string::npos) continue;
-      std::istringstream list(line.substr(comma + 1));
-      for (double x; list >> x;) value.probe.push_back(x);
-      line.resize(comma);
+    value.ratio = std::stod(x[3]);
+    if (n == 5) {
+      std::istringstream list(x[4]);
+      for (double r; list >> r;) value.probe.push_back(r);
     }
-    const size_t comma = line.rfind(',');
-    if (comma == std::string::npos) continue;
-    value.ratio = std::stod(line.substr(comma + 1));
-    out[line.substr(0, comma)] = value;
+    out[x[0] + ',' + x[1] + ',' + x[2]] = value;
   }
   return out;
 }
