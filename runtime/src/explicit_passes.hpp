@@ -160,14 +160,19 @@ EIGEN_ALWAYS_INLINE void lane_store(double* x, const V& v) {
   std::memcpy(x, &v, sizeof(V));
 }
 
-// Q_scale (x + ex) of the coordinate that fold_increment makes from x0, ex0 and the increment dx,
-// stored to out: the sum get_state reads, x and ex themselves not stored.
-template <bool kHave, class V>
-EIGEN_ALWAYS_INLINE void store_folded_sum(const double* x0, const double* ex0, const V& dx,
-                                          double Q_scale, double* out) {
-  V x, ex;
-  fold_increment<kHave>(lane_load<V>(x0), lane_load<V>(ex0), dx, x, ex);
-  lane_store(out, V(Q_scale * (x + ex)));
+// What get_state's inverse transform reads of a coordinate, Q_scale (x + ex), stored to out + j:
+// compensated, x, ex the ones fold_increment makes from x0, ex0 (at + j) and the increment dx;
+// plain, x = dx, the coordinate itself, and ex = 0. x and ex themselves are not stored.
+template <bool kKahan, bool kHave, class V>
+EIGEN_ALWAYS_INLINE void store_read(const double* x0, const double* ex0, Eigen::Index j,
+                                    const V& dx, double Q_scale, double* out) {
+  if constexpr (kKahan) {
+    V x, ex;
+    fold_increment<kHave>(lane_load<V>(x0 + j), lane_load<V>(ex0 + j), dx, x, ex);
+    lane_store(out + j, V(Q_scale * (x + ex)));
+  } else {
+    lane_store(out + j, V(Q_scale * dx));
+  }
 }
 
 // fold_increment of the coordinate at x0, ex0 (the state at the step's start and its error) with
@@ -233,14 +238,9 @@ EIGEN_ALWAYS_INLINE PassBits pass_body(Eigen::Index n, const double* __restrict 
         Qx = qx;
       }
     }
-    if constexpr (kKind.read) {  // (the scaled sums out; plain: Q_scale q, Q_scale p)
-      if constexpr (kKahan) {
-        store_folded_sum<kMadeQ>(q_in + x, eq_in + x, qx, Q_scale, Q + x);
-        store_folded_sum<kMadeP>(p_in + x, ep_in + x, px, Q_scale, p + x);
-      } else {
-        lane_store(Q + x, V(Q_scale * qx));
-        lane_store(p + x, V(Q_scale * px));
-      }
+    if constexpr (kKind.read) {  // (get_state's pass: q to Q, p to p, no state stored)
+      store_read<kKahan, kMadeQ>(q_in, eq_in, x, qx, Q_scale, Q);
+      store_read<kKahan, kMadeP>(p_in, ep_in, x, px, Q_scale, p);
       continue;
     }
     if constexpr (kFoldQ) fold_at<kMadeQ>(q_in + x, eq_in + x, eq + x, qx);
