@@ -34,8 +34,20 @@
 // ratio moved 25 % between two full runs (P3 SRKN11b, compensation off: 0.74, then 0.93; 3 of
 // 199 groups had samples under 2 ms in that run, none in the one before); in runs of the
 // stellar-orbit scene alone the implicit group's reps ranged 83-662 from process to process.
+//
+// Every run of a sample starts with the stack at another offset within a 4 KiB page (the next
+// of a low-discrepancy sequence, the same ones for every contender of a round; at_stack_offset),
+// so that a sample averages over offsets rather than taking the one that address-space
+// randomisation gave the process. The offset moves the explicit ratios by more than their
+// margins: sine-Gordon N = 32 Strang, erkn compiled / the peer, compensation off, with the
+// process's stack fixed (setarch -R) and every run of the benchmark at one offset, 0 / 352 / 960 /
+// 1920 / 2528 / 2880 / 3488 bytes: 1.001 / 0.990 / 1.025 / 1.021 / 1.012 / 0.994 / 1.026 (two
+// runs each); the same binary in eight successive processes (randomised; some with the other
+// CPU busy) 1.001-1.051. (perf annotate: libm's sin, ~65 % of that run, spends ~60 % of its
+// time on reloading the control word it has just stored to its stack frame.)
 #pragma once
 
+#include <alloca.h>
 #include <malloc.h>
 #include <sched.h>
 
@@ -80,6 +92,16 @@ inline bool steady_malloc() {
   return false;
 #endif
 }
+
+/// Calls f with the stack `bytes` deeper than this call's frame (f's frame and its callees').
+[[gnu::noinline]] inline void at_stack_offset(size_t bytes, const std::function<void()>& f) {
+  char* pad = static_cast<char*>(alloca(bytes + 1));
+  asm volatile("" : : "r"(pad) : "memory");  // (the allocation kept)
+  f();
+}
+/// The k-th stack offset: k times the golden section of a 4 KiB page, modulo the page (multiples
+/// of 32 bytes, 128 of them), so that any number of consecutive ones spreads over the page.
+inline size_t stack_offset(size_t k) { return k * 2528 % 4096; }
 
 /// CPU seconds of n runs of `run`.
 inline double batch_seconds(const std::function<void()>& run, long n) {
@@ -189,8 +211,10 @@ class Schedule {
     const size_t k = g.contenders.size();
     for (size_t i = 0; i < k; ++i) {
       const size_t c = (i + r) % k;
+      const size_t first = r * size_t(g.reps);  // (this round's offsets: the next reps)
       const double start = thread_seconds();
-      for (int j = 0; j < g.reps; ++j) g.contenders[c]();
+      for (size_t j = 0; j < size_t(g.reps); ++j)
+        at_stack_offset(stack_offset(first + j), g.contenders[c]);
       g.seconds[c][r] = (thread_seconds() - start) / g.reps;
     }
   }
