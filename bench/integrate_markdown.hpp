@@ -110,6 +110,10 @@ inline void markdown_header(std::ofstream& f, const Results& r, const Config& cf
               "microsecond runs' samples 3-11x slow in malloc_consolidate, and with trimming the "
               "256^2 grid's buffers came back as fresh pages; bench/integrate_timing.hpp)"
             : "; glibc malloc's defaults")
+    << "; every run of a sample starts with the stack at another offset within a 4 KiB page, "
+    << "the same offsets for both sides of a round (with the offset alone sine-Gordon N = 32 "
+    << "Strang's ratio ranged 0.99-1.03, so a sample averages over offsets rather than the "
+    << "one the process was given)"
     << ". The machine is shared: see the spread below. erkn calls the "
     << "problems library's System::gradient (a std::function); the rows \"<scene>" << kCompiledRows
     << "\" are erkn with the peer's gradient functor compiled into its steps instead "
