@@ -185,6 +185,28 @@ EIGEN_ALWAYS_INLINE V fold_at(const double* x0, const double* ex0, double* ex, V
   return dx;
 }
 
+// The flow of coordinate e (its doubles at x) in a pass, coefficients f (compensated: cos - 1):
+// plain, of the state (qx, px); compensated, in increment form, of the state at the step's start
+// (qn, pn at q_in + x, p_in + x) plus its increments (qx, px; absent before they are made: kHaveQ,
+// kHaveP), the flow's increments added to them. Returns the stage's q: the flowed q (compensated:
+// qn + qx). (The loads come before the coefficients' as in the loop it came from: GCC orders and
+// allocates the registers differently the other way round.)
+template <bool kKahan, bool kHaveQ, bool kHaveP, class V, class C>
+EIGEN_ALWAYS_INLINE V flow_at(const PassFlow<C>& f, Eigen::Index e, const double* q_in,
+                              const double* p_in, Eigen::Index x, V& qx, V& px) {
+  using F = PassFlow<C>;
+  if constexpr (kKahan) {
+    const V qn = lane_load<V>(q_in + x), pn = lane_load<V>(p_in + x);
+    flow_increment<kHaveQ, kHaveP>(F::at(f.c, e), F::at(f.sinc, e), F::at(f.msinc, e), qn, pn, qx,
+                                   px);
+    return qn + qx;
+  } else {
+    V unused{};
+    flow_update<false>(F::at(f.c, e), F::at(f.sinc, e), F::at(f.msinc, e), qx, px, unused, unused);
+    return qx;
+  }
+}
+
 // The loop of pass(), one eigen coordinate (a Lane's Value) per iteration: every pointer a
 // __restrict parameter (its pointers as locals or members, GCC 12 checks them against each other
 // at run time), inlined into one of the noinline entries below only. Plain, in place, the *_in
@@ -203,7 +225,6 @@ EIGEN_ALWAYS_INLINE PassBits pass_body(Eigen::Index n, const double* __restrict 
                                        double* __restrict Q, double Q_scale) {
   using L = Lane<kLanes>;
   using V = typename L::Value;
-  using F = PassFlow<C>;
   constexpr bool kInPlace = kKind.in_place;
   constexpr bool kFoldQ = kKahan && kKind.fold_q, kFoldP = kKahan && kKind.fold_p;
   // (compensated: whether dq, dp have been made, before the flow and after it)
@@ -226,18 +247,8 @@ EIGEN_ALWAYS_INLINE PassBits pass_body(Eigen::Index n, const double* __restrict 
       if constexpr (!kKahan && !kKind.flow) p_bits |= L::nonfinite(px);
     }
     V Qx{};  // (the stage's q)
-    if constexpr (kKind.flow) {
-      if constexpr (kKahan) {
-        const V qn = lane_load<V>(q_in + x), pn = lane_load<V>(p_in + x);
-        flow_increment<kHaveQ, kHaveP>(F::at(c, e), F::at(sinc, e), F::at(msinc, e), qn, pn, qx,
-                                       px);
-        Qx = qn + qx;
-      } else {
-        V unused{};
-        flow_update<false>(F::at(c, e), F::at(sinc, e), F::at(msinc, e), qx, px, unused, unused);
-        Qx = qx;
-      }
-    }
+    if constexpr (kKind.flow)
+      Qx = flow_at<kKahan, kHaveQ, kHaveP>(PassFlow<C>{c, sinc, msinc}, e, q_in, p_in, x, qx, px);
     if constexpr (kKind.read) {  // (get_state's pass: q to Q, p to p, no state stored)
       store_read<kKahan, kMadeQ>(q_in, eq_in, x, qx, Q_scale, Q);
       store_read<kKahan, kMadeP>(p_in, ep_in, x, px, Q_scale, p);
