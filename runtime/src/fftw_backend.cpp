@@ -115,26 +115,6 @@ void export_wisdom() {
   if (fftw_export_wisdom_to_filename(own.c_str())) std::rename(own.c_str(), file);
 }
 
-// The plans of key, made by make() (on the caller's buffers) at the first request and kept for
-// the process (a handful of grids). FFTW_MEASURE: erkn_fftw_planner_benchmark measured a
-// transform pair 1.2-3.0x faster than with FFTW_ESTIMATE at 256^2..128^3, for 0.2-1.9 s of
-// planning once per grid and process (without wisdom).
-template <class Make>
-Plans shared_plans(PlanKey key, Make&& make) {
-  static PlanCache cache;
-  std::lock_guard lock(planner_mutex());
-  if (auto it = cache.plans.find(key); it != cache.plans.end()) return it->second;
-  import_wisdom();
-  const Plans plans = make();
-  if (!plans.forward || !plans.inverse) {
-    if (plans.forward) fftw_destroy_plan(plans.forward);
-    if (plans.inverse) fftw_destroy_plan(plans.inverse);
-    throw Error("FFTW could not plan the grid transforms");
-  }
-  export_wisdom();
-  return cache.plans.emplace(std::move(key), plans).first->second;
-}
-
 // FFTW's sizes of the axes (int), refusing an axis too long for them.
 std::vector<int> fftw_sizes(const std::vector<GridAxis>& axes) {
   std::vector<int> n;
@@ -146,15 +126,55 @@ std::vector<int> fftw_sizes(const std::vector<GridAxis>& axes) {
   return n;
 }
 
+// True when `key` is that of the grid `axes` with the forward kinds `kinds` (compared without
+// building it).
+bool same_grid(const PlanKey& key, const std::vector<GridAxis>& axes,
+               const std::vector<int>& kinds) {
+  if (key.first.size() != axes.size() || key.second != kinds) return false;
+  for (std::size_t a = 0; a < axes.size(); ++a)
+    if (key.first[a] != axes[a].n) return false;
+  return true;
+}
+
+// The plans of the grid `axes` with the forward kinds `kinds` (none: r2c/c2r), made by
+// make(sizes) at the first request and kept for the process (a handful of grids). FFTW_MEASURE:
+// erkn_fftw_planner_benchmark measured a transform pair 1.2-3.0x faster than with FFTW_ESTIMATE at
+// 256^2..128^3, for 0.2-1.9 s of planning once per grid and process (without wisdom). A thread's
+// request for the grid it asked for last is answered from that entry (the cache's entries stay
+// put until the process exits), without building the key, locking the mutex or walking the map.
+template <class Make>
+Plans shared_plans(const std::vector<GridAxis>& axes, const std::vector<int>& kinds, Make&& make) {
+  static PlanCache cache;
+  thread_local const std::pair<const PlanKey, Plans>* last = nullptr;
+  if (last && same_grid(last->first, axes, kinds)) return last->second;
+  PlanKey key{fftw_sizes(axes), kinds};
+  std::lock_guard lock(planner_mutex());
+  auto it = cache.plans.find(key);
+  if (it == cache.plans.end()) {
+    import_wisdom();
+    const Plans plans = make(key.first);
+    if (!plans.forward || !plans.inverse) {
+      if (plans.forward) fftw_destroy_plan(plans.forward);
+      if (plans.inverse) fftw_destroy_plan(plans.inverse);
+      throw Error("FFTW could not plan the grid transforms");
+    }
+    export_wisdom();
+    it = cache.plans.emplace(std::move(key), plans).first;
+  }
+  last = &*it;
+  return it->second;
+}
+
 Eigen::Index size(const std::vector<GridAxis>& axes) {
   Eigen::Index d = 1;
   for (const GridAxis& axis : axes) d *= axis.n;
   return d;
 }
 
-// An FFTW-aligned array of n T (double or fftw_complex).
+// An FFTW-aligned array of n T (double or fftw_complex), or none.
 template <class T>
 struct Buffer {
+  Buffer() = default;
   explicit Buffer(Eigen::Index n)
       : data(static_cast<T*>(fftw_malloc(sizeof(T) * std::size_t(std::max<Eigen::Index>(n, 1))))) {
     if (!data)
@@ -162,8 +182,11 @@ struct Buffer {
   }
   ~Buffer() { fftw_free(data); }
   Buffer(const Buffer&) = delete;
-  Buffer& operator=(const Buffer&) = delete;
-  T* data;
+  Buffer& operator=(Buffer&& o) noexcept {
+    std::swap(data, o.data);
+    return *this;
+  }
+  T* data = nullptr;
 };
 
 // True when p has the alignment of the planned array `planned` (fftw_execute_*'s rule).
@@ -194,7 +217,6 @@ class PlannedAlignment {
 class FftwBackend final : public GridBackend {
  public:
   explicit FftwBackend(const std::vector<GridAxis>& axes) : d_(size(axes)), in_(d_), out_(d_) {
-    const std::vector<int> n = fftw_sizes(axes);
     std::vector<fftw_r2r_kind> fk, ik;
     for (const GridAxis& axis : axes) {
       fk.push_back(forward_kind(axis.boundary));
@@ -203,7 +225,7 @@ class FftwBackend final : public GridBackend {
     }
     // Out of place; the input is a private copy, so FFTW may destroy it (faster for HC2R).
     const unsigned flags = FFTW_MEASURE | FFTW_DESTROY_INPUT;
-    plans_ = shared_plans({n, std::vector<int>(fk.begin(), fk.end())}, [&] {
+    plans_ = shared_plans(axes, std::vector<int>(fk.begin(), fk.end()), [&](std::vector<int>& n) {
       const int rank = int(n.size());
       return Plans{fftw_plan_r2r(rank, n.data(), in_.data, out_.data, fk.data(), flags),
                    fftw_plan_r2r(rank, n.data(), in_.data, out_.data, ik.data(), flags)};
@@ -237,17 +259,17 @@ class FftwBackend final : public GridBackend {
 class FftwHalfSpectrum final : public HalfSpectrumBackend {
  public:
   explicit FftwHalfSpectrum(const std::vector<GridAxis>& axes)
-      : d_(size(axes)), m_(half_spectrum_size(axes)), real_(d_), spectrum_(m_) {
-    const std::vector<int> n = fftw_sizes(axes);
-    plans_ = shared_plans({n, {}}, [&] {
+      : d_(size(axes)), m_(half_spectrum_size(axes)), spectrum_(m_) {
+    plans_ = shared_plans(axes, {}, [&](std::vector<int>& n) {
       const int rank = int(n.size());
+      const Buffer<double> real(d_);  // (planned on, as every later array: fftw_malloc'ed)
       // r2c keeps its input (FFTW's default out of place), so forward reads the caller's x;
       // c2r may destroy it (its default), inverse gives it a scaled copy. Both measured (1-D,
       // thread CPU time, medians of 15 rounds), N = 512 / 2048 / 8192: r2c 0.38 / 1.83 / 9.8 us
       // against 0.47 / 2.04 / 10.3 with a copy and FFTW_DESTROY_INPUT; c2r after a scaled copy
       // 0.49 / 2.06 / 10.6 us against 0.72 / 2.69 / 12.9 preserving its input, then scaled.
-      return Plans{fftw_plan_dft_r2c(rank, n.data(), real_.data, spectrum_.data, FFTW_MEASURE),
-                   fftw_plan_dft_c2r(rank, n.data(), spectrum_.data, real_.data,
+      return Plans{fftw_plan_dft_r2c(rank, n.data(), real.data, spectrum_.data, FFTW_MEASURE),
+                   fftw_plan_dft_c2r(rank, n.data(), spectrum_.data, real.data,
                                      FFTW_MEASURE | FFTW_DESTROY_INPUT)};
     });
   }
@@ -259,8 +281,8 @@ class FftwHalfSpectrum final : public HalfSpectrumBackend {
       fftw_execute_dft_r2c(plans_.forward, const_cast<double*>(x), out);
       return;
     }
-    Eigen::Map<Eigen::VectorXd>(real_.data, d_) = Eigen::Map<const Eigen::VectorXd>(x, d_);
-    fftw_execute_dft_r2c(plans_.forward, real_.data, spectrum_.data);
+    Eigen::Map<Eigen::VectorXd>(real(), d_) = Eigen::Map<const Eigen::VectorXd>(x, d_);
+    fftw_execute_dft_r2c(plans_.forward, real(), spectrum_.data);
     complex_map(out) = complex_map(spectrum_.data);
   }
 
@@ -280,8 +302,8 @@ class FftwHalfSpectrum final : public HalfSpectrumBackend {
       fftw_execute_dft_c2r(plans_.inverse, spectrum_.data, x);
       return;
     }
-    fftw_execute_dft_c2r(plans_.inverse, spectrum_.data, real_.data);
-    Eigen::Map<Eigen::VectorXd>(x, d_) = Eigen::Map<const Eigen::VectorXd>(real_.data, d_);
+    fftw_execute_dft_c2r(plans_.inverse, spectrum_.data, real());
+    Eigen::Map<Eigen::VectorXd>(x, d_) = Eigen::Map<const Eigen::VectorXd>(real(), d_);
   }
 
   // Straight from y (c2r may destroy it) when y and x have the planned alignment: get_state's
@@ -325,13 +347,22 @@ class FftwHalfSpectrum final : public HalfSpectrumBackend {
   Eigen::Map<Eigen::VectorXcd> complex_map(fftw_complex* z) const {
     return {reinterpret_cast<std::complex<double>*>(z), m_};
   }
+  // The real buffer of the transforms through buffers, allocated at the first (a stepper's arrays
+  // have the planned alignment: its memalign and free were ~900 of the ~14,000 instructions of a
+  // construction and destruction at sine-Gordon N = 32, callgrind).
+  double* real() {
+    if (!real_.data) real_ = Buffer<double>(d_);
+    return real_.data;
+  }
 
   Eigen::Index d_, m_;
-  Buffer<double> real_;
+  Buffer<double> real_;  // (none until real())
   Buffer<fftw_complex> spectrum_;
   Plans plans_;
-  // (forward's input and output, inverse's output, inverse_scaled's input)
-  PlannedAlignment<double> real_aligned_{real_.data}, output_aligned_{real_.data};
+  // (forward's input and output, inverse's output, inverse_scaled's input; the planned alignment
+  // of a real array is that of every fftw_malloc'ed one, spectrum_'s)
+  double* planned_real_ = reinterpret_cast<double*>(spectrum_.data);
+  PlannedAlignment<double> real_aligned_{planned_real_}, output_aligned_{planned_real_};
   PlannedAlignment<fftw_complex> spectrum_aligned_{spectrum_.data}, scaled_aligned_{spectrum_.data};
 };
 

@@ -62,8 +62,8 @@ Eigen::Index half_spectrum_size(const std::vector<GridAxis>& axes) {
   return m;
 }
 
-Eigen::ArrayXd half_spectrum_weights(const std::vector<GridAxis>& axes) {
-  const Eigen::Index n = axes.back().n, half = n / 2 + 1, m = half_spectrum_size(axes);
+Eigen::ArrayXd half_spectrum_weights(Eigen::Index n, Eigen::Index m) {
+  const Eigen::Index half = n / 2 + 1;
   const double d = double(m / half) * double(n);
   Eigen::ArrayXd w = Eigen::ArrayXd::Constant(m, 2 / d);
   for (Eigen::Index row = 0; row < m; row += half) {

@@ -83,7 +83,8 @@ std::unique_ptr<HalfSpectrumBackend> make_half_spectrum_backend(const std::vecto
 Eigen::Index half_spectrum_size(const std::vector<GridAxis>& axes);
 /// Weights w with |x|^2 = sum_k w_k |y_k|^2 (Parseval): 1/d where X_k is its own conjugate's
 /// partner (k_{K-1} = 0, or n/2 for even n), else 2/d (X_k stands for X_k and X_{-k}).
-Eigen::ArrayXd half_spectrum_weights(const std::vector<GridAxis>& axes);
+/// n: the last axis's points, m: half_spectrum_size.
+Eigen::ArrayXd half_spectrum_weights(Eigen::Index n, Eigen::Index m);
 /// The eigenvalue shift + sum_a mu_a(k_a) of each coordinate (GridAxis::eigenvalues: wave number
 /// k_a and n_a - k_a share one).
 Eigen::VectorXd half_spectrum_eigenvalues(const std::vector<GridAxis>& axes, double shift);

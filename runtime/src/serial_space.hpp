@@ -71,6 +71,7 @@ class SerialSpace {
         stride_(kFixed ? D : aligned_stride<Scalar>(m_)),
         rkn_(rkn) {
     if (rkn_) Mq_.setZero(d), set_m_diagonal(M);
+    if constexpr (kStagedIterate) transform_.weight();  // (made now: steps allocate nothing)
   }
 
   Eigen::Index dimension() const { return d_; }  ///< physical entries (of this process)
@@ -143,7 +144,7 @@ class SerialSpace {
     const auto lanes = [](const auto& x) { return reinterpret_cast<const double*>(x.data()); };
     const auto sums = iterate_pass(m_, lanes(r), coefficient_of(abar), lanes(g), lanes(Q_hat),
                                    reinterpret_cast<double*>(Q_new.data()), transform_.staging(),
-                                   transform_.staging_scale(), transform_.weight.data());
+                                   transform_.staging_scale(), transform_.weight().data());
     return {sums[0], sums[1]};
   }
   void to_physical_staged(Eigen::VectorXd& x) { transform_.inverse_staged(x); }
@@ -163,7 +164,7 @@ class SerialSpace {
                        out(Q0),
                        transform_.staging(),
                        transform_.staging_scale(),
-                       transform_.weight.data()};
+                       transform_.weight().data()};
     return start_passes(i, m_, t, coefficient_of(phi0c), coefficient_of(hcphi1c),
                         coefficient_of(abar_ii), [&](int j) {
                           const auto [G, abar_ij] = term(j);

@@ -87,9 +87,9 @@ TEST(HalfSpectrum, NormIsParsevalsAndMisweightedSelfConjugateCoordinatesBreakIt)
     EXPECT_NEAR(std::sqrt(t.squared_norm(y)), x.norm(), 1e-14 * x.norm());
     // Negative control: k_last = 0 (and n/2) weighted 2/d like the rest, as if each stood for
     // two coordinates.
-    const Eigen::ArrayXd misweighted = Eigen::ArrayXd::Constant(y.size(), t.weight.maxCoeff());
+    const Eigen::ArrayXd misweighted = Eigen::ArrayXd::Constant(y.size(), t.weight().maxCoeff());
     const double wrong = std::sqrt((misweighted * y.abs2()).sum());
-    if (y.size() > 1 && t.weight.minCoeff() < t.weight.maxCoeff())
+    if (y.size() > 1 && t.weight().minCoeff() < t.weight().maxCoeff())
       EXPECT_GE(std::abs(wrong - x.norm()), 1e-3 * x.norm());
   }
 }
