@@ -42,9 +42,10 @@
 // margins: sine-Gordon N = 32 Strang, erkn compiled / the peer, compensation off, with the
 // process's stack fixed (setarch -R) and every run of the benchmark at one offset, 0 / 352 / 960 /
 // 1920 / 2528 / 2880 / 3488 bytes: 1.001 / 0.990 / 1.025 / 1.021 / 1.012 / 0.994 / 1.026 (two
-// runs each); the same binary in eight successive processes (randomised; some with the other
-// CPU busy) 1.001-1.051. (perf annotate: libm's sin, ~65 % of that run, spends ~60 % of its
-// time on reloading the control word it has just stored to its stack frame.)
+// runs each, the other CPU busy); the same binary in six successive processes on a quiet
+// machine (randomised) 1.002-1.027, with these offsets 0.995-1.006. (perf annotate: libm's sin, ~65
+// % of that run, spends ~60 % of its time on reloading the control word it has just stored to its
+// stack frame.)
 #pragma once
 
 #include <alloca.h>
