@@ -101,12 +101,6 @@ struct PassFlow {
   static double at(const double* values, Eigen::Index e) { return values[e]; }
 };
 
-/// The non-finite bits (nonfinite_bits) of the force a kick read and of the p a step's last kick
-/// wrote, and of kStageBound times the Q a flow staged (0: every |Q| < 2^512, see kStageBound).
-struct PassBits {
-  std::uint64_t g = 0, p = 0, stage = 0;
-};
-
 /// A staged Q with every |Q| < 2^512 (kStageBound Q finite) is a finite stage: its physical values
 /// are the staged ones (identity basis) or the outputs of an inverse transform of them, each a
 /// sum of products of at most a polynomial in d of them with unit-modulus twiddles (also in FFTW's
@@ -115,13 +109,15 @@ struct PassBits {
 inline constexpr double kStageBound = 0x1p512;
 
 /// What a pass does: kick (p -= hd g, g also to `save` with kSave), then flow (its q also to Q,
-/// times Q_scale, with kStage), in place or from one copy of the state into another; compensated,
-/// in increment form, the step's first pass is the one not in place, and fold_q, fold_p add the
-/// step's increments of q (after its last flow) and of p (its last pass) to the state. read
-/// (get_state's pass, a flow) stores no state: q and p (compensated: folded, q + eq and p + ep)
-/// times Q_scale go to Q and p, the inputs of their inverse transforms.
+/// times Q_scale, with kStage; after fold_q the folded q), in place or from one copy of the state
+/// into another; compensated, in increment form, the step's first pass is the one not in place,
+/// and fold_q, fold_p add the step's increments of q (after its last flow) and of p (its last
+/// pass) to the state. read (get_state's pass, a flow) stores no state: q and p (compensated:
+/// folded, q + eq and p + ep) times Q_scale go to Q and p, the inputs of their inverse transforms.
+/// check (a step's last pass): the bits of the p it wrote, and of a flow's q (stage: the Q's
+/// bound, as always). backward: the flow over -tau (cos(w tau), -sin(w tau)/w, w sin(w tau)).
 struct PassKind {
-  bool kick, flow, in_place, save, stage, fold_q, fold_p, read;
+  bool kick, flow, in_place, save, stage, fold_q, fold_p, read, check = false, backward = false;
 };
 
 /// The kLanes doubles of one eigen coordinate as one value (Value), on which the passes' arithmetic
@@ -191,18 +187,20 @@ EIGEN_ALWAYS_INLINE V fold_at(const double* x0, const double* ex0, double* ex, V
 // kHaveP), the flow's increments added to them. Returns the stage's q: the flowed q (compensated:
 // qn + qx). (The loads come before the coefficients' as in the loop it came from: GCC orders and
 // allocates the registers differently the other way round.)
-template <bool kKahan, bool kHaveQ, bool kHaveP, class V, class C>
+template <bool kKahan, bool kHaveQ, bool kHaveP, bool kBackward, class V, class C>
 EIGEN_ALWAYS_INLINE V flow_at(const PassFlow<C>& f, Eigen::Index e, const double* q_in,
                               const double* p_in, Eigen::Index x, V& qx, V& px) {
   using F = PassFlow<C>;
+  // (over -tau: the sines negated, exactly)
+  const double sinc = kBackward ? -F::at(f.sinc, e) : F::at(f.sinc, e);
+  const double msinc = kBackward ? -F::at(f.msinc, e) : F::at(f.msinc, e);
   if constexpr (kKahan) {
     const V qn = lane_load<V>(q_in + x), pn = lane_load<V>(p_in + x);
-    flow_increment<kHaveQ, kHaveP>(F::at(f.c, e), F::at(f.sinc, e), F::at(f.msinc, e), qn, pn, qx,
-                                   px);
+    flow_increment<kHaveQ, kHaveP>(F::at(f.c, e), sinc, msinc, qn, pn, qx, px);
     return qn + qx;
   } else {
     V unused{};
-    flow_update<false>(F::at(f.c, e), F::at(f.sinc, e), F::at(f.msinc, e), qx, px, unused, unused);
+    flow_update<false>(F::at(f.c, e), sinc, msinc, qx, px, unused, unused);
     return qx;
   }
 }
@@ -215,14 +213,13 @@ EIGEN_ALWAYS_INLINE V flow_at(const PassFlow<C>& f, Eigen::Index e, const double
 // *_in the state at its start, read by every pass; fold_q puts the new q, eq in q, eq (the
 // stage staged is start q + dq all the same), fold_p the new p, ep in p, ep.
 template <bool kKahan, PassKind kKind, int kLanes, class C>
-EIGEN_ALWAYS_INLINE PassBits pass_body(Eigen::Index n, const double* __restrict q_in,
-                                       const double* __restrict p_in,
-                                       const double* __restrict eq_in,
-                                       const double* __restrict ep_in, double* __restrict q,
-                                       double* __restrict p, double* __restrict eq,
-                                       double* __restrict ep, double hd, const double* __restrict g,
-                                       double* __restrict save, C c, C sinc, C msinc,
-                                       double* __restrict Q, double Q_scale) {
+EIGEN_ALWAYS_INLINE bool pass_body(Eigen::Index n, const double* __restrict q_in,
+                                   const double* __restrict p_in, const double* __restrict eq_in,
+                                   const double* __restrict ep_in, double* __restrict q,
+                                   double* __restrict p, double* __restrict eq,
+                                   double* __restrict ep, double hd, const double* __restrict g,
+                                   double* __restrict save, C c, C sinc, C msinc,
+                                   double* __restrict Q, double Q_scale) {
   using L = Lane<kLanes>;
   using V = typename L::Value;
   constexpr bool kInPlace = kKind.in_place;
@@ -231,7 +228,12 @@ EIGEN_ALWAYS_INLINE PassBits pass_body(Eigen::Index n, const double* __restrict 
   constexpr bool kHadP = !kKahan || kInPlace;  // (p read: plain, or an increment made)
   constexpr bool kHaveQ = kInPlace, kHaveP = kInPlace || kKind.kick;
   constexpr bool kMadeQ = kHaveQ || kKind.flow, kMadeP = kHaveP || kKind.flow;
-  typename L::Bits g_bits{}, p_bits{}, stage_bits{};
+  // The pass's check (see pass): one value per coordinate whose finiteness implies what the step
+  // needs to know, a non-finite force included (a kick's p - hd g is then non-finite, and so is
+  // the q or p a flow makes of it: sin(w tau)/w and cos(w tau) are never 0 for tau != 0).
+  constexpr bool kStageQ = kKind.flow && kKind.stage;
+  constexpr bool kCheckG = kKind.kick && !kStageQ && !kKind.check;
+  typename L::Bits bits{};
   for (Eigen::Index e = 0; e < n; ++e) {
     const Eigen::Index x = kLanes * e;
     V qx{}, px{};  // (plain: the state; compensated: the increments)
@@ -241,30 +243,31 @@ EIGEN_ALWAYS_INLINE PassBits pass_body(Eigen::Index n, const double* __restrict 
       const V gx = lane_load<V>(g + x);
       px = plus<kHadP>(px, V(-hd * gx));
       if constexpr (kKind.save) lane_store(save + x, gx);
-      g_bits |= L::nonfinite(gx);
-      // (Only a step's last pass, a kick alone, returns p's bits the step checks: a non-finite
-      // p a kick and flow wrote stays non-finite to the end, or stages a non-finite Q.)
-      if constexpr (!kKahan && !kKind.flow) p_bits |= L::nonfinite(px);
+      if constexpr (kCheckG) bits |= L::nonfinite(gx);
     }
     V Qx{};  // (the stage's q)
     if constexpr (kKind.flow)
-      Qx = flow_at<kKahan, kHaveQ, kHaveP>(PassFlow<C>{c, sinc, msinc}, e, q_in, p_in, x, qx, px);
+      Qx = flow_at<kKahan, kHaveQ, kHaveP, kKind.backward>(PassFlow<C>{c, sinc, msinc}, e, q_in,
+                                                           p_in, x, qx, px);
     if constexpr (kKind.read) {  // (get_state's pass: q to Q, p to p, no state stored)
       store_read<kKahan, kMadeQ>(q_in, eq_in, x, qx, Q_scale, Q);
       store_read<kKahan, kMadeP>(p_in, ep_in, x, px, Q_scale, p);
       continue;
     }
-    if constexpr (kFoldQ) fold_at<kMadeQ>(q_in + x, eq_in + x, eq + x, qx);
-    if constexpr (kFoldP) p_bits |= L::nonfinite(fold_at<kMadeP>(p_in + x, ep_in + x, ep + x, px));
-    if constexpr (kKind.flow && kKind.stage) {
+    if constexpr (kFoldQ) Qx = fold_at<kMadeQ>(q_in + x, eq_in + x, eq + x, qx);
+    if constexpr (kFoldP) fold_at<kMadeP>(p_in + x, ep_in + x, ep + x, px);
+    if constexpr (kStageQ) {
       Qx = Q_scale * Qx;
       lane_store(Q + x, Qx);
-      stage_bits |= L::nonfinite(V(kStageBound * Qx));
+      const V bound = kStageBound * Qx;
+      bits |= L::nonfinite(kKind.check ? V(px + bound) : bound);
+    } else if constexpr (kKind.check) {
+      bits |= L::nonfinite(kKind.flow ? V(px + qx) : px);
     }
     if (kKind.flow || !kInPlace || kFoldQ) lane_store(q + x, qx);  // (a kick in place: q stays)
     lane_store(p + x, px);
   }
-  return {L::any(g_bits), L::any(p_bits), L::any(stage_bits)};
+  return L::any(bits) != 0;
 }
 
 // pass_body as a function of its own, for the baseline instruction set (pass_loop) and, on x86-64
@@ -283,13 +286,13 @@ EIGEN_ALWAYS_INLINE PassBits pass_body(Eigen::Index n, const double* __restrict 
 // cache model, SABA2 N = 512: compensation adds ~16k L1 read misses to a run, its eq and ep in
 // two copies), so their time falls less than their instructions.
 template <bool kKahan, PassKind kKind, int kLanes, class C, class... A>
-[[gnu::noinline]] PassBits pass_loop(A... a) {
+[[gnu::noinline]] bool pass_loop(A... a) {
   return pass_body<kKahan, kKind, kLanes, C>(a...);
 }
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(__AVX__)
 #define ERKN_AVX_PASSES 1
 template <bool kKahan, PassKind kKind, int kLanes, class C, class... A>
-[[gnu::noinline, gnu::target("avx")]] PassBits pass_loop_avx(A... a) {
+[[gnu::noinline, gnu::target("avx")]] bool pass_loop_avx(A... a) {
   return pass_body<kKahan, kKind, kLanes, C>(a...);
 }
 inline const bool kAvxPasses = [] {
@@ -300,13 +303,20 @@ inline const bool kAvxPasses = [] {
 
 /// One pass over n eigen coordinates (kLanes doubles each) from `from` into `to` (in place: the
 /// same arrays; compensated, from the state at the step's start and the increments in `to`) as
-/// kKind says; returns the non-finite bits of the force a kick read, of the p a kick without a
-/// flow wrote (plain) or the fold wrote (compensated), and of the Q it staged (PassBits). The
-/// arithmetic per coordinate is that of the kick followed by that of the flow (and the fold).
+/// kKind says. The arithmetic per coordinate is that of the kick followed by that of the flow (and
+/// the fold). Returns false when every entry passed the pass's check, a test that needs no exact
+/// answer (the caller then scans what it needs: a slow path): a staged Q with every |Q| below
+/// kStageBound (then also the force finite); check (a step's last pass), p and q finite, and a
+/// staged Q bounded (the sum p + kStageBound Q, or p + q, finite); else a kick's force finite.
+/// (One flag in a register, where three 64-bit words of bits came back through memory and a step
+/// reloading two of them as one 16-byte word waited for the pass's two stores, not forwarded:
+/// ~30 % of the step's own time at sine-Gordon N = 32, perf, Intel Xeon. One check value per
+/// coordinate, where the force, p and the bound were three: the checks were 7 of the ~15 vector
+/// operations per coordinate of the last pass of Strang, which bound its time.)
 template <bool kKahan, PassKind kKind, int kLanes, class C>
-EIGEN_ALWAYS_INLINE PassBits pass(Eigen::Index n, const PassArrays& from, const PassArrays& to,
-                                  double hd, const double* g, double* save, const PassFlow<C>& f,
-                                  double* Q, double Q_scale) {
+EIGEN_ALWAYS_INLINE bool pass(Eigen::Index n, const PassArrays& from, const PassArrays& to,
+                              double hd, const double* g, double* save, const PassFlow<C>& f,
+                              double* Q, double Q_scale) {
   const PassArrays in = kKind.in_place && !kKahan ? PassArrays{} : from;
 #ifdef ERKN_AVX_PASSES
   if (kAvxPasses)

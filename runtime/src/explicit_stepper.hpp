@@ -14,12 +14,21 @@
 // pi^-1 to the user's state and get_state pi to a copy of the kernel's, each counted in the
 // statistics (Statistics::processor_applications, and their gradients).
 //
-// The last flow of a step and the first of the next are one exact flow (over tau_s + tau_0), so the
-// stored state stays one flow behind: after a step it is the state before flow s, which is
-// pending (pending_). The next step starts with the merged flow; get_state applies the pending
-// flow to a copy. Either way the state returned is the one the unmerged steps give, up to
-// round-off. When D, the dimension, is a compile-time constant (tiny systems with M's
-// identity eigenbasis) that copy is a set of fixed-size arrays the compiler keeps in registers.
+// The last flow of a step and the first of the next are one exact flow (over tau_s + tau_0). Over
+// arrays a step's last pass kicks and makes that flow, staging the next step's first Q, so the
+// stored state runs one flow ahead: after a step it is the state after flow 0 of the next
+// (ahead_), whose first gradient needs no pass before it: a step of s stages makes s passes where
+// the specialist's loop makes s + 1 (with the passes' checks cut to one value per coordinate,
+// explicit_passes.hpp: erkn_integrate_benchmark --short, runs alternated with main 724a43f,
+// medians of 6-10, gradient compiled in, compensation off, Strang against the specialist's loop,
+// sine-Gordon N = 32 1.040 -> 1.000, 512 1.026 -> 0.988, 2048 1.007 -> 0.938, 8192 1.005 ->
+// 0.959; SABA2 N = 512 1.003 -> 0.961; Intel Xeon under KVM). get_state applies flow 0
+// backwards (over -tau_0) to a copy. When D, the dimension, is a
+// compile-time constant (tiny systems with M's identity eigenbasis: the state in registers, no
+// pass to save) the stored state stays one flow behind: after a step it is the state before flow
+// s, which is pending (pending_); the next step starts with the merged flow, and get_state
+// applies flow s to a copy. Either way the state returned is the one the unmerged steps give, up
+// to round-off.
 //
 // The gradient is the policy Gradient's: System::gradient, a std::function on Eigen::VectorXd
 // (SystemGradient), or a functor compiled into the step (CompiledGradient,
@@ -248,7 +257,7 @@ class ExplicitStepper final : public StepperBase {
     Spectral q, p;
     Eigen::VectorXd kernel_q, kernel_p;
     Spectral saved;  // q, p, eq, ep, G_last, m entries each
-    bool history = false, pending = false;
+    bool history = false, pending = false, ahead = false;
   };
 
  public:
@@ -301,7 +310,7 @@ class ExplicitStepper final : public StepperBase {
       std::fill_n(arrays_.state.ep, n(), Scalar(0));
     }
     have_history_ = false;
-    pending_ = false;
+    pending_ = ahead_ = staged_ahead_ = false;
   }
 
   // (A processed method's out of line: with it here, a fixed dimension's load saved six registers
@@ -317,13 +326,14 @@ class ExplicitStepper final : public StepperBase {
     Processing& x = *processing_;
     const std::array<Scalar*, 5> kernel = kernel_arrays();
     for (int k = 0; k < 5; ++k) std::copy_n(kernel[k], n(), x.saved.data() + k * arrays_.m);
-    x.history = have_history_, x.pending = pending_;
+    x.history = have_history_, x.pending = pending_, x.ahead = ahead_;
   }
   void restore_kernel() override {
     const Processing& x = *processing_;
     const std::array<Scalar*, 5> kernel = kernel_arrays();
     for (int k = 0; k < 5; ++k) std::copy_n(x.saved.data() + k * arrays_.m, n(), kernel[k]);
-    have_history_ = x.history, pending_ = x.pending;
+    have_history_ = x.history, pending_ = x.pending, ahead_ = x.ahead;
+    staged_ahead_ = false;
   }
 
   void step(long step_number, double t, Statistics& stats) override {
@@ -344,7 +354,7 @@ class ExplicitStepper final : public StepperBase {
 
   void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) override {
     if constexpr (kDeferred)
-      transform_.apply_M(x, y);
+      transform_.apply_M(x, y), staged_ahead_ = false;  // (its buffers may be the staging input)
     else
       M_->apply(x, y);
   }
@@ -372,6 +382,7 @@ class ExplicitStepper final : public StepperBase {
     transform_.inverse(x.q, q);
     transform_.inverse(x.p, p);
     count(counts, stats);
+    staged_ahead_ = false;  // (pi's kicks and the transforms used the staging input)
   }
   // q + eq and p + ep after the pending flow (load), in physical coordinates.
   void load_state(Eigen::VectorXd& q, Eigen::VectorXd& p) {
@@ -396,6 +407,7 @@ class ExplicitStepper final : public StepperBase {
     if (kicks_.fsal()) std::swap(arrays_.G, arrays_.G_last);
     have_history_ = true;
     pending_ = ends_pending_;
+    ahead_ = ends_ahead_;
   }
   // steps(): the completed steps counted into stats once, at the end or at the step that failed.
   template <bool kKahan>
@@ -500,14 +512,16 @@ class ExplicitStepper final : public StepperBase {
   // in registers), checked, and then the state (without summation errors when !kKahan: they then
   // stay zero).
   //
-  // With arrays two of the finiteness checks ride on the kick passes, which OR the bits of x - x
-  // (0 exactly when x is finite; nonfinite_bits) over the force they read and the p the last
-  // writes: a reduction that vectorises with the pass, where a separate check would reread the
-  // arrays. The force is non-finite when the gradient is (a transform spreads a non-finite entry
-  // over all of its outputs). Every stage's physical Q is checked before the gradient is called, so
-  // q after the step is finite (the last stage's, or the state's); p is the last kick's. A Q a flow
+  // With arrays the finiteness checks ride on the passes, which OR the bits of x - x (0 exactly
+  // when x is finite; nonfinite_bits) over one check value per coordinate (explicit_passes.hpp,
+  // pass): a reduction that vectorises with the pass, where a separate check would reread the
+  // arrays, and a test that needs no exact answer: where it fails, a scan of the arrays gives the
+  // answer and the message. The force is non-finite when the gradient is (a transform spreads a
+  // non-finite entry over all of its outputs), and so is the Q staged after its kick. A Q a flow
   // stages is checked on the way, as below kStageBound (explicit_passes.hpp), and scanned only
-  // when it is not (callgrind, sine-Gordon N = 32: the scan was 2.8 % of a plain run). A fixed
+  // when it is not (callgrind, sine-Gordon N = 32: the scan was 2.8 % of a plain run); every other
+  // stage's physical Q before the gradient is called. The step's last pass checks the p it writes,
+  // and the q of its flow (ahead) with them; without that flow q is the last stage's. A fixed
   // dimension checks the same: every stage's Q and g (checked_gradient) and the p of the last kick,
   // its bits taken in registers as that pass makes it. Checking q and p of the step's values after
   // the step instead (reloaded in halves from the stack, where the kick had stored p whole: not
@@ -523,30 +537,45 @@ class ExplicitStepper final : public StepperBase {
       FixedMap(arrays_.state.q) = v.q, FixedMap(arrays_.state.p) = v.p;
       if (kKahan) FixedMap(arrays_.state.eq) = v.eq, FixedMap(arrays_.state.ep) = v.ep;
     } else {
-      if (stages<kKahan>(arrays_.state, arrays_.work, evaluations))
-        fail([&] { non_finite_result(true, place_); });
+      const bool suspect = stages<kKahan>(arrays_.state, arrays_.work, evaluations);
+      if (suspect) check_result(arrays_.work);
       if constexpr (kDeferred) transform_.settle();  // (every process's checks, before the swap)
       std::swap(arrays_.state, arrays_.work);
+      staged_ahead_ = ends_ahead_ && kStage, bounded_ahead_ = !suspect;
     }
   }
+  // The step's result x after its last pass's check failed: q, else p, not finite fails the step
+  // (else they are finite, and a staged Q may be large).
+  void check_result(const State& x) {
+    if (!all_finite(lanes(x.q), kLanes * n()))
+      fail([&] { non_finite_result(false, place_); });
+    else if (!all_finite(lanes(x.p), kLanes * n()))
+      fail([&] { non_finite_result(true, place_); });
+  }
 
-  // The flows and kicks from `start` into `to` (S: State or Values; start may be to), the first
-  // flow merged with the pending one, the last left pending; kick i and flow i + 1 in one pass.
+  // The flows and kicks from `start` into `to` (S: State or Values; start may be to): arrays from
+  // stage 1 when ahead (else flow 0 first), the last kick and the merged flow in one pass; a fixed
+  // dimension's first flow merged with the pending one, the last left pending; kick i and flow
+  // i + 1 in one pass.
   // In the identity basis each flow before a gradient writes the stage's physical_.Q as it goes
   // (with a staging transform: the inverse transform's input), and the last kick saves the gradient
-  // to arrays_.G for FSAL: no pass reloads what the last one stored. Returns the non-finite bits of
-  // the last kick's p.
+  // to arrays_.G for FSAL: no pass reloads what the last one stored. Returns whether the last
+  // pass's check failed (explicit_passes.hpp, pass).
   template <bool kKahan, class S>
-  EIGEN_ALWAYS_INLINE std::uint64_t stages(const S& start, S& to, Counts& evaluations) {
+  EIGEN_ALWAYS_INLINE bool stages(const S& start, S& to, Counts& evaluations) {
     const bool reuse = kicks_.fsal() && have_history_;  // (stage 1's force; its flow never moves)
     const int merged = pending_ ? flows_.merged(method_) : 0;
-    bool first = true;    // (no pass made yet: the state is `start`)
-    bool folded = false;  // (compensated: q's increments added, after the step's last flow)
-    bool staged = false;  // (stage i's Q written by the last pass)
-    PassBits bits;        // (the last pass's)
-    if (flows_.moves(merged)) {
+    bool first = true;     // (no pass made yet: the state is `start`)
+    bool folded = false;   // (compensated: q's increments added, after the step's last flow)
+    bool staged = false;   // (stage i's Q written by the last pass)
+    bool suspect = false;  // (the last pass's check failed)
+    if (ahead_) {          // (arrays: stage 1's Q is the state's, staged by the last step)
+      staged = staged_ahead_;
+      suspect = !bounded_ahead_;
+      staged_ahead_ = false;  // (the staging input is this step's from its first gradient on)
+    } else if (flows_.moves(merged)) {
       folded = last_flow_ == 0;
-      bits = apply<kKahan, kFlowStaged>(start, to, first, folded, 0, nullptr, merged);
+      suspect = apply<kKahan, kFlowStaged>(start, to, first, folded, 0, nullptr, merged);
       first = false;
       staged = kStage;
     }
@@ -554,25 +583,39 @@ class ExplicitStepper final : public StepperBase {
       const bool reused = i == 0 && reuse;
       const double hd = kicks_.h() * (reused ? *kicks_.fsal() : kicks_.weight(i));
       // (A staged Q below kStageBound is finite; a fixed dimension's is checked in registers.)
-      const bool bounded = !kFixed && staged && bits.stage == 0;
+      const bool bounded = !kFixed && staged && !suspect;
       const Scalar* g = reused ? arrays_.G_last
                                : evaluate(stage_q<kKahan>(start, to, first, folded, staged), staged,
                                           bounded, i, evaluations);
       staged = i + 1 < kicks_.stages() && flows_.moves(i + 1);
       if (staged) {
         const bool fold = i + 1 == last_flow_;
-        bits = apply<kKahan, kKickFlow>(start, to, first, fold, hd, g, i + 1);
+        suspect = apply<kKahan, kKickFlow>(start, to, first, fold, hd, g, i + 1);
         folded = folded || fold;
-      } else if (i == kicks_.stages() - 1) {  // (the FSAL force; compensated, p's fold)
-        bits = apply<kKahan, kKickLast>(start, to, first, !folded, hd, g, 0);
+      } else if (i == kicks_.stages() - 1) {
+        suspect = last_pass<kKahan>(start, to, first, folded, hd, g);
       } else {
-        bits = apply<kKahan, kKick>(start, to, first, false, hd, g, 0);
+        suspect = apply<kKahan, kKick>(start, to, first, false, hd, g, 0);
       }
       staged = staged && kStage;
-      if (!reused && bits.g) fail([&] { non_finite_gradient(i, place_); });
+      // (A failed check: the force, if it is not finite; else what the next stage or the caller
+      // scans.)
+      if (suspect && !reused && !all_finite(lanes(g), kLanes * n()))
+        fail([&] { non_finite_gradient(i, place_); });
       first = false;
     }
-    return bits.p;
+    return suspect;
+  }
+  // The step's last pass: over arrays, when the merged flow moves, the kick and that flow, which
+  // stages the next step's first Q (the state is then ahead); else the kick alone (the FSAL
+  // force; compensated, p's fold, and q's unless folded).
+  template <bool kKahan, class S>
+  EIGEN_ALWAYS_INLINE bool last_pass(const S& start, S& to, bool first, bool folded, double hd,
+                                     const Scalar* g) {
+    if constexpr (!kFixed)
+      if (ends_ahead_)
+        return apply<kKahan, kKickFlowLast>(start, to, first, true, hd, g, flows_.merged(method_));
+    return apply<kKahan, kKickLast>(start, to, first, !folded, hd, g, 0);
   }
   // The stage's q in eigen coordinates where the gradient reads it (not staged, or a deferred
   // space's RKN force): the state's before the step's first pass, else the second copy's, which
@@ -593,8 +636,9 @@ class ExplicitStepper final : public StepperBase {
     }
   }
 
-  // get_state: q + eq and p + ep after the pending flow, rounded (with a dynamic dimension: in
-  // the second copy's slots, unused between steps).
+  // get_state: q + eq and p + ep after the pending flow (ahead: flow 0 backwards), rounded (with a
+  // dynamic dimension: in the second copy's slots, unused between steps; where they go through the
+  // staging buffer, it no longer holds the next step's Q).
   template <bool kKahan>
   void load(Eigen::VectorXd& q, Eigen::VectorXd& p) {
     if constexpr (kFixed) {
@@ -606,16 +650,17 @@ class ExplicitStepper final : public StepperBase {
       q.resize(D), p.resize(D);
       for (int e = 0; e < D; ++e) q[e] = v.q[e] + v.eq[e], p[e] = v.p[e] + v.ep[e];
     } else {
+      const bool back = ahead_ && flows_.moves(0);
       if constexpr (kStaged) {
-        if (pending_) return load_pending_staged<kKahan>(q, p);
+        if (back) return load_back_staged<kKahan>(q, p);
       }
       const State* from = &arrays_.state;
-      if (pending_)
-        apply<kKahan, kFlow>(arrays_.state, arrays_.work, true, true, 0, nullptr, kicks_.stages()),
+      if (back)
+        apply<kKahan, kFlowBack>(arrays_.state, arrays_.work, true, true, 0, nullptr, 0),
             from = &arrays_.work;
-      if constexpr (kStaged) {  // (the sum, scaled, straight into the staging buffer)
-        inverse_of_sum<kKahan>(from->q, from->eq, q);
-        inverse_of_sum<kKahan>(from->p, from->ep, p);
+      if constexpr (kStaged) {  // (the sum, scaled, into the second copy or the staging buffer)
+        inverse_of_sum<kKahan>(from->q, from->eq, arrays_.work.q, q);
+        inverse_of_sum<kKahan>(from->p, from->ep, arrays_.work.p, p);
         return;
       }
       if (kKahan) {
@@ -627,10 +672,11 @@ class ExplicitStepper final : public StepperBase {
       transform_.inverse(map(from->p), p);
     }
   }
-  // load of a staged transform with the flow pending: one pass (kFlowRead) applies the flow and
-  // writes q + eq (x alone without kKahan) scaled into the staging buffer and p + ep scaled into
-  // the second copy's p, storing no state; p's inverse transform reads it there in place
-  // (inverse_scaled) or from a copy in the staging buffer. Bit for bit the sums of the kFlow pass
+  // load of a staged transform ahead: one pass (kFlowReadBack) applies flow 0 backwards and
+  // writes q + eq (x alone without kKahan) and p + ep scaled into the second copy's q and p
+  // (without inverse_scaled: q into the staging buffer), storing no state; their inverse
+  // transforms read them there in place (inverse_scaled), the staging buffer kept where the
+  // transform allows, or from copies in the staging buffer. Bit for bit the sums of the kFlow pass
   // and inverse_of_sum below (the same operations, their intermediates not stored): 9.5 streams
   // of the state's size against 15.5 compensated. Reading the final state of sine-Gordon
   // N = 8192 Strang, plain: 1.35-1.53x the specialist's loop's read -> 1.14-1.16x; compensated,
@@ -638,25 +684,32 @@ class ExplicitStepper final : public StepperBase {
   // 0.90-0.94x (N = 8192), 1.12-1.21x -> 0.96-1.00x (256^2; perf: inverse_of_sum's two passes
   // were 18 % of get_state). Pinned, alternated, medians.
   template <bool kKahan>
-  void load_pending_staged(Eigen::VectorXd& q, Eigen::VectorXd& p) {
-    apply<kKahan, kFlowRead>(arrays_.state, arrays_.work, true, false, 0, nullptr, kicks_.stages());
-    transform_.inverse_staged(q);
+  void load_back_staged(Eigen::VectorXd& q, Eigen::VectorXd& p) {
+    apply<kKahan, kFlowReadBack>(arrays_.state, arrays_.work, true, false, 0, nullptr, 0);
     if constexpr (kScaledInverse) {
-      transform_.inverse_scaled(arrays_.work.p, p);
+      const bool kept_q = transform_.inverse_scaled(arrays_.work.q, q);
+      const bool kept_p = transform_.inverse_scaled(arrays_.work.p, p);
+      staged_ahead_ = staged_ahead_ && kept_q && kept_p;
     } else {
+      transform_.inverse_staged(q);
       std::copy_n(lanes(arrays_.work.p), kLanes * arrays_.m, transform_.staging());
       transform_.inverse_staged(p);
+      staged_ahead_ = false;
     }
   }
-  // out = the physical vector of x + ex (x alone without kKahan), through the staging buffer.
+  // out = the physical vector of x + ex (x alone without kKahan), scaled into `scratch` (not x or
+  // ex) and transformed from there (inverse_scaled), else through the staging buffer.
   template <bool kKahan>
-  void inverse_of_sum(const Scalar* x, const Scalar* ex, Eigen::VectorXd& out) {
-    double* __restrict y = transform_.staging();
+  void inverse_of_sum(const Scalar* x, const Scalar* ex, Scalar* scratch, Eigen::VectorXd& out) {
+    double* __restrict y = kScaledInverse ? lanes(scratch) : transform_.staging();
     const double* __restrict a = reinterpret_cast<const double*>(x);
     const double* __restrict b = reinterpret_cast<const double*>(ex);
     for (Eigen::Index j = 0; j < kLanes * arrays_.m; ++j)
       y[j] = stage_scale_ * (kKahan ? a[j] + b[j] : a[j]);
-    transform_.inverse_staged(out);
+    if constexpr (kScaledInverse)
+      staged_ahead_ = transform_.inverse_scaled(scratch, out) && staged_ahead_;
+    else
+      transform_.inverse_staged(out), staged_ahead_ = false;
   }
 
   // A failed check (error() throws it): at once, or kept for settle() (kDeferred).
@@ -674,17 +727,25 @@ class ExplicitStepper final : public StepperBase {
   }
 
   // The passes a step makes (explicit_passes.hpp, PassKind {kick, flow, in place, save, stage,
-  // fold q, fold p, read}): a flow, the first one staging Q (identity basis: physical_.Q, else
-  // the transform's staging buffer, if any), get_state's folding both (compensated) or, with a
-  // staging transform, reading the state out (kFlowRead); kicks, the last one saving the force
-  // to arrays_.G (identity basis) and folding p; a kick and the next flow, staging its Q.
-  // Compensated, the step's last flow folds q (apply's fold_q), or else its last kick does.
+  // fold q, fold p, read, check, backward}): a flow, the first one staging Q (identity basis:
+  // physical_.Q, else the transform's staging buffer, if any), get_state's (flow 0 backwards, or
+  // a fixed dimension's pending flow) folding both (compensated) or, with a staging transform,
+  // reading the state out (kFlowReadBack); kicks, the last one (alone, or with the merged flow)
+  // saving the force to arrays_.G (identity basis), folding p and checking what it wrote; a kick
+  // and the next flow, staging its Q. Compensated, the step's last flow folds q (apply's fold_q),
+  // or else its last kick does.
   static constexpr bool kStage = kIdentity || kStaged;
   static constexpr PassKind kFlow{false, true, false, false, false, true, true, false};
   static constexpr PassKind kFlowStaged{false, true, false, false, kStage, false, false, false};
-  static constexpr PassKind kFlowRead{false, true, false, false, false, true, true, true};
+  static constexpr PassKind kFlowBack{false, true, false, false, false,
+                                      true,  true, false, false, true};
+  static constexpr PassKind kFlowReadBack{false, true, false, false, false,
+                                          true,  true, true,  false, true};
   static constexpr PassKind kKick{true, false, true, false, false, false, false, false};
-  static constexpr PassKind kKickLast{true, false, true, kIdentity, false, false, true, false};
+  static constexpr PassKind kKickLast{true,  false, true,  kIdentity, false,
+                                      false, true,  false, true};
+  static constexpr PassKind kKickFlowLast{true,  true, true,  false, kStage,
+                                          false, true, false, true};
   static constexpr PassKind kKickFlow{true, true, true, false, kStage, false, false, false};
   static constexpr PassKind folding_q(PassKind kind) {
     kind.fold_q = true;
@@ -699,15 +760,16 @@ class ExplicitStepper final : public StepperBase {
   // (compensated: from `start` and the increments in `to`, folding q when fold_q) with the
   // kick's hd and g and flow k.
   template <bool kKahan, PassKind kind>
-  EIGEN_ALWAYS_INLINE PassBits apply(const State& start, State& to, bool first, bool fold_q,
-                                     double hd, const Scalar* g, int k) {
+  EIGEN_ALWAYS_INLINE bool apply(const State& start, State& to, bool first, bool fold_q, double hd,
+                                 const Scalar* g, int k) {
     if constexpr (kKahan && !kind.fold_q)
       if (fold_q) return apply<kKahan, folding_q(kind)>(start, to, first, false, hd, g, k);
     const PassArrays a = arrays(start), b = arrays(to);
     const auto f = kind.flow ? flow_of(k) : decltype(flow_of(k)){};  // (a kick has none)
     const double* gd = reinterpret_cast<const double*>(g);
     double* save = reinterpret_cast<double*>(arrays_.G);
-    double* Q = stage_input();
+    // (get_state's pass writes q into the second copy, as it does p, for inverse_scaled)
+    double* Q = kind.read && kScaledInverse ? lanes(to.q) : stage_input();
     constexpr PassKind copy = placed(kind, false), in_place = placed(kind, true);
     if (!first) return pass<kKahan, in_place, kLanes>(n(), a, b, hd, gd, save, f, Q, stage_scale_);
     return pass<kKahan, copy, kLanes>(n(), a, b, hd, gd, save, f, Q, stage_scale_);
@@ -715,23 +777,23 @@ class ExplicitStepper final : public StepperBase {
   // (Fixed dimension: in place, whole arrays; Q and g checked by checked_gradient, the p a kick
   // wrote as it is in registers. The kick reads the callback's g entry by entry, callback_entries.)
   template <bool kKahan, PassKind kind>
-  EIGEN_ALWAYS_INLINE PassBits apply(const Values&, Values& v, bool, bool, double hd,
-                                     const Scalar* g, int k) {
+  EIGEN_ALWAYS_INLINE bool apply(const Values&, Values& v, bool, bool, double hd, const Scalar* g,
+                                 int k) {
     if constexpr (kind.kick) {
       kick_update<kKahan>(Fixed(-hd * callback_entries<D>(g)), v.q, v.p, v.eq, v.ep);
       if (kind.save)
         for (int e = 0; e < D; ++e) arrays_.G[e] = g[e];
     }
-    PassBits bits;  // (the p a kick wrote, in registers; the last pass is a kick alone)
+    std::uint64_t bits = 0;  // (the p a kick wrote, in registers; the last pass is a kick alone)
     if constexpr (kind.kick && !kind.flow)
-      for (int e = 0; e < D; ++e) bits.p |= nonfinite_bits(v.p[e]);
+      for (int e = 0; e < D; ++e) bits |= nonfinite_bits(v.p[e]);
     if constexpr (kind.flow) {
       flow_update<kKahan>(fixed(flows_.cosine(k)), fixed(flows_.sinc(k)), fixed(flows_.msinc(k)),
                           v.q, v.p, v.eq, v.ep);
       if (kind.stage)
         for (int e = 0; e < D; ++e) physical_.Q[e] = v.q[e];
     }
-    return bits;
+    return bits != 0;
   }
 
   // The arrays' passes run over doubles: a complex eigen coordinate (half spectrum) is kLanes = 2
@@ -887,11 +949,19 @@ class ExplicitStepper final : public StepperBase {
   [[no_unique_address]] Gradient gradient_;
   ModifiedForce modified_;
   std::unique_ptr<Processing> processing_;
-  // The last of flows 1 .. s - 1 that moves (0: none), after which q's increments are complete.
-  int last_flow_ = last_moving_flow(flows_, method_.stages());
+  // Over arrays the state after a step runs ahead, after flow 0 of the next (with its first Q
+  // staged: staged_ahead_, below kStageBound: bounded_ahead_), when the merged flow moves; a
+  // fixed dimension's awaits flow s (the last of the step) when it moves.
+  bool ends_ahead_ = !kFixed && flows_.moves(flows_.merged(method_));  // (ahead_ after a step)
+  bool ends_pending_ = kFixed && flows_.moves(kicks_.stages());        // (pending_ after a step)
+  bool ahead_ = false, staged_ahead_ = false, bounded_ahead_ = false;
+  bool pending_ = false;
   bool have_history_ = false;
-  bool pending_ = false;  // the stored state awaits flow s (the last of the step)
-  bool ends_pending_ = flows_.moves(kicks_.stages());  // (pending_ after every step)
+  // The last of flows 1 .. s - 1 that moves (0: none; -1: ahead, q's increments complete only
+  // after the last pass's flow), after which q's increments are complete.
+  // (A byte: with an int the stepper of d = 4 outgrew the blocks glibc's per-thread cache serves.)
+  std::int8_t last_flow_ =
+      std::int8_t(ends_ahead_ ? -1 : last_moving_flow(flows_, method_.stages()));
   StepPlace place_{&method_, 0, 0};
 };
 

@@ -307,15 +307,17 @@ class FftwHalfSpectrum final : public HalfSpectrumBackend {
   }
 
   // Straight from y (c2r may destroy it) when y and x have the planned alignment: get_state's
-  // p, staged by the pending flow in the stepper's own array, needs no copy pass into the buffer.
-  void inverse_scaled(std::complex<double>* y, double* x) override {
+  // q and p, scaled by its pass into the stepper's own arrays, need no copy pass into the buffer,
+  // and the buffer keeps the stage the stepper staged there.
+  bool inverse_scaled(std::complex<double>* y, double* x) override {
     auto* in = reinterpret_cast<fftw_complex*>(y);
     if (scaled_aligned_(in) && output_aligned_(x)) {
       fftw_execute_dft_c2r(plans_.inverse, in, x);
-      return;
+      return true;
     }
     complex_map(spectrum_.data) = Eigen::Map<const Eigen::VectorXcd>(y, m_);
     inverse_staged(x);
+    return false;
   }
 
   // The plans executed straight on arrays of the planned alignment (others through the buffers,

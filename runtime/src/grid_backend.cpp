@@ -170,7 +170,10 @@ class EigenHalfSpectrum final : public HalfSpectrumBackend {
   std::complex<double>* staging() override { return staged_.data(); }
   double staging_scale() const override { return 1; }
   void inverse_staged(double* x) override { inverse(staged_.data(), x); }
-  void inverse_scaled(std::complex<double>* y, double* x) override { inverse(y, x); }
+  bool inverse_scaled(std::complex<double>* y, double* x) override {
+    inverse(y, x);
+    return true;
+  }
 
  private:
   Eigen::Index n_;

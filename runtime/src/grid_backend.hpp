@@ -65,8 +65,9 @@ class HalfSpectrumBackend {
   /// x = F^{-1} y from y staged as above; the staging buffer's contents are lost.
   virtual void inverse_staged(double* x) = 0;
   /// x = F^{-1} y from y scaled as a staged y is, in an array of the caller's (m complex numbers,
-  /// not the staging buffer), whose contents are lost.
-  virtual void inverse_scaled(std::complex<double>* y, double* x) = 0;
+  /// not the staging buffer), whose contents are lost. Returns whether the staging buffer's are
+  /// kept (false: y went through it).
+  virtual bool inverse_scaled(std::complex<double>* y, double* x) = 0;
   /// forward(x, y) and inverse_staged(x) bound to these arrays (a stepper transforms the same
   /// ones at every gradient: no virtual call or alignment check per transform). By default the
   /// bound transform calls the virtual one.

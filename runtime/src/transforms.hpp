@@ -153,10 +153,11 @@ struct HalfSpectrumTransform {
     inverse_staged_(staging_, x.data(), [&] { return backend->bind_inverse_staged(x.data()); })();
   }
   /// x = the physical vector of eigen coordinates y (m of them) already scaled by
-  /// staging_scale(), as the staging buffer holds them; y is lost.
+  /// staging_scale(), as the staging buffer holds them; y is lost. Returns whether the staging
+  /// buffer's contents are kept.
   template <class X>
-  void inverse_scaled(std::complex<double>* y, X&& x) {
-    backend->inverse_scaled(y, x.data());
+  bool inverse_scaled(std::complex<double>* y, X&& x) {
+    return backend->inverse_scaled(y, x.data());
   }
   /// The squared 2-norm of the physical vector.
   template <class Y>

@@ -41,7 +41,7 @@ struct Buffers {
   std::vector<double> q_in, p_in, eq_in, ep_in, q, p, eq, ep, g, save, Q, cos, cm1, sinc, msinc;
 };
 
-/// The bytes of every array after the pass (baseline or AVX entry), and its bits.
+/// The bytes of every array after the pass (baseline or AVX entry), and its check.
 template <bool kKahan, PassKind kKind, int kLanes, class C>
 std::vector<unsigned char> outcome(bool avx, double nudge) {
   Buffers b(kLanes, nudge);
@@ -59,7 +59,7 @@ std::vector<unsigned char> outcome(bool avx, double nudge) {
                  b.q.data(), b.p.data(), b.eq.data(), b.ep.data(), 0.37 * (1 + nudge), b.g.data(),
                  b.save.data(), c, s, ms, b.Q.data(), 0.25);
   };
-  const PassBits bits =
+  const bool check =
       avx ? run([](auto... a) { return pass_loop_avx<kKahan, kKind, kLanes, C>(a...); })
           : run([](auto... a) { return pass_loop<kKahan, kKind, kLanes, C>(a...); });
   std::vector<unsigned char> bytes;
@@ -68,21 +68,23 @@ std::vector<unsigned char> outcome(bool avx, double nudge) {
     bytes.insert(bytes.end(), y, y + n);
   };
   for (std::vector<double>* x : b.arrays()) append(x->data(), x->size() * sizeof(double));
-  append(&bits, sizeof bits);
+  append(&check, sizeof check);
   return bytes;
 }
 
-// The pass kinds {kick, flow, in place, save, stage, fold q, fold p, read} the stepper makes,
-// each also with in_place flipped.
+// The pass kinds {kick, flow, in place, save, stage, fold q, fold p, read, check, backward} the
+// stepper makes, each also with in_place flipped.
 constexpr PassKind kKinds[] = {
-    {false, true, false, false, true, false, false, false},
-    {false, true, false, false, false, true, true, false},
-    {false, true, false, false, false, true, true, true},
-    {true, false, true, false, false, false, false, false},
-    {true, false, true, true, false, false, true, false},
-    {true, true, true, false, true, false, false, false},
-    {true, true, true, false, true, true, false, false},
-    {true, true, true, false, false, false, false, false},
+    {false, true, false, false, true, false, false, false},              // a step's first flow
+    {false, true, false, false, false, true, true, false, false, true},  // get_state's flow back
+    {false, true, false, false, false, true, true, true, false, true},   // ... reading out
+    {true, false, true, false, false, false, false, false},              // a kick
+    {true, false, true, true, false, false, true, false, true},          // the last kick (FSAL)
+    {true, true, true, false, true, false, false, false},                // a kick and a flow
+    {true, true, true, false, true, true, false, false},                 // ... folding q
+    {true, true, true, false, false, false, false, false},               // ... not staged
+    {true, true, true, false, true, false, true, false, true},           // the last, ahead
+    {true, true, true, false, false, false, true, false, true},          // ... not staged
 };
 constexpr PassKind flipped(PassKind k) {
   k.in_place = !k.in_place;
@@ -116,7 +118,7 @@ TEST(ExplicitPasses, AvxEntryGivesTheBaselinesBits) {
   if (!kAvxPasses) GTEST_SKIP() << "this CPU has no AVX";
   EXPECT_EQ(all_differences(0), 0);
   // Negative control: the kick weight and flow coefficients 2^-40 apart change every one of the
-  // 96 passes' outcomes.
+  // 120 passes' outcomes.
   EXPECT_EQ(all_differences(0x1p-40), 6 * 2 * int(std::size(kKinds)));
 }
 
