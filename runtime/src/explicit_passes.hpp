@@ -114,8 +114,8 @@ inline constexpr double kStageBound = 0x1p512;
 /// and fold_q, fold_p add the step's increments of q (after its last flow) and of p (its last
 /// pass) to the state. read (get_state's pass, a flow) stores no state: q and p (compensated:
 /// folded, q + eq and p + ep) times Q_scale go to Q and p, the inputs of their inverse transforms.
-/// check (a step's last pass): the bits of the p it wrote, and of a flow's q (stage: the Q's
-/// bound, as always). backward: the flow over -tau (cos(w tau), -sin(w tau)/w, w sin(w tau)).
+/// check (a step's last pass): its check (pass) covers the p it wrote and a flow's q. backward:
+/// the flow over -tau (cos(w tau), -sin(w tau)/w, w sin(w tau)).
 struct PassKind {
   bool kick, flow, in_place, save, stage, fold_q, fold_p, read, check = false, backward = false;
 };
@@ -210,8 +210,8 @@ EIGEN_ALWAYS_INLINE V flow_at(const PassFlow<C>& f, Eigen::Index e, const double
 // at run time), inlined into one of the noinline entries below only. Plain, in place, the *_in
 // pointers are null and the pass reads through the ones it writes. Compensated (increment form) q
 // and p are the step's increments dq, dp (absent, 0, before its first pass, the one not in place),
-// *_in the state at its start, read by every pass; fold_q puts the new q, eq in q, eq (the
-// stage staged is start q + dq all the same), fold_p the new p, ep in p, ep.
+// *_in the state at its start, read by every pass; fold_q puts the new q, eq in q, eq (and
+// stages the new q, as the stepper's unstaged path reads it), fold_p the new p, ep in p, ep.
 template <bool kKahan, PassKind kKind, int kLanes, class C>
 EIGEN_ALWAYS_INLINE bool pass_body(Eigen::Index n, const double* __restrict q_in,
                                    const double* __restrict p_in, const double* __restrict eq_in,
@@ -230,7 +230,8 @@ EIGEN_ALWAYS_INLINE bool pass_body(Eigen::Index n, const double* __restrict q_in
   constexpr bool kMadeQ = kHaveQ || kKind.flow, kMadeP = kHaveP || kKind.flow;
   // The pass's check (see pass): one value per coordinate whose finiteness implies what the step
   // needs to know, a non-finite force included (a kick's p - hd g is then non-finite, and so is
-  // the q or p a flow makes of it: sin(w tau)/w and cos(w tau) are never 0 for tau != 0).
+  // every q or p a flow makes of it: a finite coefficient times an infinity or a NaN is not
+  // finite, 0 times one is a NaN).
   constexpr bool kStageQ = kKind.flow && kKind.stage;
   constexpr bool kCheckG = kKind.kick && !kStageQ && !kKind.check;
   typename L::Bits bits{};
