@@ -950,10 +950,12 @@ class ExplicitStepper final : public StepperBase {
   ModifiedForce modified_;
   std::unique_ptr<Processing> processing_;
   // Over arrays the state after a step runs ahead, after flow 0 of the next (with its first Q
-  // staged: staged_ahead_, below kStageBound: bounded_ahead_), when the merged flow moves; a
+  // staged: staged_ahead_, below kStageBound: bounded_ahead_), when the merged flow or flow s
+  // moves (c_s - c_1 = 1: flows s and 0 cancel, and the last pass makes the merged flow of 0); a
   // fixed dimension's awaits flow s (the last of the step) when it moves.
-  bool ends_ahead_ = !kFixed && flows_.moves(flows_.merged(method_));  // (ahead_ after a step)
-  bool ends_pending_ = kFixed && flows_.moves(kicks_.stages());        // (pending_ after a step)
+  bool ends_ahead_ = !kFixed && (flows_.moves(flows_.merged(method_)) ||
+                                 flows_.moves(kicks_.stages()));  // (ahead_ after a step)
+  bool ends_pending_ = kFixed && flows_.moves(kicks_.stages());   // (pending_ after a step)
   bool ahead_ = false, staged_ahead_ = false, bounded_ahead_ = false;
   bool pending_ = false;
   bool have_history_ = false;

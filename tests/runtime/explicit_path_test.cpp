@@ -23,6 +23,8 @@ const Splitting kSplittings[] = {
     {"kick-flow-kick (FSAL)", 2, {0, 1}, {0.5, 0.5}},
     {"3 stages, FSAL", 3, {0, 0.6, 1}, {0.25, 0.5, 0.25}},
     {"3 stages, c not monotone", 3, {0.2, 0.9, 0.5}, {0.4, 0.3, 0.3}},
+    // (c_s - c_1 = 1: the last flow of a step and the first of the next cancel, neither is 0)
+    {"2 stages, flows 0 and s cancel", 2, {-0.25, 0.75}, {0.5, 0.5}},
 };
 
 const Splitting* current = nullptr;
