@@ -353,8 +353,9 @@ class ExplicitStepper final : public StepperBase {
   }
 
   void apply_M(const Eigen::VectorXd& x, Eigen::VectorXd& y) override {
+    // (A space's apply_M transforms back through the staging buffer: the staged Q is lost.)
     if constexpr (kDeferred)
-      transform_.apply_M(x, y), staged_ahead_ = false;  // (its buffers may be the staging input)
+      transform_.apply_M(x, y), staged_ahead_ = false;
     else
       M_->apply(x, y);
   }
@@ -676,20 +677,19 @@ class ExplicitStepper final : public StepperBase {
   // writes q + eq (x alone without kKahan) and p + ep scaled into the second copy's q and p
   // (without inverse_scaled: q into the staging buffer), storing no state; their inverse
   // transforms read them there in place (inverse_scaled), the staging buffer kept where the
-  // transform allows, or from copies in the staging buffer. Bit for bit the sums of the kFlow pass
-  // and inverse_of_sum below (the same operations, their intermediates not stored): 9.5 streams
-  // of the state's size against 15.5 compensated. Reading the final state of sine-Gordon
-  // N = 8192 Strang, plain: 1.35-1.53x the specialist's loop's read -> 1.14-1.16x; compensated,
-  // with an output time at each of 10 steps, the output times' cost over the loop's 1.16-1.29x ->
-  // 0.90-0.94x (N = 8192), 1.12-1.21x -> 0.96-1.00x (256^2; perf: inverse_of_sum's two passes
-  // were 18 % of get_state). Pinned, alternated, medians.
+  // transform allows, or from copies in the staging buffer. Bit for bit the sums of the kFlowBack
+  // pass and inverse_of_sum below (the same operations, their intermediates not stored): 9.5
+  // streams of the state's size against 15.5 compensated. Reading the final state of
+  // sine-Gordon N = 8192 Strang, plain: 1.35-1.53x the specialist's loop's read -> 1.14-1.16x;
+  // compensated, with an output time at each of 10 steps, the output times' cost over the loop's
+  // 1.16-1.29x -> 0.90-0.94x (N = 8192), 1.12-1.21x -> 0.96-1.00x (256^2; perf: inverse_of_sum's
+  // two passes were 18 % of get_state). Pinned, alternated, medians.
   template <bool kKahan>
   void load_back_staged(Eigen::VectorXd& q, Eigen::VectorXd& p) {
     apply<kKahan, kFlowReadBack>(arrays_.state, arrays_.work, true, false, 0, nullptr, 0);
     if constexpr (kScaledInverse) {
-      const bool kept_q = transform_.inverse_scaled(arrays_.work.q, q);
-      const bool kept_p = transform_.inverse_scaled(arrays_.work.p, p);
-      staged_ahead_ = staged_ahead_ && kept_q && kept_p;
+      inverse_scaled(arrays_.work.q, q);
+      inverse_scaled(arrays_.work.p, p);
     } else {
       transform_.inverse_staged(q);
       std::copy_n(lanes(arrays_.work.p), kLanes * arrays_.m, transform_.staging());
@@ -707,9 +707,14 @@ class ExplicitStepper final : public StepperBase {
     for (Eigen::Index j = 0; j < kLanes * arrays_.m; ++j)
       y[j] = stage_scale_ * (kKahan ? a[j] + b[j] : a[j]);
     if constexpr (kScaledInverse)
-      staged_ahead_ = transform_.inverse_scaled(scratch, out) && staged_ahead_;
+      inverse_scaled(scratch, out);
     else
       transform_.inverse_staged(out), staged_ahead_ = false;
+  }
+  // out = the physical vector of y (scaled as staged; y is lost) through the transform's
+  // inverse_scaled, which may go through the staging buffer: the staged Q is then lost too.
+  void inverse_scaled(Scalar* y, Eigen::VectorXd& out) {
+    if (!transform_.inverse_scaled(y, out)) staged_ahead_ = false;
   }
 
   // A failed check (error() throws it): at once, or kept for settle() (kDeferred).
