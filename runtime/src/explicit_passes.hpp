@@ -114,11 +114,33 @@ inline constexpr double kStageBound = 0x1p512;
 /// and fold_q, fold_p add the step's increments of q (after its last flow) and of p (its last
 /// pass) to the state. read (get_state's pass, a flow) stores no state: q and p (compensated:
 /// folded, q + eq and p + ep) times Q_scale go to Q and p, the inputs of their inverse transforms.
-/// check (a step's last pass): its check (pass) covers the p it wrote and a flow's q. backward:
-/// the flow over -tau (cos(w tau), -sin(w tau)/w, w sin(w tau)).
+/// check (a step's last pass): its check (pass) covers the p it wrote and a flow's q; with
+/// bound_p also |p| < kPBound. backward: the flow over -tau (cos(w tau), -sin(w tau)/w,
+/// w sin(w tau)). over_start (the step's first pass, not in place): `to` is the start itself, each
+/// coordinate read before it is written (explicit_stepper.hpp, in_place_steps).
 struct PassKind {
-  bool kick, flow, in_place, save, stage, fold_q, fold_p, read, check = false, backward = false;
+  bool kick, flow, in_place, save, stage, fold_q, fold_p, read, check = false, backward = false,
+                                                                bound_p = false, over_start = false;
 };
+
+/// A step that overwrites its start (over_start) is taken only where it cannot fail, so that a
+/// step that fails still leaves the state before it: the start with |p| < kPBound = 2^600 and a
+/// staged Q below kStageBound (so |q| < kStageBound / Q_scale <= 2^552 for Q_scale >= 2^-40), the
+/// force with |hd g| < kPBound (force_bounded), the flow's coefficients at most kFlowBound in
+/// modulus. Every value the pass makes is then below 2^667 (p - hd g below 2^601; a flow's
+/// c q + sinc p, msinc q + c p and compensated increments below 2^(64 + 602)), finite, and its
+/// check can only find a state too large for the next step to be in place, never a failure.
+inline constexpr double kPBound = 0x1p600;
+inline constexpr double kPScale = 0x1p424;  // (kPScale x overflows where |x| >= kPBound)
+inline constexpr double kFlowBound = 0x1p64;
+
+/// Whether every |hd g_j| < kPBound (kLanes n doubles at g): the force of an in-place step.
+inline bool force_bounded(Eigen::Index n, const double* __restrict g, double hd) {
+  const double scaled = kPScale * hd;
+  std::uint64_t bits = 0;
+  for (Eigen::Index j = 0; j < n; ++j) bits |= nonfinite_bits(scaled * g[j]);
+  return bits == 0;
+}
 
 /// The kLanes doubles of one eigen coordinate as one value (Value), on which the passes' arithmetic
 /// runs lane by lane exactly as on single doubles: a double, or (a complex coordinate, re and im)
@@ -234,12 +256,18 @@ EIGEN_ALWAYS_INLINE bool pass_body(Eigen::Index n, const double* __restrict q_in
   // finite, 0 times one is a NaN).
   constexpr bool kStageQ = kKind.flow && kKind.stage;
   constexpr bool kCheckG = kKind.kick && !kStageQ && !kKind.check;
+  static_assert(!kKind.bound_p || (kStageQ && kKind.check), "bound_p: a step's last, staging pass");
+  // The step's start (over_start: `to` itself, each coordinate read before it is written).
+  const double* const qs = kKind.over_start ? q : q_in;
+  const double* const ps = kKind.over_start ? p : p_in;
+  const double* const eqs = kKind.over_start ? eq : eq_in;
+  const double* const eps = kKind.over_start ? ep : ep_in;
   typename L::Bits bits{};
   for (Eigen::Index e = 0; e < n; ++e) {
     const Eigen::Index x = kLanes * e;
     V qx{}, px{};  // (plain: the state; compensated: the increments)
     if (!kKahan || kInPlace)
-      qx = lane_load<V>((kInPlace ? q : q_in) + x), px = lane_load<V>((kInPlace ? p : p_in) + x);
+      qx = lane_load<V>((kInPlace ? q : qs) + x), px = lane_load<V>((kInPlace ? p : ps) + x);
     if constexpr (kKind.kick) {
       const V gx = lane_load<V>(g + x);
       px = plus<kHadP>(px, V(-hd * gx));
@@ -248,20 +276,21 @@ EIGEN_ALWAYS_INLINE bool pass_body(Eigen::Index n, const double* __restrict q_in
     }
     V Qx{};  // (the stage's q)
     if constexpr (kKind.flow)
-      Qx = flow_at<kKahan, kHaveQ, kHaveP, kKind.backward>(PassFlow<C>{c, sinc, msinc}, e, q_in,
-                                                           p_in, x, qx, px);
+      Qx = flow_at<kKahan, kHaveQ, kHaveP, kKind.backward>(PassFlow<C>{c, sinc, msinc}, e, qs, ps,
+                                                           x, qx, px);
     if constexpr (kKind.read) {  // (get_state's pass: q to Q, p to p, no state stored)
-      store_read<kKahan, kMadeQ>(q_in, eq_in, x, qx, Q_scale, Q);
-      store_read<kKahan, kMadeP>(p_in, ep_in, x, px, Q_scale, p);
+      store_read<kKahan, kMadeQ>(qs, eqs, x, qx, Q_scale, Q);
+      store_read<kKahan, kMadeP>(ps, eps, x, px, Q_scale, p);
       continue;
     }
-    if constexpr (kFoldQ) Qx = fold_at<kMadeQ>(q_in + x, eq_in + x, eq + x, qx);
-    if constexpr (kFoldP) fold_at<kMadeP>(p_in + x, ep_in + x, ep + x, px);
+    if constexpr (kFoldQ) Qx = fold_at<kMadeQ>(qs + x, eqs + x, eq + x, qx);
+    if constexpr (kFoldP) fold_at<kMadeP>(ps + x, eps + x, ep + x, px);
     if constexpr (kStageQ) {
       Qx = Q_scale * Qx;
       lane_store(Q + x, Qx);
       const V bound = kStageBound * Qx;
-      bits |= L::nonfinite(kKind.check ? V(px + bound) : bound);
+      const V p_check = kKind.bound_p ? V(kPScale * px) : px;
+      bits |= L::nonfinite(kKind.check ? V(p_check + bound) : bound);
     } else if constexpr (kKind.check) {
       bits |= L::nonfinite(kKind.flow ? V(px + qx) : px);
     }
@@ -318,7 +347,7 @@ template <bool kKahan, PassKind kKind, int kLanes, class C>
 EIGEN_ALWAYS_INLINE bool pass(Eigen::Index n, const PassArrays& from, const PassArrays& to,
                               double hd, const double* g, double* save, const PassFlow<C>& f,
                               double* Q, double Q_scale) {
-  const PassArrays in = kKind.in_place && !kKahan ? PassArrays{} : from;
+  const PassArrays in = (kKind.in_place && !kKahan) || kKind.over_start ? PassArrays{} : from;
 #ifdef ERKN_AVX_PASSES
   if (kAvxPasses)
     return pass_loop_avx<kKahan, kKind, kLanes, C>(n, in.q, in.p, in.eq, in.ep, to.q, to.p, to.eq,
