@@ -76,10 +76,14 @@
 // (e.g. 1e6 steps of the 14-stage SRKN14a, |q - q_ref| 2.2e-14 against 4.5e-15, plain 1.9e-10;
 // sine-Gordon N = 32 is chaotic: after 1e4 steps every run has left the reference).
 // That is within the 5 % the runtime allows itself for a default at N >= 512 by the median and
-// at its edge on the 256^2 grid (single cells up to 1.18x in one of the two runs), and it stays
-// the default: without it the round-off of q_n + dq grows with the number of steps (a random
-// walk, ~sqrt(n) eps |q|), which is what the energy and long-time charts show and what the paper's
-// claims rest on; Options::compensated_summation = false is the fast path.
+// at its edge on the 256^2 grid (single cells up to 1.18x in one of the two runs). On an Intel
+// Xeon host (main a5670a2, the same two runs, gradient compiled in) N = 512-8192 read
+// 1.036-1.045x by the median, and the 256^2 grid 1.107x (1.081-1.140), where the state's four
+// arrays and the second copy's outgrow the caches (a step of one pass there is in place:
+// in_place_steps). It stays the default: without it the round-off of q_n + dq grows with the
+// number of steps (a random walk, ~sqrt(n) eps |q|), which is what the energy and long-time
+// charts show and what the paper's claims rest on; Options::compensated_summation = false is the
+// fast path.
 #pragma once
 
 #include <Eigen/Core>
