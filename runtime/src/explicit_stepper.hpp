@@ -291,7 +291,9 @@ class ExplicitStepper final : public StepperBase {
                       : 0),  // (a fixed D's compiled product has its Hv on the stack)
         processing_(method.is_processed()
                         ? std::make_unique<Processing>(method, h, lambda, arrays_.m, d)
-                        : nullptr) {}
+                        : nullptr) {
+    in_place_ = in_place_steps();  // (after every member it reads)
+  }
 
   ExplicitStepper(const ExplicitStepper&) = delete;  // (the pointers view its own buffer)
   ExplicitStepper& operator=(const ExplicitStepper&) = delete;
@@ -540,15 +542,16 @@ class ExplicitStepper final : public StepperBase {
     if constexpr (kFixed) {
       Values v{Fixed(arrays_.state.q), Fixed(arrays_.state.p), Fixed::Zero(), Fixed::Zero()};
       if (kKahan) v.eq = Fixed(arrays_.state.eq), v.ep = Fixed(arrays_.state.ep);
-      if (stages<kKahan>(v, v, evaluations)) non_finite_result(true, place_);
+      bool unused = false;  // (the values are the only copy)
+      if (stages<kKahan>(v, v, evaluations, unused)) non_finite_result(true, place_);
       FixedMap(arrays_.state.q) = v.q, FixedMap(arrays_.state.p) = v.p;
       if (kKahan) FixedMap(arrays_.state.eq) = v.eq, FixedMap(arrays_.state.ep) = v.ep;
     } else {
-      stepped_in_place_ = false;
-      const bool suspect = stages<kKahan>(arrays_.state, arrays_.work, evaluations);
-      if (suspect) check_result(stepped_in_place_ ? arrays_.state : arrays_.work);
+      bool in_place = false;  // (the step overwrote its start: last_pass)
+      const bool suspect = stages<kKahan>(arrays_.state, arrays_.work, evaluations, in_place);
+      if (suspect) check_result(in_place ? arrays_.state : arrays_.work);
       if constexpr (kDeferred) transform_.settle();  // (every process's checks, before the swap)
-      if (!stepped_in_place_) std::swap(arrays_.state, arrays_.work);
+      if (!in_place) std::swap(arrays_.state, arrays_.work);
       staged_ahead_ = ends_ahead_ && kStage, bounded_ahead_ = !suspect;
     }
   }
@@ -568,9 +571,10 @@ class ExplicitStepper final : public StepperBase {
   // In the identity basis each flow before a gradient writes the stage's physical_.Q as it goes
   // (with a staging transform: the inverse transform's input), and the last kick saves the gradient
   // to arrays_.G for FSAL: no pass reloads what the last one stored. Returns whether the last
-  // pass's check failed (explicit_passes.hpp, pass).
+  // pass's check failed (explicit_passes.hpp, pass); in_place: set where the last pass wrote the
+  // start (last_pass).
   template <bool kKahan, class S>
-  EIGEN_ALWAYS_INLINE bool stages(const S& start, S& to, Counts& evaluations) {
+  EIGEN_ALWAYS_INLINE bool stages(const S& start, S& to, Counts& evaluations, bool& in_place) {
     const bool reuse = kicks_.fsal() && have_history_;  // (stage 1's force; its flow never moves)
     const int merged = pending_ ? flows_.merged(method_) : 0;
     bool first = true;           // (no pass made yet: the state is `start`)
@@ -603,7 +607,8 @@ class ExplicitStepper final : public StepperBase {
         suspect = apply<kKahan, kKickFlow>(start, to, first, fold, hd, g, i + 1);
         folded = folded || fold;
       } else if (i == kicks_.stages() - 1) {
-        suspect = last_pass<kKahan>(start, to, first, folded, hd, g, first && bounded_start);
+        suspect =
+            last_pass<kKahan>(start, to, first, folded, hd, g, first && bounded_start, in_place);
       } else {
         suspect = apply<kKahan, kKick>(start, to, first, false, hd, g, 0);
       }
@@ -621,15 +626,15 @@ class ExplicitStepper final : public StepperBase {
   // force; compensated, p's fold, and q's unless folded).
   // With in_place_ the pass bounds p as well (bound_p: a state with |p| >= kPBound is then
   // scanned after each step), and a step's only pass, from a bounded state (bounded_start) with
-  // a bounded force, overwrites the start (in_place_steps).
+  // a bounded force, overwrites the start (in_place_steps), which sets in_place.
   template <bool kKahan, class S>
   EIGEN_ALWAYS_INLINE bool last_pass(const S& start, S& to, bool first, bool folded, double hd,
-                                     const Scalar* g, bool bounded_start) {
+                                     const Scalar* g, bool bounded_start, bool& in_place) {
     if constexpr (kMayStepInPlace) {
       const int k = flows_.merged(method_);
       if (in_place_) {  // (then ends_ahead_)
-        stepped_in_place_ = bounded_start && force_bounded(kLanes * n(), lanes(g), hd);
-        if (stepped_in_place_)
+        in_place = bounded_start && force_bounded(kLanes * n(), lanes(g), hd);
+        if (in_place)
           return apply<kKahan, over_start(kKickFlowLastBounded)>(start, arrays_.state, true, true,
                                                                  hd, g, k);
         return apply<kKahan, kKickFlowLastBounded>(start, to, first, true, hd, g, k);
@@ -1007,6 +1012,7 @@ class ExplicitStepper final : public StepperBase {
   Method method_;
   System system_;
   bool kahan_, rkn_;
+  bool in_place_ = false;  // (in_place_steps, set by the constructor)
   KickWeights kicks_;
   FlowCoefficients<Coef> flows_;
   Transform transform_;
@@ -1024,8 +1030,6 @@ class ExplicitStepper final : public StepperBase {
   bool ends_ahead_ = !kFixed && (flows_.moves(flows_.merged(method_)) ||
                                  flows_.moves(kicks_.stages()));  // (ahead_ after a step)
   bool ends_pending_ = kFixed && flows_.moves(kicks_.stages());   // (pending_ after a step)
-  const bool in_place_ = in_place_steps();
-  bool stepped_in_place_ = false;  // (the step overwrote its start: last_pass)
   bool ahead_ = false, staged_ahead_ = false, bounded_ahead_ = false;
   bool pending_ = false;
   bool have_history_ = false;
