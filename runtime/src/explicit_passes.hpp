@@ -227,6 +227,25 @@ EIGEN_ALWAYS_INLINE V flow_at(const PassFlow<C>& f, Eigen::Index e, const double
   }
 }
 
+// A coordinate's stage and check (see pass) after a pass's arithmetic: with a flow that stages,
+// Q_scale Qx to Q + x and the bits of its bound (with check, also p's; bound_p: |p| < kPBound);
+// else with check the bits of p + q after a flow, or of p; else none.
+template <PassKind kKind, class L, class V>
+EIGEN_ALWAYS_INLINE typename L::Bits stage_and_check(V Qx, const V& qx, const V& px, double Q_scale,
+                                                     double* Q, Eigen::Index x) {
+  if constexpr (kKind.flow && kKind.stage) {
+    Qx = Q_scale * Qx;
+    lane_store(Q + x, Qx);
+    const V bound = kStageBound * Qx;
+    const V p_check = kKind.bound_p ? V(kPScale * px) : px;
+    return L::nonfinite(kKind.check ? V(p_check + bound) : bound);
+  } else if constexpr (kKind.check) {
+    return L::nonfinite(kKind.flow ? V(px + qx) : px);
+  } else {
+    return typename L::Bits{};
+  }
+}
+
 // The loop of pass(), one eigen coordinate (a Lane's Value) per iteration: every pointer a
 // __restrict parameter (its pointers as locals or members, GCC 12 checks them against each other
 // at run time), inlined into one of the noinline entries below only. Plain, in place, the *_in
@@ -285,15 +304,7 @@ EIGEN_ALWAYS_INLINE bool pass_body(Eigen::Index n, const double* __restrict q_in
     }
     if constexpr (kFoldQ) Qx = fold_at<kMadeQ>(qs + x, eqs + x, eq + x, qx);
     if constexpr (kFoldP) fold_at<kMadeP>(ps + x, eps + x, ep + x, px);
-    if constexpr (kStageQ) {
-      Qx = Q_scale * Qx;
-      lane_store(Q + x, Qx);
-      const V bound = kStageBound * Qx;
-      const V p_check = kKind.bound_p ? V(kPScale * px) : px;
-      bits |= L::nonfinite(kKind.check ? V(p_check + bound) : bound);
-    } else if constexpr (kKind.check) {
-      bits |= L::nonfinite(kKind.flow ? V(px + qx) : px);
-    }
+    bits |= stage_and_check<kKind, L>(Qx, qx, px, Q_scale, Q, x);
     if (kKind.flow || !kInPlace || kFoldQ) lane_store(q + x, qx);  // (a kick in place: q stays)
     lane_store(p + x, px);
   }

@@ -577,15 +577,13 @@ class ExplicitStepper final : public StepperBase {
   EIGEN_ALWAYS_INLINE bool stages(const S& start, S& to, Counts& evaluations, bool& in_place) {
     const bool reuse = kicks_.fsal() && have_history_;  // (stage 1's force; its flow never moves)
     const int merged = pending_ ? flows_.merged(method_) : 0;
-    bool first = true;           // (no pass made yet: the state is `start`)
-    bool folded = false;         // (compensated: q's increments added, after the step's last flow)
-    bool staged = false;         // (stage i's Q written by the last pass)
-    bool suspect = false;        // (the last pass's check failed)
-    bool bounded_start = false;  // (ahead, bounded: the start's p below kPBound, in_place_)
-    if (ahead_) {                // (arrays: stage 1's Q is the state's, staged by the last step)
+    bool first = true;     // (no pass made yet: the state is `start`)
+    bool folded = false;   // (compensated: q's increments added, after the step's last flow)
+    bool staged = false;   // (stage i's Q written by the last pass)
+    bool suspect = false;  // (the last pass's check failed)
+    if (ahead_) {          // (arrays: stage 1's Q is the state's, staged by the last step)
       staged = staged_ahead_;
       suspect = !bounded_ahead_;
-      bounded_start = bounded_ahead_;
       staged_ahead_ = false;  // (the staging input is this step's from its first gradient on)
     } else if (flows_.moves(merged)) {
       folded = last_flow_ == 0;
@@ -607,8 +605,9 @@ class ExplicitStepper final : public StepperBase {
         suspect = apply<kKahan, kKickFlow>(start, to, first, fold, hd, g, i + 1);
         folded = folded || fold;
       } else if (i == kicks_.stages() - 1) {
-        suspect =
-            last_pass<kKahan>(start, to, first, folded, hd, g, first && bounded_start, in_place);
+        // (before any pass, ahead and not suspect: the start is bounded, bounded_ahead_)
+        const bool bounded_start = first && ahead_ && !suspect;
+        suspect = last_pass<kKahan>(start, to, first, folded, hd, g, bounded_start, in_place);
       } else {
         suspect = apply<kKahan, kKick>(start, to, first, false, hd, g, 0);
       }
